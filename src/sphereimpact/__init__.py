@@ -1,0 +1,18 @@
+"""sphereimpact: oblique impact of a rigid-body sphere on a rigid flat, after Chapter 4 of the study.
+
+Quick use::
+
+    from sphereimpact import Scene, simulate
+    out = simulate(Scene(angle=60))        # the chapter's oblique case, modified model
+    out.cor, out.omega_f, out.history()    # outputs and time histories (SI units)
+"""
+
+from .events import ImpactError
+from .forces import FORCE_MODELS, ForceModel
+from .outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
+from .scene import Scene, SolverOptions
+from .solve import simulate
+
+__all__ = ["FORCE_MODELS", "ForceModel", "HISTORY_COLUMNS", "ImpactError", "OUTPUT_KEYS", "Outcome",
+           "Scene", "SolverOptions", "simulate"]
+__version__ = "0.1.0"

@@ -1,0 +1,80 @@
+"""Normal contact force laws, in a registry keyed by name.
+
+Every law is written with delta >= 0 as compression [m] and delta_dot its rate
+[m/s] (> 0 while compressing), and returns the force P [N] the flat pushes on
+the ball along the outward normal.  Outside contact (delta < 0) there is no
+force, and the exponential of the modified law is never evaluated there (it
+would overflow for large negative delta).
+
+The chapter prints eq. 4.1 as P = k delta - b delta_dot and eq. 4.2 with
+exp(+100 delta / R) because its delta is the (negative) displacement of the
+centre; with delta as compression both read as below.
+
+To add a law, write a function ``f(delta, delta_dot, p)`` (``p`` has the
+attributes ``k``, ``b``, ``radius``, ``ramp``) and register it::
+
+    FORCE_MODELS["my-law"] = ForceModel("my-law", f, linear=False, doc="...")
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class ForceModel:
+    """A named normal force law.
+
+    Attributes
+    ----------
+    name : str
+        Registry key.
+    force : callable
+        ``force(delta, delta_dot, p) -> P`` [N], numpy-vectorised.
+    linear : bool
+        True when P is linear in (delta, delta_dot) inside contact, so that the
+        normal motion has a closed form (:mod:`sphereimpact.closed`).
+    doc : str
+        One line for help texts and reports.
+    """
+
+    name: str
+    force: Callable
+    linear: bool
+    doc: str
+
+
+def kelvin_voigt(delta, delta_dot, p):
+    """Eq. 4.1, the chapter's "previous" model: P = k delta + b delta_dot [N] for delta > 0.
+
+    P jumps to b v_n at first touch and turns negative (pulls) before delta
+    returns to zero.
+    """
+    delta = np.asarray(delta, dtype=float)
+    return np.where(delta > 0, p.k * delta + p.b * np.asarray(delta_dot, dtype=float), 0.0)
+
+
+def modified(delta, delta_dot, p):
+    """Eq. 4.2, the chapter's model: P = k delta + b delta_dot (1 - exp(-c delta / R)) [N].
+
+    The ramp 1 - exp(-c delta / R) (c = ``p.ramp``, 100 in the chapter) makes P
+    start from zero.  It is evaluated as ``-expm1`` of a non-positive argument,
+    so it is exact for small delta and cannot overflow.
+    """
+    delta = np.asarray(delta, dtype=float)
+    inside = np.maximum(delta, 0.0)
+    ramp = -np.expm1(-p.ramp * inside / p.radius)
+    return np.where(delta > 0, p.k * inside + p.b * np.asarray(delta_dot, dtype=float) * ramp, 0.0)
+
+
+FORCE_MODELS: dict[str, ForceModel] = {
+    "kelvin-voigt": ForceModel(
+        "kelvin-voigt", kelvin_voigt, linear=True,
+        doc="eq. 4.1, linear spring-damper P = k delta + b delta_dot (the chapter's 'previous' model)"),
+    "modified": ForceModel(
+        "modified", modified, linear=False,
+        doc="eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)"),
+}

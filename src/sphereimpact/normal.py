@@ -1,0 +1,159 @@
+"""The reduced model: the normal motion delta(t) of the ball during contact.
+
+With a rigid flat and no tangential compliance the normal motion does not
+depend on friction, so this is the only differential equation the reduced
+model integrates:
+
+    m delta'' = -P(delta, delta') + m g cos(beta),  delta(0) = 0,  delta'(0) = v cos(beta).
+
+It is solved in dimensionless form, tau = omega_n t, x = delta omega_n / v_n,
+y = delta' / v_n, so one absolute tolerance suits every ball and speed.
+Maximum compression and separation are located by :func:`scipy.integrate.solve_ivp`'s
+event root finding on the dense output (Brent's method, a few ulp).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .events import ImpactError
+from .scene import Scene, SolverOptions
+
+#: Samples per solver step used when scanning event functions on the dense output.
+SUBSTEPS = 8
+
+
+class NormalMotion:
+    """A solved normal motion: delta(t) on [0, t_f] with its events.
+
+    Subclasses set ``scene``, ``t_m`` [s], ``t_f`` [s], ``grid`` (increasing
+    sample times on [0, t_f] fine enough to bracket every event) and ``stats``,
+    and implement :meth:`state`.
+    """
+
+    scene: Scene
+    t_m: float
+    t_f: float
+    grid: np.ndarray
+    stats: dict
+
+    def state(self, t):
+        """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]."""
+        raise NotImplementedError
+
+    def force(self, t):
+        """Normal force P(t) [N]."""
+        return self.scene.force(*self.state(t))
+
+    def impulse(self, t):
+        """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
+        s = self.scene
+        t = np.asarray(t, dtype=float)
+        return s.mass * (s.v_normal - self.state(t)[1] + s.g_normal * t)
+
+    def impulse_integral(self, t):
+        """K(t) = integral of J from 0 to t [N s^2], exact from delta(t)."""
+        s = self.scene
+        t = np.asarray(t, dtype=float)
+        return s.mass * (s.v_normal * t - self.state(t)[0] + 0.5 * s.g_normal * t * t)
+
+    @property
+    def delta_m(self) -> float:
+        """Maximum compression [m] (at t_m)."""
+        return float(self.state(self.t_m)[0])
+
+
+def separation_function(scene: Scene):
+    """The function of (delta, delta_dot) whose fall through zero ends contact.
+
+    ``penetration``: delta.  ``force``: the first of P = 0 and delta = 0, as P
+    inside contact and delta outside.  P alone would not do: it is exactly 0
+    for every delta <= 0, so a root search could stop anywhere past separation.
+    """
+    if scene.separation == "penetration":
+        return lambda delta, delta_dot: delta
+    return lambda delta, delta_dot: np.where(np.asarray(delta) > 0, scene.force(delta, delta_dot), delta)
+
+
+def no_separation_message(scene: Scene, t_end: float) -> str:
+    """One line explaining a contact that never ends under the chosen criterion."""
+    what = "delta never returns to 0" if scene.separation == "penetration" else "P never returns to 0"
+    hint = " (try --separation force)" if scene.separation == "penetration" else ""
+    return (f"no separation: {what} within {t_end:.3g} s under the '{scene.separation}' criterion "
+            f"(damping ratio zeta = {scene.zeta:.3g}, gravity {scene.gravity:g} m/s^2){hint}")
+
+
+def horizon(scene: Scene) -> float:
+    """Longest contact [s] searched for a separation before giving up.
+
+    Far beyond any contact that ends: 100 undamped half-periods, stretched by
+    the damping ratio for over-damped scenes (their slow mode decays at about
+    omega_n / (2 zeta)).
+    """
+    return 100.0 * math.pi * (1.0 + 2.0 * scene.zeta) / scene.omega_n
+
+
+class IntegratedNormal(NormalMotion):
+    """Normal motion integrated with :func:`scipy.integrate.solve_ivp`.
+
+    Parameters
+    ----------
+    scene : Scene
+    options : SolverOptions
+        ``method`` must be a solve_ivp method (not ``closed``).
+
+    Raises
+    ------
+    ImpactError
+        When the solver fails, or maximum compression or separation is not found.
+    """
+
+    def __init__(self, scene: Scene, options: SolverOptions):
+        if options.method == "closed":
+            raise ValueError("method 'closed' is not a solve_ivp method")
+        self.scene = scene
+        w, v = scene.omega_n, scene.v_normal
+        d_scale, gamma = v / w, scene.g_normal / (w * v)
+        p_scale = scene.mass * w * v
+        law = scene.force
+        sep = separation_function(scene)
+
+        def rhs(tau, z):
+            return [z[1], -law(z[0] * d_scale, z[1] * v) / p_scale + gamma]
+
+        def max_compression(tau, z):
+            return z[1]
+
+        def separation(tau, z):
+            return sep(z[0] * d_scale, z[1] * v)
+
+        max_compression.direction = -1
+        separation.direction = -1
+        separation.terminal = True
+
+        sol = solve_ivp(rhs, (0.0, horizon(scene) * w), [0.0, 1.0], method=options.method,
+                        rtol=options.rtol, atol=options.atol, max_step=options.max_step * w,
+                        events=(max_compression, separation), dense_output=True)
+        if sol.status == -1:
+            raise ImpactError(f"solver {options.method} failed: {sol.message}")
+        if sol.status == 0 or len(sol.t_events[1]) == 0:
+            raise ImpactError(no_separation_message(scene, horizon(scene)))
+        if len(sol.t_events[0]) == 0:
+            raise ImpactError("separation found before maximum compression: event missed "
+                              f"(method {options.method}, rtol {options.rtol:g}); tighten the tolerance")
+        self._sol, self._w, self._d_scale, self._v = sol.sol, w, d_scale, v
+        self.t_m = float(sol.t_events[0][0]) / w
+        self.t_f = float(sol.t_events[1][0]) / w
+        steps = sol.t / w
+        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
+        grid = (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+        self.grid = np.append(grid[grid < self.t_f], self.t_f)
+        self.stats = {"method": options.method, "rtol": options.rtol, "atol": options.atol,
+                      "nfev": int(sol.nfev)}
+
+    def state(self, t):
+        z = self._sol(np.asarray(t, dtype=float) * self._w)
+        return z[0] * self._d_scale, z[1] * self._v

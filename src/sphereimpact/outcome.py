@@ -1,0 +1,123 @@
+"""The outputs of one impact, and its time histories in the contact and global frames.
+
+Contact frame: t along the flat in the direction of the incoming tangential
+motion (down-slope), n the outward normal of the flat.  Global frame: X
+horizontal, Y vertical up, origin at the first contact point; the flat's normal
+is n = (sin beta, cos beta) and t = (cos beta, -sin beta).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .events import extremum
+from .scene import Scene
+
+#: The outputs of one impact, in the order of the JSON object and tables.
+OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
+               "regime", "t_roll", "force_min", "force_max",
+               "method", "rtol", "atol", "nfev", "wall_time")
+
+#: Columns of :meth:`Outcome.history`, with units.
+HISTORY_COLUMNS = {
+    "t": "s", "delta": "m", "delta_dot": "m/s", "force": "N",
+    "u_t": "m", "u_n": "m", "vc_t": "m/s", "vc_n": "m/s", "omega": "rad/s", "ve_t": "m/s", "ve_n": "m/s",
+    "X": "m", "Y": "m", "VX": "m/s", "VY": "m/s",
+}
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """The result of one impact (SI units).
+
+    Attributes
+    ----------
+    t_m : float
+        Time of maximum compression [s] (delta_dot = 0).
+    delta_m : float
+        Maximum compression [m], positive.
+    t_f : float
+        Contact duration [s] (separation under the scene's criterion).
+    vc_t, vc_n : float
+        Centre velocity after impact along the flat and the outward normal [m/s].
+    ve_t, ve_n : float
+        Contact-point velocity after impact [m/s]; ve_t = vc_t - omega_f R, ve_n = vc_n.
+    omega_f : float
+        Spin after impact [rad/s], positive in the sense friction spins the ball.
+    cor : float
+        Coefficient of restitution ve_n / (v cos beta) [-].
+    regime : str
+        ``sliding`` or ``rolling`` at separation, ``none`` for a normal impact.
+    t_roll : float or None
+        First instant the contact point stops slipping [s]; None if it never does.
+    force_min, force_max : float
+        Extremes of the normal force during contact [N] (negative = pulling).
+    method, rtol, atol, nfev, wall_time
+        Solver statistics; ``wall_time`` [s] covers the whole call.
+    """
+
+    t_m: float
+    delta_m: float
+    t_f: float
+    vc_t: float
+    vc_n: float
+    ve_t: float
+    ve_n: float
+    omega_f: float
+    cor: float
+    regime: str
+    t_roll: float | None
+    force_min: float
+    force_max: float
+    method: str
+    rtol: float
+    atol: float
+    nfev: int
+    wall_time: float
+    scene: Scene = field(repr=False, compare=False)
+    motion: object = field(repr=False, compare=False)
+
+    @classmethod
+    def from_motion(cls, motion, wall_time: float) -> "Outcome":
+        """Read the outputs off a solved contact motion (reduced or planar).
+
+        ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``,
+        ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
+        """
+        s = motion.scene
+        end = motion.kinematics(motion.t_f)
+        vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
+        return cls(
+            t_m=motion.t_m, delta_m=float(motion.kinematics(motion.t_m)["delta"][0]), t_f=motion.t_f,
+            vc_t=vc_t, vc_n=vc_n, ve_t=vc_t - omega * s.radius, ve_n=vc_n, omega_f=omega,
+            cor=vc_n / s.v_normal, regime=motion.regime, t_roll=motion.t_roll,
+            force_min=extremum(motion.force, motion.grid, "min")[1],
+            force_max=extremum(motion.force, motion.grid, "max")[1],
+            wall_time=wall_time, scene=s, motion=motion, **motion.stats)
+
+    def to_dict(self) -> dict:
+        """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS`."""
+        out = {}
+        for key in OUTPUT_KEYS:
+            value = getattr(self, key)
+            out[key] = float(value) if isinstance(value, (float, np.floating)) else value
+        return out
+
+    def history(self, n: int = 401) -> dict:
+        """Time histories on n uniform instants over [0, t_f], keyed by :data:`HISTORY_COLUMNS`."""
+        s = self.scene
+        t = np.linspace(0.0, self.t_f, n)
+        k = self.motion.kinematics(t)
+        radius, beta = s.radius, math.radians(s.angle)
+        normal_pos = radius - k["delta"]  # centre height above the flat
+        sn, cs = math.sin(beta), math.cos(beta)
+        return {
+            "t": t, "delta": k["delta"], "delta_dot": k["delta_dot"], "force": self.motion.force(t),
+            "u_t": k["u_t"], "u_n": -k["delta"], "vc_t": k["vc_t"], "vc_n": k["vc_n"], "omega": k["omega"],
+            "ve_t": k["vc_t"] - k["omega"] * radius, "ve_n": k["vc_n"],
+            "X": normal_pos * sn + k["u_t"] * cs, "Y": normal_pos * cs - k["u_t"] * sn,
+            "VX": k["vc_n"] * sn + k["vc_t"] * cs, "VY": k["vc_n"] * cs - k["vc_t"] * sn,
+        }

@@ -1,0 +1,142 @@
+"""The full planar rigid-body model, the cross-check of the reduced model.
+
+State, in the global frame (X horizontal, Y up, origin at the first contact
+point): centre position (X, Y), centre velocity (VX, VY) and spin omega
+(positive in the sense friction spins the ball).  The flat's outward normal is
+n = (sin beta, cos beta) and the tangent t = (cos beta, -sin beta), so
+delta = R - C.n and the slip of the contact point is s = V.t - omega R.
+
+Newton-Euler: m dV/dt = P n + F t + m (0, -g),  I domega/dt = -F R.
+The tangential force F switches between modes by events, never by sign():
+sliding (s > 0): F = -mu max(P, 0); rolling (s = 0): F keeps s = 0, which
+takes F = -m g sin(beta) alpha / (1 + alpha); rolling ends when mu max(P, 0)
+can no longer supply that.  Each mode is a separate solve_ivp segment.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .events import ImpactError
+from .normal import SUBSTEPS, horizon, no_separation_message, separation_function
+from .scene import Scene, SolverOptions
+from .tangential import MAX_PHASES
+
+
+class PlanarMotion:
+    """Integrate one impact with the full planar model (see module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+    options : SolverOptions
+        A solve_ivp method (``closed`` is not available for this model).
+    """
+
+    def __init__(self, scene: Scene, options: SolverOptions):
+        if options.method == "closed":
+            raise ValueError("method 'closed' is only available for the reduced model")
+        self.scene = scene
+        beta = scene.beta
+        self._n = np.array([math.sin(beta), math.cos(beta)])
+        self._t = np.array([math.cos(beta), -math.sin(beta)])
+        radius, length = scene.radius, scene.speed / scene.omega_n
+        scale = np.array([length, length, scene.speed, scene.speed, scene.speed / radius])
+        self._options = dict(method=options.method, rtol=options.rtol, atol=options.atol * scale,
+                             max_step=options.max_step, dense_output=True)
+        self._hold = scene.mass * scene.g_tangent * scene.inertia_factor / (1 + scene.inertia_factor)
+        z = np.array([radius * self._n[0], radius * self._n[1], 0.0, -scene.speed, 0.0])
+        mode = "sliding" if scene.has_tangential_motion else "rolling"
+        t0, t_end = 0.0, horizon(scene)
+        self._segments, self.t_roll, t_m, nfev = [], None, None, 0
+        while True:
+            sol = self._segment(mode, t0, t_end, z)
+            nfev += sol.nfev
+            if sol.status == -1:
+                raise ImpactError(f"solver {options.method} failed: {sol.message}")
+            self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
+            if t_m is None and len(sol.t_events[0]):
+                t_m = float(sol.t_events[0][0])
+            if len(sol.t_events[1]):
+                break
+            if sol.status == 0 or not len(sol.t_events[2]):
+                raise ImpactError(no_separation_message(scene, t_end))
+            t0, z = float(sol.t_events[2][0]), sol.y_events[2][0].copy()
+            if mode == "sliding":
+                self.t_roll = t0 if self.t_roll is None else self.t_roll
+                mode, z[4] = "rolling", float(z[2:4] @ self._t) / radius  # exactly on the constraint
+            else:
+                mode = "sliding"
+            if len(self._segments) >= MAX_PHASES:
+                raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
+        if t_m is None:
+            raise ImpactError("separation found before maximum compression: event missed")
+        self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
+        self.regime = mode if scene.has_tangential_motion else "none"
+        steps = np.concatenate([seg[3] for seg in self._segments])
+        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
+        grid = np.unique((steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel())
+        self.grid = np.append(grid[(grid >= 0) & (grid < self.t_f)], self.t_f)
+        self.stats = {"method": options.method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
+
+    def _contact(self, z):
+        """(delta, delta_dot, P) of state(s) z."""
+        s = self.scene
+        delta = s.radius - (self._n[0] * z[0] + self._n[1] * z[1])
+        delta_dot = -(self._n[0] * z[2] + self._n[1] * z[3])
+        return delta, delta_dot, s.force(delta, delta_dot)
+
+    def _segment(self, mode: str, t0: float, t_end: float, z0):
+        s = self.scene
+        n_vec, t_vec, radius = self._n, self._t, s.radius
+        mu, hold, sep = s.mu, self._hold, separation_function(s)
+
+        def rhs(t, z):
+            _, _, p = self._contact(z)
+            f = -mu * max(float(p), 0.0) if mode == "sliding" else -hold
+            ax, ay = (p * n_vec + f * t_vec) / s.mass
+            return [z[2], z[3], ax, ay - s.gravity, -f * radius / s.inertia]
+
+        def max_compression(t, z):
+            return -(n_vec @ z[2:4])
+
+        def separation(t, z):
+            delta, delta_dot, _ = self._contact(z)
+            return sep(delta, delta_dot)
+
+        def switch(t, z):
+            if mode == "sliding":
+                return t_vec @ z[2:4] - z[4] * radius
+            if hold > 0:
+                return mu * max(float(self._contact(z)[2]), 0.0) - hold
+            return 1.0
+
+        for event in (max_compression, separation, switch):
+            event.direction = -1
+        separation.terminal = switch.terminal = True
+        return solve_ivp(rhs, (t0, t_end), z0, events=(max_compression, separation, switch), **self._options)
+
+    def _state(self, t):
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        out = np.empty((5, t.size))
+        starts = np.array([seg[0] for seg in self._segments])
+        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(self._segments) - 1)
+        for i, (_, _, dense, _) in enumerate(self._segments):
+            mask = which == i
+            if mask.any():
+                out[:, mask] = dense(t[mask])
+        return out
+
+    def force(self, t):
+        return self._contact(self._state(t))[2]
+
+    def kinematics(self, t) -> dict:
+        """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""
+        z = self._state(t)
+        delta, delta_dot, _ = self._contact(z)
+        radius = self.scene.radius
+        return {"delta": delta, "delta_dot": delta_dot, "vc_t": self._t @ z[2:4], "vc_n": self._n @ z[2:4],
+                "omega": z[4], "u_t": self._t @ (z[0:2] - radius * self._n)}

@@ -1,0 +1,189 @@
+"""The inputs of one impact: ball, flat, contact law, approach, and how to solve it.
+
+Everything is in SI units except the flat's angle, which is given in degrees
+because that is how the chapter (and every user) states it.  Construction
+validates every field and raises :class:`ValueError` with one line naming the
+parameter and its allowed range, so a bad input can never reach the solver.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from .forces import FORCE_MODELS
+
+#: Standard gravity [m/s^2], used when gravity is switched on without a value.
+STANDARD_GRAVITY = 9.80665
+
+#: Separation criteria: ``force`` ends contact when P returns to 0 (a
+#: unilateral contact cannot pull), ``penetration`` when delta returns to 0.
+SEPARATION_CRITERIA = ("force", "penetration")
+
+#: Integration methods: ``closed`` is the exact linear solution (kelvin-voigt
+#: only); the others are :func:`scipy.integrate.solve_ivp` methods.
+METHODS = ("closed", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+
+
+def _check(name: str, value, allowed: str, ok) -> None:
+    """Raise ``ValueError`` unless ``value`` is a finite number satisfying ``ok``."""
+    bad = isinstance(value, bool) or not isinstance(value, (int, float))
+    if bad or not math.isfinite(value) or not ok(value):
+        raise ValueError(f"{name} must be {allowed}; got {value!r}")
+
+
+def _check_choice(name: str, value, choices) -> None:
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One sphere striking a rigid inclined flat.
+
+    Parameters
+    ----------
+    mass : float
+        Ball mass m [kg], > 0.  Chapter: 0.145.
+    diameter : float
+        Ball diameter D [m], > 0.  Chapter: 0.063.
+    inertia_factor : float
+        alpha in I = alpha m R^2 [-], in (0, 2/3]: 2/5 solid, 2/3 thin shell
+        (2/3 is the largest any mass distribution inside a sphere can give).
+    angle : float
+        Inclination beta of the flat to the horizontal [deg], in [0, 90).
+    speed : float
+        Vertical approach speed v of the centre [m/s], > 0.  The approach is
+        v cos(beta) along the normal and v sin(beta) along the flat.
+    mu : float
+        Kinetic (Coulomb) friction coefficient [-], >= 0.  Chapter: 0.2.
+    model : str
+        Normal force law, a key of :data:`sphereimpact.forces.FORCE_MODELS`.
+    k : float
+        Contact stiffness [N/m], > 0.  Chapter: 60000.
+    b : float
+        Contact damping [N s/m], >= 0.  Chapter: 10.5.
+    ramp : float
+        Constant c in the modified damping ramp 1 - exp(-c delta / R) [-], > 0.
+        Chapter: 100.  Ignored by models without a ramp.
+    gravity : float
+        Gravitational acceleration g [m/s^2], >= 0; 0 (off) by default.
+    separation : str
+        ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
+    """
+
+    mass: float = 0.145
+    diameter: float = 0.063
+    inertia_factor: float = 0.4
+    angle: float = 0.0
+    speed: float = 3.0
+    mu: float = 0.2
+    model: str = "modified"
+    k: float = 60000.0
+    b: float = 10.5
+    ramp: float = 100.0
+    gravity: float = 0.0
+    separation: str = "force"
+
+    def __post_init__(self):
+        _check("mass", self.mass, "a finite number > 0 kg", lambda x: x > 0)
+        _check("diameter", self.diameter, "a finite number > 0 m", lambda x: x > 0)
+        _check("inertia_factor", self.inertia_factor, "a finite number in (0, 2/3]",
+               lambda x: 0 < x <= 2 / 3 + 1e-15)
+        _check("angle", self.angle, "a finite number in [0, 90) degrees", lambda x: 0 <= x < 90)
+        _check("speed", self.speed, "a finite number > 0 m/s", lambda x: x > 0)
+        _check("mu", self.mu, "a finite number >= 0", lambda x: x >= 0)
+        _check_choice("model", self.model, tuple(FORCE_MODELS))
+        _check("k", self.k, "a finite number > 0 N/m", lambda x: x > 0)
+        _check("b", self.b, "a finite number >= 0 N s/m", lambda x: x >= 0)
+        _check("ramp", self.ramp, "a finite number > 0", lambda x: x > 0)
+        _check("gravity", self.gravity, "a finite number >= 0 m/s^2", lambda x: x >= 0)
+        _check_choice("separation", self.separation, SEPARATION_CRITERIA)
+
+    # Derived quantities (SI) -------------------------------------------------
+    @property
+    def radius(self) -> float:
+        """R = D / 2 [m]."""
+        return 0.5 * self.diameter
+
+    @property
+    def inertia(self) -> float:
+        """I = alpha m R^2 [kg m^2]."""
+        return self.inertia_factor * self.mass * self.radius**2
+
+    @property
+    def beta(self) -> float:
+        """Flat inclination [rad]."""
+        return math.radians(self.angle)
+
+    @property
+    def v_normal(self) -> float:
+        """Approach speed along the normal, v cos(beta) [m/s], > 0."""
+        return self.speed * math.cos(self.beta)
+
+    @property
+    def v_tangent(self) -> float:
+        """Approach speed along the flat, v sin(beta) [m/s], >= 0 (exactly 0 at 0 deg)."""
+        return 0.0 if self.angle == 0 else self.speed * math.sin(self.beta)
+
+    @property
+    def g_normal(self) -> float:
+        """Gravity component pressing the ball into the flat, g cos(beta) [m/s^2]."""
+        return self.gravity * math.cos(self.beta)
+
+    @property
+    def g_tangent(self) -> float:
+        """Gravity component along the flat (down-slope = +t), g sin(beta) [m/s^2]."""
+        return 0.0 if self.angle == 0 else self.gravity * math.sin(self.beta)
+
+    @property
+    def omega_n(self) -> float:
+        """Undamped natural frequency sqrt(k/m) [rad/s]."""
+        return math.sqrt(self.k / self.mass)
+
+    @property
+    def zeta(self) -> float:
+        """Damping ratio b / (2 sqrt(k m)) [-]."""
+        return self.b / (2.0 * math.sqrt(self.k * self.mass))
+
+    @property
+    def has_tangential_motion(self) -> bool:
+        """False for a normal impact (beta = 0): then there is no tangential state at all."""
+        return self.angle != 0
+
+    def force(self, delta, delta_dot):
+        """Normal contact force P [N] of this scene's law at (delta [m], delta_dot [m/s])."""
+        return FORCE_MODELS[self.model].force(delta, delta_dot, self)
+
+    def with_(self, **changes) -> "Scene":
+        """A validated copy with some fields changed."""
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """How to integrate the normal motion.
+
+    Parameters
+    ----------
+    method : str
+        One of :data:`METHODS`.  ``closed`` is exact and only for kelvin-voigt.
+    rtol, atol : float
+        Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`.
+        ``atol`` applies to the dimensionless state (delta scaled by v_n/omega_n,
+        delta_dot by v_n), so one value suits every ball and speed.
+    max_step : float
+        Largest step [s]; ``inf`` lets the method choose.
+    """
+
+    method: str = "DOP853"
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    max_step: float = math.inf
+
+    def __post_init__(self):
+        _check_choice("method", self.method, METHODS)
+        _check("rtol", self.rtol, "a finite number in [1e-13, 1)", lambda x: 1e-13 <= x < 1)
+        _check("atol", self.atol, "a finite number > 0", lambda x: x > 0)
+        if not (isinstance(self.max_step, (int, float)) and self.max_step > 0) or math.isnan(self.max_step):
+            raise ValueError(f"max_step must be a number > 0 s (inf allowed); got {self.max_step!r}")

@@ -1,0 +1,92 @@
+"""The driver: solve one impact with the reduced (default) or the full planar model.
+
+The reduced model integrates the normal motion only (or uses its closed form
+for kelvin-voigt) and derives tangential velocity and spin from the normal
+impulse; a normal impact (angle 0) has no tangential state at all.  The full
+planar model (:mod:`sphereimpact.planar`) integrates centre position,
+velocity and spin with event-driven sliding/rolling, as the cross-check.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from .closed import ClosedFormNormal
+from .normal import IntegratedNormal, NormalMotion
+from .outcome import Outcome
+from .scene import Scene, SolverOptions
+from .tangential import TangentialMotion
+
+MODELS = ("reduced", "planar")
+
+
+class ReducedMotion:
+    """Normal motion plus impulse-derived tangential motion, as one contact motion."""
+
+    def __init__(self, normal: NormalMotion):
+        self.normal, self.scene = normal, normal.scene
+        self.t_m, self.t_f, self.grid, self.stats = normal.t_m, normal.t_f, normal.grid, normal.stats
+        if self.scene.has_tangential_motion:
+            self.tangential = TangentialMotion(normal)
+            self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
+        else:
+            self.tangential, self.t_roll, self.regime = None, None, "none"
+
+    def force(self, t):
+        return self.normal.force(t)
+
+    def kinematics(self, t) -> dict:
+        """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        delta, delta_dot = self.normal.state(t)
+        if self.tangential is None:
+            v_t = omega = u_t = np.zeros_like(t)
+        else:
+            v_t, omega, u_t = self.tangential.at(t)
+        return {"delta": delta, "delta_dot": delta_dot, "vc_t": v_t, "vc_n": -delta_dot,
+                "omega": omega, "u_t": u_t}
+
+
+def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
+    """The normal motion of ``scene``: closed form for ``method='closed'``, else integrated."""
+    if options.method == "closed":
+        return ClosedFormNormal(scene)
+    return IntegratedNormal(scene, options)
+
+
+def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "reduced") -> Outcome:
+    """Simulate one impact.
+
+    Parameters
+    ----------
+    scene : Scene
+        Ball, flat, contact law and approach.
+    options : SolverOptions, optional
+        Method and tolerances; defaults to :class:`SolverOptions()`.
+    model : {'reduced', 'planar'}
+        ``reduced`` (exact and cheapest) or the full planar rigid-body model.
+
+    Returns
+    -------
+    Outcome
+
+    Raises
+    ------
+    ValueError
+        Unknown model, or ``closed`` with a nonlinear force law.
+    ImpactError
+        The ball never separates, or an event was missed.
+    """
+    options = SolverOptions() if options is None else options
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    start = time.perf_counter()
+    if model == "reduced":
+        motion = ReducedMotion(normal_motion(scene, options))
+    else:
+        from .planar import PlanarMotion
+
+        motion = PlanarMotion(scene, options)
+    return Outcome.from_motion(motion, time.perf_counter() - start)

@@ -1,0 +1,166 @@
+"""Tangential velocity, spin and displacement from the normal impulse (reduced model).
+
+No ODE is integrated here.  Friction is Coulomb: while the contact point slips
+forward (slip s = v_t - omega R > 0) the flat pushes back with mu P+, where
+P+ = max(P, 0) (a tensile force, which the kelvin-voigt law produces before
+delta returns to zero, presses nothing and so carries no friction).  So with
+J+(t) the integral of P+ and K+(t) the integral of J+, over a sliding phase
+that starts at t0:
+
+    v_t(t)   = v_t0 + g_t (t - t0) - mu (J+(t) - J+(t0)) / m
+    omega(t) = omega0 + mu R (J+(t) - J+(t0)) / I
+    x_t(t)   = x_t0 + v_t0 (t - t0) + g_t (t - t0)^2 / 2 - mu (K+(t) - K+(t0) - J+(t0)(t - t0)) / m
+
+The ball grips when s reaches zero, found as a root on the normal motion's
+dense output (no sign() in any right-hand side).  While rolling, v_t = omega R
+and the friction needed is m g_t alpha / (1 + alpha) (zero without gravity);
+the ball slips again when mu P+ falls below that.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .events import ImpactError, first_root, roots
+from .normal import NormalMotion
+
+#: More mode switches than this in one contact means something is wrong.
+MAX_PHASES = 50
+
+
+@dataclass(frozen=True)
+class Phase:
+    """One sliding or rolling interval [t0, t1] [s] and the tangential state at t0 (SI)."""
+
+    mode: str
+    t0: float
+    t1: float
+    v0: float
+    omega0: float
+    x0: float
+
+
+class PositiveImpulse:
+    """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
+
+    P changes sign only at its roots on (0, t_f); on each interval where it is
+    positive J+ follows the exact impulse J(t) of the normal motion, elsewhere
+    it stays constant.
+    """
+
+    def __init__(self, normal: NormalMotion):
+        self._n = normal
+        cuts = [0.0] + roots(normal.force, normal.grid, after=0.0) + [normal.t_f]
+        cuts = sorted(set(c for c in cuts if c <= normal.t_f))
+        mids = [0.5 * (a + b) for a, b in zip(cuts[:-1], cuts[1:])]
+        self.intervals = [(a, b) for a, b, m in zip(cuts[:-1], cuts[1:], mids)
+                          if float(normal.force(m)) > 0]
+
+    def __call__(self, t):
+        """J+(t) [N s]."""
+        t = np.asarray(t, dtype=float)
+        total = np.zeros_like(t)
+        for a, b in self.intervals:
+            total = total + self._n.impulse(np.clip(t, a, b)) - self._n.impulse(a)
+        return total
+
+    def integral(self, t):
+        """K+(t) = integral of J+ from 0 to t [N s^2]."""
+        t = np.asarray(t, dtype=float)
+        n, total = self._n, np.zeros_like(t)
+        for a, b in self.intervals:
+            c, ja = np.clip(t, a, b), n.impulse(a)
+            total = (total + n.impulse_integral(c) - n.impulse_integral(a) - ja * (c - a)
+                     + (n.impulse(b) - ja) * np.maximum(t - b, 0.0))
+        return total
+
+
+class TangentialMotion:
+    """Tangential motion and spin of the ball over the contact of ``normal``.
+
+    Parameters
+    ----------
+    normal : NormalMotion
+        A solved normal motion; its scene must have tangential motion (angle > 0).
+
+    Attributes
+    ----------
+    phases : list of Phase
+        Sliding and rolling intervals covering [0, t_f].
+    t_roll : float or None
+        First instant [s] the contact point stops slipping, None if it never does.
+    regime : str
+        ``sliding`` or ``rolling``: the mode at separation.
+    """
+
+    def __init__(self, normal: NormalMotion):
+        scene = normal.scene
+        self.normal, self.scene = normal, scene
+        self.jp = PositiveImpulse(normal)
+        m, mu, alpha = scene.mass, scene.mu, scene.inertia_factor
+        self._hold = m * scene.g_tangent * alpha / (1.0 + alpha)  # friction needed to keep rolling [N]
+        phase = Phase("sliding", 0.0, normal.t_f, scene.v_tangent, 0.0, 0.0)
+        self.phases, self.t_roll = [], None
+        while True:
+            grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
+            if phase.mode == "sliding":
+                t_switch = first_root(lambda t, p=phase: self._slip(p, t), grid, direction=-1)
+            elif self._hold > 0:
+                t_switch = first_root(lambda t: mu * np.maximum(normal.force(t), 0.0) - self._hold,
+                                      grid, direction=-1)
+            else:
+                t_switch = None
+            if t_switch is None or t_switch >= normal.t_f:
+                self.phases.append(phase)
+                break
+            self.phases.append(Phase(phase.mode, phase.t0, t_switch, phase.v0, phase.omega0, phase.x0))
+            v, omega, x = (float(q) for q in self._evaluate(self.phases[-1], t_switch))
+            if phase.mode == "sliding":
+                self.t_roll = t_switch if self.t_roll is None else self.t_roll
+                phase = Phase("rolling", t_switch, normal.t_f, v, v / scene.radius, x)
+            else:
+                phase = Phase("sliding", t_switch, normal.t_f, v, omega, x)
+            if len(self.phases) >= MAX_PHASES:
+                raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
+        self.regime = self.phases[-1].mode
+
+    def _evaluate(self, p: Phase, t):
+        """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p."""
+        s = self.scene
+        t = np.asarray(t, dtype=float)
+        dt = t - p.t0
+        if p.mode == "rolling":
+            accel = s.g_tangent / (1.0 + s.inertia_factor)
+            v = p.v0 + accel * dt
+            return v, v / s.radius, p.x0 + p.v0 * dt + 0.5 * accel * dt * dt
+        j0 = self.jp(p.t0)
+        dj = self.jp(t) - j0
+        dk = self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt
+        v = p.v0 + s.g_tangent * dt - s.mu * dj / s.mass
+        omega = p.omega0 + s.mu * s.radius * dj / s.inertia
+        x = p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt - s.mu * dk / s.mass
+        return v, omega, x
+
+    def _slip(self, p: Phase, t):
+        v, omega, _ = self._evaluate(p, t)
+        return v - omega * self.scene.radius
+
+    def at(self, t):
+        """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        out = np.zeros((3, t.size))
+        starts = np.array([p.t0 for p in self.phases])
+        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(self.phases) - 1)
+        for i, p in enumerate(self.phases):
+            mask = which == i
+            if mask.any():
+                out[:, mask] = self._evaluate(p, t[mask])
+        return out
+
+    def friction_impulse(self) -> float:
+        """Tangential impulse of friction over the contact [N s] (negative: it opposes slip)."""
+        s = self.scene
+        v_f = float(self.at(self.normal.t_f)[0, 0])
+        return s.mass * (v_f - s.v_tangent - s.g_tangent * self.normal.t_f)
