@@ -86,6 +86,26 @@ def no_separation_message(scene: Scene, t_end: float) -> str:
             f"(damping ratio zeta = {scene.zeta:.3g}, gravity {scene.gravity:g} m/s^2){hint}")
 
 
+def check_rebound(scene: Scene, options: SolverOptions, rate: float) -> None:
+    """Reject a numerical separation whose rebound is at the integrator's noise level.
+
+    A ball that comes to rest in contact (e.g. critically damped under the
+    ``penetration`` criterion, where delta -> 0 only asymptotically) can cross
+    zero numerically once delta is below the tolerance: that is not a rebound.
+
+    Parameters
+    ----------
+    rate : float
+        delta_dot at the detected separation [m/s].
+    """
+    noise = 100.0 * max(options.rtol, options.atol)
+    if -rate / scene.v_normal <= noise:
+        raise ImpactError(
+            f"no separation: the rebound found ({-rate / scene.v_normal:.2g} of the approach speed) is below "
+            f"what the tolerances resolve ({noise:.2g}); the ball comes to rest in contact under the "
+            f"'{scene.separation}' criterion (zeta = {scene.zeta:.3g})")
+
+
 def horizon(scene: Scene) -> float:
     """Longest contact [s] searched for a separation before giving up.
 
@@ -144,6 +164,7 @@ class IntegratedNormal(NormalMotion):
         if len(sol.t_events[0]) == 0:
             raise ImpactError("separation found before maximum compression: event missed "
                               f"(method {options.method}, rtol {options.rtol:g}); tighten the tolerance")
+        check_rebound(scene, options, float(sol.y_events[1][0][1]) * v)
         self._sol, self._w, self._d_scale, self._v = sol.sol, w, d_scale, v
         self.t_m = float(sol.t_events[0][0]) / w
         self.t_f = float(sol.t_events[1][0]) / w

@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .events import ImpactError
-from .normal import SUBSTEPS, horizon, no_separation_message, separation_function
+from .normal import SUBSTEPS, check_rebound, horizon, no_separation_message, separation_function
 from .scene import Scene, SolverOptions
 from .tangential import MAX_PHASES
 
@@ -74,6 +74,7 @@ class PlanarMotion:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         if t_m is None:
             raise ImpactError("separation found before maximum compression: event missed")
+        check_rebound(scene, options, float(self._contact(sol.y_events[1][0])[1]))
         self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
         self.regime = mode if scene.has_tangential_motion else "none"
         steps = np.concatenate([seg[3] for seg in self._segments])

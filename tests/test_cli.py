@@ -1,0 +1,89 @@
+"""Command line: JSON output with exactly the documented keys; every bad input exits 2 naming its parameter."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from sphereimpact import OUTPUT_KEYS, Scene, SolverOptions, simulate
+from sphereimpact.cli import run
+
+
+def test_json_has_exactly_the_output_keys(capsys):
+    assert run(["simulate", "--angle", "60", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert tuple(data) == OUTPUT_KEYS
+    reference = simulate(Scene(angle=60.0)).to_dict()
+    for key in OUTPUT_KEYS:
+        if key != "wall_time":
+            assert data[key] == reference[key], key
+
+
+def test_options_reach_the_model(capsys):
+    run(["simulate", "--angle", "30", "--model", "kelvin-voigt", "--method", "closed", "--separation",
+         "penetration", "--mu", "0.3", "--inertia-factor", "0.6666666666666666", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    scene = Scene(angle=30.0, model="kelvin-voigt", separation="penetration", mu=0.3,
+                  inertia_factor=0.6666666666666666)
+    assert data["method"] == "closed" and data["regime"] == "rolling"
+    assert data["vc_t"] == pytest.approx(scene.v_tangent / (1 + 0.6666666666666666), rel=1e-13)
+    assert data["cor"] == simulate(scene, SolverOptions(method="closed")).cor
+
+
+BAD = [
+    (["--mass", "0"], "mass", "> 0 kg"),
+    (["--mass", "-1"], "mass", "> 0 kg"),
+    (["--diameter", "0"], "diameter", "> 0 m"),
+    (["--k", "0"], "k", "> 0 N/m"),
+    (["--b", "-0.1"], "b", ">= 0"),
+    (["--mu", "-0.2"], "mu", ">= 0"),
+    (["--speed", "0"], "speed", "> 0 m/s"),
+    (["--angle", "90"], "angle", "[0, 90)"),
+    (["--angle", "-1"], "angle", "[0, 90)"),
+    (["--model", "hertz"], "model", "kelvin-voigt, modified"),
+    (["--method", "Euler"], "method", "DOP853"),
+    (["--separation", "sometimes"], "separation", "force, penetration"),
+    (["--inertia-factor", "0.9"], "inertia_factor", "(0, 2/3]"),
+    (["--k", "nan"], "k", "finite"),
+    (["--speed", "inf"], "speed", "finite"),
+    (["--gravity", "-9.81"], "gravity", ">= 0"),
+    (["--rtol", "0"], "rtol", "[1e-13, 1)"),
+    (["--mu", "abc"], "--mu", "invalid float"),
+    (["--method", "closed"], "method 'closed'", "kelvin-voigt"),
+    (["--model", "kelvin-voigt", "--b", "500", "--separation", "penetration"], "no separation", "penetration"),
+]
+
+
+@pytest.mark.parametrize("args, name, allowed", BAD, ids=[" ".join(a) for a, _, _ in BAD])
+def test_bad_input_exits_2_naming_the_parameter(args, name, allowed, capsys):
+    with pytest.raises(SystemExit) as exc:
+        run(["simulate", *args, "--json"])
+    assert exc.value.code == 2
+    err = capsys.readouterr()
+    assert err.out == ""
+    assert name in err.err and allowed in err.err and "Traceback" not in err.err
+
+
+def test_api_raises_value_error_with_the_same_message(capsys):
+    with pytest.raises(ValueError, match=r"^mass must be a finite number > 0 kg; got -1.0$"):
+        Scene(mass=-1.0)
+    with pytest.raises(SystemExit):
+        run(["simulate", "--mass", "-1"])
+    assert capsys.readouterr().err.strip() == "sphereimpact: error: mass must be a finite number > 0 kg; got -1.0"
+
+
+def test_installed_command_runs():
+    """The console script (and python -m) exit 2 on bad input with one line and no traceback."""
+    bad = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--speed", "-3"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2
+    assert bad.stderr.strip().splitlines() == ["sphereimpact: error: speed must be a finite number > 0 m/s; got -3.0"]
+    good = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--json"], capture_output=True, text=True)
+    assert good.returncode == 0 and json.loads(good.stdout)["regime"] == "none"
+
+
+def test_help_documents_every_option_with_units():
+    out = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--help"], capture_output=True, text=True)
+    for text in ("[deg]", "[m/s]", "[N/m]", "[N s/m]", "[kg]", "[m]", "(default: 0.145)", "(default: 60000.0)"):
+        assert text in out.stdout, text

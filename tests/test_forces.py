@@ -1,0 +1,35 @@
+"""Force laws: eq. 4.1 and 4.2 with delta >= 0 as compression, no force and no exponential outside contact."""
+
+import numpy as np
+import pytest
+
+from sphereimpact import FORCE_MODELS, Scene
+
+
+def test_kelvin_voigt_jumps_at_contact():
+    s = Scene(model="kelvin-voigt")
+    assert float(s.force(1e-15, 3.0)) == pytest.approx(s.b * 3.0, rel=1e-9)
+    assert float(s.force(1e-3, -1.0)) == pytest.approx(s.k * 1e-3 - s.b, rel=1e-15)
+
+
+def test_modified_starts_from_zero_and_matches_eq_4_2():
+    s = Scene(model="modified")
+    assert float(s.force(0.0, 3.0)) == 0.0
+    delta, rate = 2e-3, -1.5
+    expected = s.k * delta + s.b * rate * (1 - np.exp(-100 * delta / s.radius))
+    assert float(s.force(delta, rate)) == pytest.approx(expected, rel=1e-14)
+    # slope at first touch: dP/ddelta = k + b v c / R
+    h = 1e-12
+    assert float(s.force(h, 3.0)) / h == pytest.approx(s.k + s.b * 3.0 * 100 / s.radius, rel=1e-6)
+
+
+@pytest.mark.parametrize("name", list(FORCE_MODELS))
+def test_no_force_and_no_overflow_outside_contact(name):
+    s = Scene(model=name)
+    with np.errstate(all="raise"):
+        p = s.force(np.array([-1e3, -1.0, -1e-9]), np.array([-1e3, 5.0, -2.0]))
+    assert np.array_equal(p, np.zeros(3))
+
+
+def test_registry_flags_linear_laws():
+    assert FORCE_MODELS["kelvin-voigt"].linear and not FORCE_MODELS["modified"].linear

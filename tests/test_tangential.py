@@ -1,0 +1,109 @@
+"""Friction from the normal impulse: sliding ratio, grip, and agreement with the full planar model."""
+
+import math
+
+import pytest
+
+from conftest import TIGHT, assert_outputs_close
+from sphereimpact import Scene, SolverOptions, simulate
+
+
+@pytest.mark.parametrize("model", ["modified", "kelvin-voigt"])
+def test_sliding_impulse_ratio_is_mu(model):
+    """While sliding throughout, tangential impulse / normal impulse = mu (g = 0, force criterion: P >= 0)."""
+    scene = Scene(angle=60.0, model=model)
+    out = simulate(scene, TIGHT)
+    assert out.regime == "sliding" and out.t_roll is None
+    normal_impulse = scene.mass * (scene.v_normal + out.vc_n)
+    tangential_impulse = scene.mass * (scene.v_tangent - out.vc_t)
+    assert tangential_impulse / normal_impulse == pytest.approx(scene.mu, rel=1e-12)
+    # the same impulse spins the ball: I omega = R * tangential impulse
+    assert scene.inertia * out.omega_f == pytest.approx(scene.radius * tangential_impulse, rel=1e-12)
+
+
+@pytest.mark.parametrize("alpha", [0.4, 2.0 / 3.0])
+def test_grip_final_velocity(alpha):
+    """Grip: ve_t = 0, and the centre keeps vt0 / (1 + alpha) (it loses vt0 / (1 + 1/alpha))."""
+    scene = Scene(angle=30.0, inertia_factor=alpha)
+    out = simulate(scene, TIGHT)
+    vt0 = scene.v_tangent
+    assert out.regime == "rolling"
+    assert 0 < out.t_roll < out.t_f
+    assert out.vc_t == pytest.approx(vt0 / (1 + alpha), rel=1e-13)
+    assert vt0 - out.vc_t == pytest.approx(vt0 / (1 + 1 / alpha), rel=1e-13)
+    assert abs(out.ve_t) <= 1e-13 * vt0
+    assert out.omega_f * scene.radius == pytest.approx(out.vc_t, rel=1e-13)
+
+
+def test_grip_instant_from_impulse():
+    """Grip happens when mu (1 + 1/alpha) J(t) / m = vt0: J(t_roll) from the momentum balance."""
+    scene = Scene(angle=30.0)
+    out = simulate(scene, TIGHT)
+    rate = out.motion.normal.state(out.t_roll)[1]
+    impulse = scene.mass * (scene.v_normal - rate)
+    assert scene.mu * (1 + 1 / scene.inertia_factor) * impulse / scene.mass == pytest.approx(scene.v_tangent,
+                                                                                              rel=1e-12)
+
+
+def test_grip_slide_boundary():
+    """Analytic boundary: the ball grips iff tan(beta) < (1 + 1/alpha) mu (1 + e)."""
+    for angle in (40.0, 50.0):
+        scene = Scene(angle=angle)
+        out = simulate(scene)
+        limit = (1 + 1 / scene.inertia_factor) * scene.mu * (1 + out.cor)
+        assert (out.regime == "rolling") == (math.tan(scene.beta) < limit)
+
+
+def test_normal_impact_has_no_tangential_state():
+    out = simulate(Scene(angle=0.0))
+    assert out.regime == "none" and out.t_roll is None
+    assert (out.vc_t, out.ve_t, out.omega_f) == (0.0, 0.0, 0.0)
+
+
+def test_frictionless_keeps_tangential_velocity():
+    scene = Scene(angle=45.0, mu=0.0)
+    out = simulate(scene)
+    assert out.vc_t == scene.v_tangent and out.omega_f == 0.0 and out.regime == "sliding"
+
+
+PLANAR_SCENES = {
+    "chapter-60deg-sliding": dict(angle=60.0),
+    "30deg-grip": dict(angle=30.0),
+    "shell-15deg-grip": dict(angle=15.0, inertia_factor=2 / 3, mu=0.4),
+    "gravity-grip-then-slip": dict(angle=30.0, gravity=9.81),
+    "kv-penetration-tension": dict(angle=60.0, model="kelvin-voigt", separation="penetration"),
+    "kv-penetration-grip": dict(angle=20.0, model="kelvin-voigt", separation="penetration"),
+    "normal-gravity": dict(angle=0.0, gravity=9.81, separation="penetration"),
+}
+
+
+@pytest.mark.parametrize("name", PLANAR_SCENES)
+def test_reduced_matches_planar(name):
+    """The reduced model (normal ODE + impulse algebra) agrees with the full planar model to 1e-9."""
+    scene = Scene(**PLANAR_SCENES[name])
+    assert_outputs_close(simulate(scene, TIGHT), simulate(scene, TIGHT, model="planar"), rtol=1e-9)
+
+
+def test_gravity_regrip_sequence():
+    """With gravity the rolling ball slips again when mu P can no longer hold it; both models agree on when."""
+    scene = Scene(angle=30.0, gravity=9.81)
+    reduced = simulate(scene, TIGHT)
+    phases = [p.mode for p in reduced.motion.tangential.phases]
+    assert phases == ["sliding", "rolling", "sliding"]
+    reslip = reduced.motion.tangential.phases[2].t0
+    hold = scene.mass * scene.g_tangent * scene.inertia_factor / (1 + scene.inertia_factor)
+    assert scene.mu * float(reduced.motion.force(reslip)) == pytest.approx(hold, rel=1e-9)
+    assert reduced.ve_t > 0
+
+
+def test_history_frames_consistent():
+    """Global and local histories describe the same motion: speeds and the end state agree."""
+    out = simulate(Scene(angle=60.0))
+    h = out.history(201)
+    speed_local = h["vc_t"] ** 2 + h["vc_n"] ** 2
+    speed_global = h["VX"] ** 2 + h["VY"] ** 2
+    assert max(abs(speed_local - speed_global)) < 1e-12
+    assert h["VX"][0] == pytest.approx(0.0, abs=1e-12) and h["VY"][0] == pytest.approx(-3.0, rel=1e-12)
+    assert h["vc_n"][-1] == pytest.approx(out.vc_n, rel=1e-12)
+    assert h["ve_t"][-1] == pytest.approx(out.ve_t, rel=1e-12)
+    assert min(h["u_n"]) == pytest.approx(-out.delta_m, rel=1e-4)
