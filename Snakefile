@@ -1,0 +1,22 @@
+# Replication of Chapter 4 (oblique impact of an elastic sphere on a rigid flat).
+# `snakemake --cores 2` regenerates every table and figure; see README.md.
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/report.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/notebook.smk"
+
+
+rule all:
+    input:
+        "results/summary.csv",
+        "results/summary.md",
+        "results/replication.csv",
+        "results/replication.md",
+        figure_outputs(),
+        "results/notebooks/replication.html",
+    default_target: True

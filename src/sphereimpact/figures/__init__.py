@@ -1,0 +1,1 @@
+"""Figures: one function per chapter figure, reading result files (never simulating)."""
