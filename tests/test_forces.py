@@ -33,3 +33,26 @@ def test_no_force_and_no_overflow_outside_contact(name):
 
 def test_registry_flags_linear_laws():
     assert FORCE_MODELS["kelvin-voigt"].linear and not FORCE_MODELS["modified"].linear
+
+
+def test_ramp_continuation_is_smooth_and_bounded():
+    """Past delta = 0 the ramp is its Taylor polynomial: equal to 1 - exp(-u) to 1e-16 for the overshoot of
+    one step, bounded far beyond it, and no exponential is evaluated (no overflow warning)."""
+    from sphereimpact.forces import ramp_continued
+
+    u = -np.logspace(-8, -2, 25)
+    np.testing.assert_allclose(ramp_continued(u), -np.expm1(-u), rtol=1e-15, atol=1e-18)
+    with np.errstate(all="raise"):
+        far = ramp_continued(np.array([-1e6, -1e300]))
+    assert np.all(np.isfinite(far)) and np.all(far == far[0])
+    assert float(ramp_continued(0.3)) == -np.expm1(-0.3)
+
+
+def test_force_during_contact_is_the_one_sided_limit():
+    """kelvin-voigt starts at b v_n (the chapter's jump), whatever side of zero round-off puts delta."""
+    from sphereimpact import SolverOptions, simulate
+
+    out = simulate(Scene(model="kelvin-voigt", separation="penetration"), SolverOptions(method="closed"))
+    scene = out.scene
+    assert float(out.motion.force(0.0)) == pytest.approx(scene.b * scene.v_normal, rel=1e-15)
+    assert out.force_min == pytest.approx(-scene.b * out.vc_n, rel=1e-12)

@@ -45,8 +45,13 @@ class NormalMotion:
         raise NotImplementedError
 
     def force(self, t):
-        """Normal force P(t) [N]."""
-        return self.scene.force(*self.state(t))
+        """Normal force P(t) [N] during contact, t in [0, t_f].
+
+        Evaluated with the in-contact formula, so the ends are the one-sided
+        limits (kelvin-voigt starts at b v_n, not 0, and ends at b delta_dot(t_f)),
+        however round-off puts delta(t_f) on either side of zero.
+        """
+        return self.scene.stage_force(*self.state(t))
 
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
@@ -138,7 +143,7 @@ class IntegratedNormal(NormalMotion):
         w, v = scene.omega_n, scene.v_normal
         d_scale, gamma = v / w, scene.g_normal / (w * v)
         p_scale = scene.mass * w * v
-        law = scene.force
+        law = scene.stage_force  # smooth past separation: the crossing step stays accurate
         sep = separation_function(scene)
 
         def rhs(tau, z):

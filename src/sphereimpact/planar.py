@@ -88,7 +88,7 @@ class PlanarMotion:
         s = self.scene
         delta = s.radius - (self._n[0] * z[0] + self._n[1] * z[1])
         delta_dot = -(self._n[0] * z[2] + self._n[1] * z[3])
-        return delta, delta_dot, s.force(delta, delta_dot)
+        return delta, delta_dot, s.stage_force(delta, delta_dot)  # in-contact formula, as NormalMotion.force
 
     def _segment(self, mode: str, t0: float, t_end: float, z0):
         s = self.scene
@@ -96,7 +96,7 @@ class PlanarMotion:
         mu, hold, sep = s.mu, self._hold, separation_function(s)
 
         def rhs(t, z):
-            _, _, p = self._contact(z)
+            _, _, p = self._contact(z)  # smooth past separation, as in the reduced model
             f = -mu * max(float(p), 0.0) if mode == "sliding" else -hold
             ax, ay = (p * n_vec + f * t_vec) / s.mass
             return [z[2], z[3], ax, ay - s.gravity, -f * radius / s.inertia]

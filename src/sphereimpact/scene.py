@@ -155,6 +155,10 @@ class Scene:
         """Normal contact force P [N] of this scene's law at (delta [m], delta_dot [m/s])."""
         return FORCE_MODELS[self.model].force(delta, delta_dot, self)
 
+    def stage_force(self, delta, delta_dot):
+        """The law continued smoothly past delta = 0 [N], for integrator stages only (see ForceModel.continued)."""
+        return FORCE_MODELS[self.model].continued(delta, delta_dot, self)
+
     def with_(self, **changes) -> "Scene":
         """A validated copy with some fields changed."""
         return replace(self, **changes)
