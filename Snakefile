@@ -8,6 +8,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/numerics.smk"
 include: "workflow/rules/notebook.smk"
 
 
@@ -18,5 +19,8 @@ rule all:
         "results/replication.csv",
         "results/replication.md",
         figure_outputs(),
-        "results/notebooks/replication.html",
+        "results/bench.csv",
+        "results/ablation.csv",
+        expand("paper_figures/{study}.png", study=["work_precision", "stability"]),
+        expand("results/notebooks/{name}.html", name=NOTEBOOKS),
     default_target: True

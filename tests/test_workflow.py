@@ -1,6 +1,7 @@
 """The pipeline, run for real in a temporary copy: outputs, idempotence, determinism, config errors, lint, figures."""
 
 import hashlib
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -11,7 +12,9 @@ from matplotlib.testing.compare import compare_images
 ROOT = Path(__file__).resolve().parents[1]
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
-           "results/notebooks/replication.html",
+           "results/notebooks/replication.html", "results/notebooks/numerics.html",
+           "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
+           "paper_figures/work_precision.png", "paper_figures/stability.png",
            *[f"paper_figures/{f}.{ext}" for f in FIGURES for ext in ("png", "pdf")],
            *[f"results/runs/{c}_{m}.{ext}" for c in ("normal", "oblique60") for m in ("kelvin-voigt", "modified")
              for ext in ("csv", "json")]]
@@ -63,7 +66,9 @@ def test_changing_one_case_reruns_only_its_jobs(workdir, tmp_path):
     run = snakemake(workdir, "-n", "--configfile", str(other))
     text = run.stdout + run.stderr
     assert run.returncode == 0
-    assert "simulate         2" in text  # the two oblique60 runs, not the normal ones
+    assert re.search(r"^simulate\s+2$", text, re.M)  # the two oblique60 runs, not the normal ones
+    assert re.search(r"^figure\s+4$", text, re.M)  # figs 4.3, 4.5, 4.6, 4.8 only
+    assert not re.search(r"^stability\s", text, re.M)  # the stability study uses the normal case only
     assert "wildcards: case=normal" not in text
 
 

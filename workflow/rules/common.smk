@@ -15,6 +15,11 @@ PUBLISHED = "config/published.yaml"
 ENV = "../envs/sphereimpact.yaml"
 
 
+def config_for_case(case):
+    """The config restricted to one case, so that editing another case does not rerun a job."""
+    return {k: v for k, v in config.items() if k != "cases"} | {"cases": {case: config["cases"][case]}}
+
+
 def run_files(ext):
     return expand("results/runs/{case}_{model}.{ext}", case=CASES, model=MODELS, ext=ext)
 
@@ -30,6 +35,25 @@ def drawable_figures():
 
 def figure_outputs():
     return expand("paper_figures/{fig}.{ext}", fig=drawable_figures(), ext=["png", "pdf"])
+
+
+#: Notebook -> the results it reads.
+NOTEBOOKS = {
+    "replication": ["results/summary.csv", "results/replication.csv"],
+    "numerics": [
+        "results/work_precision.csv",
+        "results/bench.csv",
+        "results/stability.csv",
+        "results/ablation.csv",
+        "paper_figures/work_precision.png",
+        "paper_figures/stability.png",
+    ],
+}
+
+
+def notebook_inputs(wildcards):
+    extra = figure_outputs() if wildcards.name == "replication" else []
+    return NOTEBOOKS[wildcards.name] + extra
 
 
 def figure_runs(wildcards):

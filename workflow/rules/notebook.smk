@@ -2,12 +2,11 @@ rule notebook:
     """Execute a jupytext notebook (percent format) and render it to HTML."""
     input:
         notebook="notebooks/{name}.py",
-        tables=["results/summary.csv", "results/replication.csv"],
-        figures=figure_outputs(),
+        results=notebook_inputs,
     output:
         html="results/notebooks/{name}.html",
     wildcard_constraints:
-        name="replication",
+        name="|".join(NOTEBOOKS),
     log:
         "logs/notebooks/{name}.log",
     conda:

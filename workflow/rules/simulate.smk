@@ -4,8 +4,7 @@ rule simulate:
         csv="results/runs/{case}_{model}.csv",
         json="results/runs/{case}_{model}.json",
     params:
-        config=lambda wildcards: {k: v for k, v in config.items() if k != "cases"}
-        | {"cases": {wildcards.case: config["cases"][wildcards.case]}},
+        config=lambda wildcards: config_for_case(wildcards.case),
     wildcard_constraints:
         case="[A-Za-z][A-Za-z0-9]*",
         model="[a-z-]+",

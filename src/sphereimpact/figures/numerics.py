@@ -1,0 +1,94 @@
+"""Figures of the numerical studies: work-precision and where methods fail (read from their CSV files)."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from .style import RC, save
+
+COLORS = {"RK23": "tab:blue", "RK45": "tab:orange", "DOP853": "tab:green", "Radau": "tab:red", "BDF": "tab:purple",
+          "LSODA": "tab:brown", "closed": "black"}
+BODY_STYLE = {"reduced": "-", "planar": "--"}
+
+
+def work_precision_figure(csv_path: str, outputs, model: str = "modified", target: float = 1e-9) -> None:
+    """Error against median wall time (top) and nfev (bottom), one column per case, one line per method x body."""
+    frame = pd.read_csv(csv_path)
+    frame = frame[(frame["model"] == model) & (frame["status"] == "ok")]
+    cases = list(dict.fromkeys(frame["case"]))
+    with plt.rc_context(RC | {"figure.figsize": (5.2 * len(cases), 8.0)}):
+        fig, axes = plt.subplots(2, len(cases), squeeze=False, sharey=True)
+        for col, case in enumerate(cases):
+            data = frame[frame["case"] == case]
+            for (method, body), line in data.groupby(["method", "body"], sort=False):
+                style = dict(color=COLORS[method], marker="*" if body == "closed" else "o", markersize=4,
+                             linestyle="none" if body == "closed" else BODY_STYLE[body])
+                label = f"{method} ({body})"
+                for row, x in enumerate(("time", "nfev")):
+                    if body == "closed" and x == "nfev":
+                        continue
+                    axes[row, col].loglog(line[x] * (1e3 if x == "time" else 1), line["error"], label=label, **style)
+            for row, x in enumerate(("median wall time per impact [ms]", "right-hand-side evaluations (nfev)")):
+                ax = axes[row, col]
+                ax.axhline(target, color="gray", linewidth=0.8, linestyle=":")
+                ax.set(xlabel=x, ylabel="worst relative error", title=f"{case}, {model} law")
+        axes[0, -1].legend(fontsize=6, ncol=2, loc="upper right")
+        fig.suptitle("Work-precision: solid = reduced model, dashed = full planar model, dotted = 1e-9 target")
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+def _lines(ax, data, x, y, by="method", style="-o", label_suffix=""):
+    for key, line in data.groupby(by, sort=False):
+        ax.plot(line[x], line[y], style, color=COLORS.get(key), markersize=3, label=f"{key}{label_suffix}")
+
+
+def stability_figure(csv_path: str, outputs) -> None:
+    """Six panels, one picture per failure mode (see sphereimpact.numerics.stability)."""
+    frame = pd.read_csv(csv_path)
+    ok = frame[frame["status"] == "ok"]
+    with plt.rc_context(RC | {"figure.figsize": (15.0, 8.5), "legend.fontsize": 6}):
+        fig, ax = plt.subplots(2, 3)
+        stiff = ok[ok["study"] == "stiffness"]
+        for panel, name in ((ax[0, 0], "zeta"), (ax[0, 1], "k [N/m]")):
+            _lines(panel, stiff[stiff["x_name"] == name], "x", "nfev")
+            panel.set(xscale="log", yscale="log", xlabel=name, ylabel="nfev per impact (rtol 1e-8)",
+                      title=f"1. stiffness: cost against {name.split()[0]}")
+        ax[0, 0].legend()
+        onset = ok[ok["study"] == "onset"]
+        for variant, style in (("start at contact (package)", "-o"), ("through contact from free flight", "--x")):
+            _lines(ax[0, 2], onset[onset["variant"] == variant], "x", "error", style=style,
+                   label_suffix=" from contact" if "package" in variant else " through contact")
+        ax[0, 2].set(xscale="log", yscale="log", xlabel="rtol", ylabel="worst relative error",
+                     title="2. force jump at onset (previous model)")
+        ax[0, 2].legend(ncol=2)
+        grip = ok[(ok["study"] == "grip") & (ok["variant"] == "tanh(slip/eps)")]
+        _lines(ax[1, 0], grip, "x", "nfev")
+        exact = ok[(ok["study"] == "grip") & (ok["variant"].str.startswith("exact"))]
+        for _, row in exact.iterrows():
+            ax[1, 0].axhline(row["nfev"], color=COLORS[row["method"]], linestyle=":", linewidth=1)
+        failed = frame[(frame["study"] == "grip") & (frame["status"] != "ok")]
+        ax[1, 0].set(xscale="log", yscale="log", xlabel="tanh width eps [m/s]", ylabel="nfev (rtol 1e-8)",
+                     title=f"3. friction at grip: tanh(slip/eps); dotted = exact switch\n"
+                           f"{len(failed)} sign()/tanh runs over budget (chattering)")
+        ax[1, 0].invert_xaxis()
+        ax[1, 0].legend()
+        sep = ok[ok["study"] == "separation"]
+        for variant, style in (("root on dense output (package)", "-o"), ("first step end past separation", "--x")):
+            _lines(ax[1, 1], sep[sep["variant"] == variant], "x", "error", style=style)
+        ax[1, 1].set(xscale="log", yscale="log", xlabel="rtol", ylabel="relative error of t_f",
+                     title="4. separation: dense-output root (solid)\nvs first step end (dashed)")
+        past = frame[frame["study"] == "past-separation"]
+        methods = list(dict.fromkeys(past["method"]))
+        xs = np.arange(len(methods))
+        for offset, variant, color in ((-0.2, "unguarded law, fixed window", "crimson"),
+                                       (0.2, "guarded law, terminal event (package)", "seagreen")):
+            part = past[past["variant"] == variant].set_index("method").reindex(methods)
+            ax[1, 2].bar(xs + offset, part["nfev"], width=0.4, color=color, label=variant)
+        ax[1, 2].set(xticks=xs, xticklabels=methods, yscale="log", ylabel="nfev",
+                     title="5. modified law past separation:\nunguarded blows up (every method fails)")
+        ax[1, 2].legend()
+        fig.tight_layout()
+        save(fig, outputs)

@@ -1,0 +1,1 @@
+"""Numerical studies: reference solutions, work-precision, where methods fail, and model ablation."""

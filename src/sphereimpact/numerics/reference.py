@@ -1,0 +1,122 @@
+"""Reference solutions and the error measure of the accuracy studies.
+
+``kelvin-voigt``: the closed form (:mod:`sphereimpact.closed`), exact to round-off.
+``modified``: the normal problem in dimensionless form integrated with
+mpmath's arbitrary-precision Taylor method (:func:`mpmath.odefun`), with
+events found by :func:`mpmath.findroot`, at two working precisions; their
+agreement bounds the error of the coarser one, and the finer one is the
+reference.  Without gravity, every output follows from t_m, delta_m, t_f and
+delta_dot(t_f) exactly: the tangential outputs by the impulse algebra
+(sliding: J_t = mu J_n; grip: v_t = vt0 / (1 + alpha)).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mpmath
+
+from ..scene import Scene, SolverOptions
+from ..solve import simulate
+
+#: Outputs compared in the accuracy studies.
+ERROR_KEYS = ("t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t")
+
+
+def output_scales(scene: Scene, t_f: float, delta_m: float, force_max: float = 1.0) -> dict:
+    """Natural size of each output, so that an output that is exactly zero (a normal impact's spin, a
+    rolling ball's slip) is measured on the scale of the impact rather than relative to zero."""
+    v = scene.speed
+    return {"t_m": t_f, "t_f": t_f, "t_roll": t_f, "delta_m": delta_m, "vc_t": v, "vc_n": v, "ve_t": v,
+            "ve_n": v, "cor": 1.0, "omega_f": v / scene.radius, "force_min": force_max, "force_max": force_max}
+
+
+def relative_errors(got: dict, ref: dict, scene: Scene, keys=ERROR_KEYS) -> dict:
+    """|got - ref| / max(|ref|, scale) for each key."""
+    scales = output_scales(scene, ref["t_f"], ref["delta_m"], ref.get("force_max", 1.0))
+    return {k: abs(got[k] - ref[k]) / max(abs(ref[k]), scales[k]) for k in keys}
+
+
+def worst_error(got: dict, ref: dict, scene: Scene) -> float:
+    """The largest relative error over :data:`ERROR_KEYS`."""
+    return max(relative_errors(got, ref, scene).values())
+
+
+@dataclass(frozen=True)
+class Reference:
+    """Reference outputs of one scene and a bound on their relative error."""
+
+    outputs: dict
+    bound: float
+    how: str
+
+
+def _outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, rate_f: float) -> dict:
+    """Every output from the normal events (g = 0), by the impulse algebra."""
+    if scene.gravity != 0:
+        raise ValueError("the Taylor reference covers gravity = 0 only")
+    m, alpha = scene.mass, scene.inertia_factor
+    vc_n = -rate_f
+    impulse = m * (scene.v_normal + vc_n)
+    vt0 = scene.v_tangent
+    if vt0 == 0:
+        vc_t = omega = 0.0
+    elif scene.mu * (1 + 1 / alpha) * impulse / m >= vt0:  # grips before separating
+        vc_t = vt0 / (1 + alpha)
+        omega = vc_t / scene.radius
+    else:
+        vc_t = vt0 - scene.mu * impulse / m
+        omega = scene.mu * scene.radius * impulse / scene.inertia
+    return {"t_m": t_m, "delta_m": delta_m, "t_f": t_f, "cor": vc_n / scene.v_normal, "omega_f": omega,
+            "ve_t": vc_t - omega * scene.radius, "vc_t": vc_t, "vc_n": vc_n}
+
+
+def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float]:
+    """(t_m, delta_m, t_f, delta_dot(t_f)) of the modified law by mpmath's Taylor integrator."""
+    if scene.model != "modified":
+        raise ValueError("the Taylor reference is written for the modified law")
+    with mpmath.workdps(digits):
+        w, v = scene.omega_n, scene.v_normal
+        zeta, lam = mpmath.mpf(scene.zeta), mpmath.mpf(scene.ramp * v / (w * scene.radius))
+
+        def rhs(tau, y):
+            return [y[1], -y[0] - 2 * zeta * y[1] * (1 - mpmath.exp(-lam * y[0]))]
+
+        sol = mpmath.odefun(rhs, 0, [mpmath.mpf(0), mpmath.mpf(1)], tol=mpmath.mpf(10) ** (2 - digits))
+        guess = simulate(scene, SolverOptions(rtol=1e-10, atol=1e-12))  # starting points for the root search
+        def bracket(t):  # the float64 estimate is good to far better than 0.1 %
+            return (t * w * (1 - 1e-3), t * w * (1 + 1e-3))
+
+        tau_m = mpmath.findroot(lambda t: sol(t)[1], bracket(guess.t_m), solver="anderson")
+
+        def separation(t):
+            # force: the (smooth) force law; near x = 0 it is x (1 + 2 zeta lam y), so where P stays
+            # positive until x = 0 its root is x = 0, the first of P = 0 and delta = 0 either way
+            x, y = sol(t)
+            return x if scene.separation == "penetration" else x + 2 * zeta * y * (1 - mpmath.exp(-lam * x))
+
+        tau_f = mpmath.findroot(separation, bracket(guess.t_f), solver="anderson")
+        x_m, y_f = sol(tau_m)[0], sol(tau_f)[1]
+        return float(tau_m / w), float(x_m * v / w), float(tau_f / w), float(y_f * v)
+
+
+def reference(scene: Scene) -> Reference:
+    """The reference outputs of ``scene`` (closed form, or Taylor at 32 digits bounded by 22 digits)."""
+    if scene.model == "kelvin-voigt":
+        out = simulate(scene, SolverOptions(method="closed")).to_dict()
+        return Reference(out, 4 * 2.2e-16, "closed form")
+    fine = _outputs_from_normal(scene, *taylor_normal(scene, 32))
+    coarse = _outputs_from_normal(scene, *taylor_normal(scene, 22))
+    bound = max(worst_error(coarse, fine, scene), 2.2e-16)
+    return Reference(fine, bound, "mpmath Taylor (32 digits); bound = its distance from 22 digits")
+
+
+def float64_check(scene: Scene, ref: Reference) -> float:
+    """Independent check: worst error of DOP853 at rtol 1e-13 against the reference."""
+    got = simulate(scene, SolverOptions(method="DOP853", rtol=1e-13, atol=1e-15)).to_dict()
+    return worst_error(got, ref.outputs, scene)
+
+
+def is_finite_number(x) -> bool:
+    return isinstance(x, float) and math.isfinite(x)

@@ -1,0 +1,62 @@
+"""Work-precision: worst relative error against wall time and nfev for every method, body and tolerance.
+
+Every point is one impact solved by :func:`sphereimpact.simulate`, timed as the
+median of repeats in one process so ratios between methods hold.  The error is
+the worst relative error over t_m, delta_m, t_f, COR, omega_f and ve_t against
+:func:`sphereimpact.numerics.reference.reference`.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from ..events import ImpactError
+from ..scene import Scene, SolverOptions
+from ..solve import simulate
+from .reference import reference, worst_error
+from .timing import median_time
+
+METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+BODIES = ("reduced", "planar")
+TOLERANCES = tuple(10.0 ** -e for e in range(3, 13))
+#: Accuracy every output must meet with the package's default method and tolerance.
+TARGET = 1e-9
+
+
+def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "reduced") -> dict:
+    """One point: error, median time and nfev (``status`` says why a point failed)."""
+    options = SolverOptions(method=method, rtol=rtol, atol=rtol)
+    try:
+        seconds, out = median_time(lambda: simulate(scene, options, model=body))
+    except ImpactError as err:
+        return {"method": method, "body": body, "rtol": rtol, "error": None, "time": None, "nfev": None,
+                "status": f"failed: {err}"}
+    return {"method": method, "body": body, "rtol": rtol, "error": worst_error(out.to_dict(), ref, scene),
+            "time": seconds, "nfev": out.nfev, "status": "ok"}
+
+
+def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES) -> pd.DataFrame:
+    """Every method x body x tolerance for each case, plus the closed form where it exists."""
+    rows = []
+    for case, scene in cases.items():
+        ref = reference(scene)
+        base = {"case": case, "model": scene.model, "reference_bound": ref.bound}
+        if scene.model == "kelvin-voigt":
+            rows.append(base | measure(scene, ref.outputs, "closed", 1e-13) | {"body": "closed"})
+        for body in BODIES:
+            for method in METHODS:
+                for rtol in tolerances:
+                    rows.append(base | measure(scene, ref.outputs, method, rtol, body))
+    return pd.DataFrame(rows)
+
+
+def choose_default(frame: pd.DataFrame, target: float = TARGET, body: str = "reduced") -> pd.Series:
+    """The cheapest (method, rtol) whose error meets ``target`` in every case (total median time)."""
+    ok = frame[(frame["body"] == body) & (frame["status"] == "ok")]
+    per_setting = ok.groupby(["method", "rtol"]).agg(worst=("error", "max"), time=("time", "sum"),
+                                                     cases=("case", "nunique"))
+    eligible = per_setting[(per_setting["worst"] <= target) & (per_setting["cases"] == frame["case"].nunique())]
+    if eligible.empty:
+        raise ValueError(f"no method meets {target:g} in every case")
+    best = eligible["time"].idxmin()
+    return pd.Series({"method": best[0], "rtol": best[1], **eligible.loc[best].to_dict()})

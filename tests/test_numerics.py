@@ -1,0 +1,155 @@
+"""Numerical studies: references, the default's accuracy, and one regression test per failure mode."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from sphereimpact import Scene, SolverOptions, simulate
+from sphereimpact.numerics.ablation import ablation
+from sphereimpact.numerics.bench import speedups
+from sphereimpact.numerics.reference import reference, relative_errors, worst_error
+from sphereimpact.numerics.workprecision import METHODS, TARGET, choose_default
+
+CHAPTER = {f"{a}deg-{m}": Scene(angle=a, model=m) for a in (0.0, 60.0) for m in ("modified", "kelvin-voigt")}
+
+
+@pytest.fixture(scope="module")
+def references():
+    return {name: reference(scene) for name, scene in CHAPTER.items()}
+
+
+def test_taylor_reference_agrees_with_an_independent_method(references):
+    """Two ways: the 32-digit Taylor reference and DOP853 at rtol 1e-13 (float64) agree to 1e-12."""
+    for name, scene in CHAPTER.items():
+        ref = references[name]
+        assert ref.bound <= 1e-15
+        tight = simulate(scene, SolverOptions(rtol=1e-13, atol=1e-13)).to_dict()
+        assert worst_error(tight, ref.outputs, scene) < 1e-12, name
+
+
+def test_taylor_reference_reproduces_the_closed_form():
+    """The Taylor machinery itself, checked where an exact answer exists: ramp -> infinity is kelvin-voigt."""
+    from sphereimpact.numerics.reference import taylor_normal
+
+    scene = Scene(angle=0.0, model="modified", ramp=1e9, separation="penetration")
+    t_m, delta_m, t_f, rate = taylor_normal(scene, 25)
+    exact = simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="closed"))
+    assert t_f == pytest.approx(exact.t_f, rel=1e-6) and -rate / scene.v_normal == pytest.approx(exact.cor, rel=1e-6)
+
+
+def test_default_meets_the_target_on_every_output(references):
+    """The package default (chosen from the work-precision chart) meets 1e-9 in all four chapter scenes."""
+    for name, scene in CHAPTER.items():
+        out = simulate(scene).to_dict()
+        errors = relative_errors(out, references[name].outputs, scene)
+        assert max(errors.values()) <= TARGET, (name, errors)
+
+
+def test_choose_default_picks_the_cheapest_setting_meeting_the_target():
+    rows = [("a", "X", 1e-6, 1e-7, 1.0), ("b", "X", 1e-6, 2e-9, 1.0), ("a", "X", 1e-9, 1e-10, 3.0),
+            ("b", "X", 1e-9, 1e-10, 3.0), ("a", "Y", 1e-8, 5e-10, 2.0), ("b", "Y", 1e-8, 8e-10, 2.0)]
+    frame = pd.DataFrame(rows, columns=["case", "method", "rtol", "error", "time"]).assign(body="reduced",
+                                                                                          status="ok")
+    choice = choose_default(frame, 1e-9)
+    assert (choice["method"], choice["rtol"], choice["time"]) == ("Y", 1e-8, 4.0)
+
+
+def test_speedups_at_equal_accuracy():
+    frame = pd.DataFrame([
+        ("c", "kv", "reduced", "A", 1e-10, 1e-11, 2.0), ("c", "kv", "planar", "A", 1e-10, 1e-10, 6.0),
+        ("c", "kv", "planar", "B", 1e-8, 1e-8, 1.0), ("c", "kv", "closed", "closed", 1e-13, 1e-16, 0.5),
+    ], columns=["case", "model", "body", "method", "rtol", "error", "time"]).assign(status="ok", nfev=1)
+    table = speedups(frame, 1e-9).set_index("body")
+    assert table.loc["reduced", "speedup_over_planar"] == 3.0  # the 1e-8 planar point does not count
+    assert table.loc["reduced", "closed_speedup"] == 4.0
+
+
+# --- one regression test per failure mode: the default path does not fail on it -------------------------
+
+
+def test_strongly_overdamped_contact_completes_with_every_method():
+    """1. Stiffness (zeta = 100, modified law as in the study): every method finishes; delta_m and COR agree
+    with Radau at rtol 1e-12 to 1e-6. t_m is ill-conditioned there (delta_dot crosses zero with slope
+    ~ 1/zeta), so it is held to 1e-4."""
+    base = Scene()
+    scene = base.with_(b=100 * 2 * math.sqrt(base.k * base.mass))
+    ref = simulate(scene, SolverOptions(method="Radau", rtol=1e-12, atol=1e-12)).to_dict()
+    for method in METHODS:
+        out = simulate(scene, SolverOptions(method=method, rtol=1e-8, atol=1e-8)).to_dict()
+        errors = relative_errors(out, ref, scene, keys=("t_m", "delta_m", "cor"))
+        assert errors["delta_m"] < 1e-6 and errors["cor"] < 1e-6 and errors["t_m"] < 1e-4, (method, errors)
+
+
+def test_spurious_separation_is_an_error_not_a_number():
+    """kelvin-voigt at zeta = 100 under the force criterion: on the slow manifold P = k delta + b delta_dot is a
+    tiny difference of two large terms, and RK45 at rtol 1e-8 finds a false P = 0 with a rebound of 3.9e-13
+    (closed form: COR 2.5e-5). The package refuses that separation with a clear error."""
+    from sphereimpact import ImpactError
+
+    base = Scene(model="kelvin-voigt")
+    scene = base.with_(b=100 * 2 * math.sqrt(base.k * base.mass))
+    assert simulate(scene, SolverOptions(method="closed")).cor == pytest.approx(2.4988e-5, rel=1e-4)
+    with pytest.raises(ImpactError, match="below what the tolerances resolve"):
+        simulate(scene, SolverOptions(method="RK45", rtol=1e-8, atol=1e-8))
+    tight = simulate(scene, SolverOptions(method="RK45", rtol=1e-12, atol=1e-12))
+    assert tight.cor == pytest.approx(2.4988e-5, rel=1e-4)
+
+
+def test_stiffness_k_does_not_change_the_cost():
+    """1. In dimensionless form k enters only through zeta: the same zeta at k = 1e3 and 1e9 costs the same."""
+    nfev = []
+    for k in (1e3, 1e9):
+        base = Scene(k=k, model="kelvin-voigt")
+        scene = base.with_(b=0.3 * 2 * math.sqrt(k * base.mass))
+        nfev.append(simulate(scene).nfev)
+    assert nfev[0] == nfev[1]
+
+
+def test_force_jump_at_onset_is_never_inside_a_step():
+    """2. The default path starts at contact: kelvin-voigt (P(0) = b v_n) meets rtol-level accuracy."""
+    scene = Scene(model="kelvin-voigt")
+    exact = simulate(scene, SolverOptions(method="closed")).to_dict()
+    for rtol in (1e-6, 1e-9):
+        assert worst_error(simulate(scene, SolverOptions(rtol=rtol, atol=rtol)).to_dict(), exact, scene) < 10 * rtol
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_grip_is_exact_and_cheap(method):
+    """3. Late grip at 50 deg: the exact event switch gives vt0/(1 + alpha) to round-off, in few evaluations."""
+    scene = Scene(angle=50.0)
+    out = simulate(scene, SolverOptions(method=method, rtol=1e-8, atol=1e-8))
+    assert out.regime == "rolling"
+    assert out.vc_t == pytest.approx(scene.v_tangent / (1 + scene.inertia_factor), rel=1e-14)
+    assert out.nfev < 5000
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_separation_found_at_loose_tolerance(method):
+    """4. rtol 1e-3: separation is never missed and t_f errs by about the tolerance, not a whole step."""
+    scene = Scene(angle=0.0)
+    exact = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12)).t_f
+    out = simulate(scene, SolverOptions(method=method, rtol=1e-3, atol=1e-3))
+    assert abs(out.t_f / exact - 1) < 1e-3
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_no_overflow_past_separation(method):
+    """5. A steep ramp and a loose tolerance: no overflow, no NaN, a finite outcome."""
+    with np.errstate(over="raise", invalid="raise", divide="raise"):
+        out = simulate(Scene(angle=0.0, ramp=1e4), SolverOptions(method=method, rtol=1e-3, atol=1e-3))
+    assert all(math.isfinite(v) for v in (out.t_f, out.cor, out.force_min, out.force_max))
+
+
+def test_ablation_drops_only_what_a_scene_does_not_need():
+    cases = {"normal": Scene(angle=0.0), "oblique60": Scene(angle=60.0)}
+    published = [{"case": "oblique60", "quantity": "omega_f", "resolution": 1.0}]
+    frame = ablation(cases, published).set_index(["case", "variant", "output"]).sort_index()["change"]
+    assert frame.loc["normal", "no friction"].abs().max() == 0.0  # a normal impact needs no friction
+    assert frame.loc["normal", "thin shell"].abs().max() == 0.0
+    assert frame.loc["oblique60", "full planar model"].abs().max() < 1e-9  # the planar model only adds cost
+    base = simulate(Scene(angle=60.0), SolverOptions(rtol=1e-12, atol=1e-12))
+    spin_scale = 3.0 / base.scene.radius  # changes are relative to max(|value|, v/R)
+    assert frame.loc[("oblique60", "no friction", "omega_f")] == pytest.approx(-base.omega_f / spin_scale, rel=1e-9)
+    assert abs(frame.loc[("oblique60", "ramp 10", "cor")]) > 1e-3  # the ramp constant is a real choice
