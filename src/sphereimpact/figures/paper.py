@@ -32,54 +32,53 @@ def _mark_times(ax, pub: dict) -> None:
             ax.axvline(pub[key] * 1e3, color="crimson", linestyle=style, linewidth=1.2, label=label)
 
 
-def displacement(run_csv: str, published: list[dict], case: str, separation: str, title: str):
-    """Figs 4.2 / 4.3: normal and tangential displacement of the centre against time."""
+def _time_history(run_csv, published, case, separation, title, curves, markers, ylabel):
+    """A figure against time [ms].
+
+    ``curves``: (column, scale, style, label), drawn when not identically zero (``style`` None: always drawn).
+    ``markers``: (published quantity, quantity giving its time, scale, label) for the printed values.
+    """
     h, pub = _history(run_csv, separation), _published(published, case)
     with plt.rc_context(RC):
         fig, ax = plt.subplots()
-        ax.plot(h["t"] * 1e3, h["u_n"] * 1e3, label="normal $u_n$ (modified model)")
-        ax.plot(h["t"] * 1e3, h["u_t"] * 1e3, label="tangential $u_t$ (modified model)")
+        for column, scale, style, label in curves:
+            if style is None or h[column].abs().max() > 0:
+                ax.plot(h["t"] * 1e3, h[column] * scale, style or "-", label=label)
         _mark_times(ax, pub)
-        if "delta_m" in pub and "t_m" in pub:
-            ax.plot([pub["t_m"] * 1e3], [pub["delta_m"] * 1e3], label="published $\\delta_m$ at $t_m$",
-                    **PUBLISHED_STYLE)
-        ax.set(xlabel="time $t$ [ms]", ylabel="displacement of the centre [mm]", title=title)
+        for key, at, scale, label in markers:
+            if key in pub:
+                ax.plot([pub.get(at, h["t"].iloc[-1]) * 1e3], [pub[key] * scale], label=label, **PUBLISHED_STYLE)
+        ax.set(xlabel="time $t$ [ms]", ylabel=ylabel, title=title)
         ax.legend(loc="best")
     return fig
+
+
+def displacement(run_csv: str, published: list[dict], case: str, separation: str, title: str):
+    """Figs 4.2 / 4.3: normal and tangential displacement of the centre against time."""
+    return _time_history(run_csv, published, case, separation, title,
+                         [("u_n", 1e3, None, "normal $u_n$ (modified model)"),
+                          ("u_t", 1e3, None, "tangential $u_t$ (modified model)")],
+                         [("delta_m", "t_m", 1e3, "published $\\delta_m$ at $t_m$")],
+                         "displacement of the centre [mm]")
 
 
 def velocity(run_csv: str, published: list[dict], case: str, separation: str, title: str):
     """Figs 4.4 / 4.5: normal and tangential velocity of the centre (and contact point) against time."""
-    h, pub = _history(run_csv, separation), _published(published, case)
-    with plt.rc_context(RC):
-        fig, ax = plt.subplots()
-        ax.plot(h["t"] * 1e3, h["vc_n"], label="centre, normal $v_{C,n}$")
-        ax.plot(h["t"] * 1e3, h["vc_t"], label="centre, tangential $v_{C,t}$")
-        if h["ve_t"].abs().max() > 0:
-            ax.plot(h["t"] * 1e3, h["ve_t"], "--", label="contact point, tangential $v_{E,t}$")
-        _mark_times(ax, pub)
-        end = pub.get("t_f", h["t"].iloc[-1]) * 1e3
-        for key, label in (("ve_n", "published $v_{E,n}(t_f)$"), ("ve_t", "published $v_{E,t}(t_f)$")):
-            if key in pub:
-                ax.plot([end], [pub[key]], label=label, **PUBLISHED_STYLE)
-        ax.set(xlabel="time $t$ [ms]", ylabel="velocity [m/s]", title=title)
-        ax.legend(loc="best")
-    return fig
+    return _time_history(run_csv, published, case, separation, title,
+                         [("vc_n", 1.0, None, "centre, normal $v_{C,n}$"),
+                          ("vc_t", 1.0, None, "centre, tangential $v_{C,t}$"),
+                          ("ve_t", 1.0, "--", "contact point, tangential $v_{E,t}$")],
+                         [("ve_n", "t_f", 1.0, "published $v_{E,n}(t_f)$"),
+                          ("ve_t", "t_f", 1.0, "published $v_{E,t}(t_f)$")],
+                         "velocity [m/s]")
 
 
 def spin(run_csv: str, published: list[dict], case: str, separation: str, title: str):
     """Fig 4.6: angular velocity against time."""
-    h, pub = _history(run_csv, separation), _published(published, case)
-    with plt.rc_context(RC):
-        fig, ax = plt.subplots()
-        ax.plot(h["t"] * 1e3, h["omega"], label="angular velocity $\\omega$ (modified model)")
-        _mark_times(ax, pub)
-        if "omega_f" in pub:
-            ax.plot([pub.get("t_f", h["t"].iloc[-1]) * 1e3], [pub["omega_f"]], label="published $\\omega_f$",
-                    **PUBLISHED_STYLE)
-        ax.set(xlabel="time $t$ [ms]", ylabel="angular velocity [rad/s]", title=title)
-        ax.legend(loc="best")
-    return fig
+    return _time_history(run_csv, published, case, separation, title,
+                         [("omega", 1.0, None, "angular velocity $\\omega$ (modified model)")],
+                         [("omega_f", "t_f", 1.0, "published $\\omega_f$")],
+                         "angular velocity [rad/s]")
 
 
 def force_deflection(previous_csv: str, modified_csv: str, published: list[dict], case: str, separation: str,
