@@ -25,6 +25,22 @@ SEPARATION_CRITERIA = ("force", "penetration")
 METHODS = ("closed", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
+#: Numeric Scene fields: (allowed range as stated in messages, vectorised test).  One table for the
+#: scalar checks of :class:`Scene` and the array checks of sweeps, so both say the same thing.
+RULES = {
+    "mass": ("a finite number > 0 kg", lambda x: x > 0),
+    "diameter": ("a finite number > 0 m", lambda x: x > 0),
+    "inertia_factor": ("a finite number in (0, 2/3]", lambda x: (x > 0) & (x <= 2 / 3 + 1e-15)),
+    "angle": ("a finite number in [0, 90) degrees", lambda x: (x >= 0) & (x < 90)),
+    "speed": ("a finite number > 0 m/s", lambda x: x > 0),
+    "mu": ("a finite number >= 0", lambda x: x >= 0),
+    "k": ("a finite number > 0 N/m", lambda x: x > 0),
+    "b": ("a finite number >= 0 N s/m", lambda x: x >= 0),
+    "ramp": ("a finite number > 0", lambda x: x > 0),
+    "gravity": ("a finite number >= 0 m/s^2", lambda x: x >= 0),
+}
+
+
 def _check(name: str, value, allowed: str, ok) -> None:
     """Raise ``ValueError`` unless ``value`` is a finite number satisfying ``ok``."""
     bad = isinstance(value, bool) or not isinstance(value, (int, float))
@@ -35,6 +51,44 @@ def _check(name: str, value, allowed: str, ok) -> None:
 def _check_choice(name: str, value, choices) -> None:
     if value not in choices:
         raise ValueError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
+
+
+def check_columns(columns: dict) -> None:
+    """Validate arrays of scene parameters (as :class:`Scene` does one value), naming the first bad row.
+
+    Parameters
+    ----------
+    columns : dict of str -> array_like
+        Scene field -> values; numeric fields must be numbers, ``model`` and
+        ``separation`` strings.
+
+    Raises
+    ------
+    ValueError
+        ``"<name> must be <range>; got <value> (row <i>)"``.
+    """
+    import numpy as np
+
+    for name, values in columns.items():
+        if name in RULES:
+            allowed, ok = RULES[name]
+            try:
+                arr = np.asarray(values, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be {allowed}; got a non-numeric value") from None
+            with np.errstate(invalid="ignore"):
+                bad = ~(np.isfinite(arr) & ok(arr))
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise ValueError(f"{name} must be {allowed}; got {arr[i]!r} (row {i})")
+        elif name in ("model", "separation"):
+            choices = tuple(FORCE_MODELS) if name == "model" else SEPARATION_CRITERIA
+            unknown = sorted(set(map(str, values)) - set(choices))
+            if unknown:
+                raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
+        else:
+            raise ValueError(f"unknown scene parameter {name!r}; expected one of "
+                             f"{', '.join([*RULES, 'model', 'separation'])}")
 
 
 @dataclass(frozen=True)
@@ -86,18 +140,9 @@ class Scene:
     separation: str = "force"
 
     def __post_init__(self):
-        _check("mass", self.mass, "a finite number > 0 kg", lambda x: x > 0)
-        _check("diameter", self.diameter, "a finite number > 0 m", lambda x: x > 0)
-        _check("inertia_factor", self.inertia_factor, "a finite number in (0, 2/3]",
-               lambda x: 0 < x <= 2 / 3 + 1e-15)
-        _check("angle", self.angle, "a finite number in [0, 90) degrees", lambda x: 0 <= x < 90)
-        _check("speed", self.speed, "a finite number > 0 m/s", lambda x: x > 0)
-        _check("mu", self.mu, "a finite number >= 0", lambda x: x >= 0)
+        for name, (allowed, ok) in RULES.items():
+            _check(name, getattr(self, name), allowed, ok)
         _check_choice("model", self.model, tuple(FORCE_MODELS))
-        _check("k", self.k, "a finite number > 0 N/m", lambda x: x > 0)
-        _check("b", self.b, "a finite number >= 0 N s/m", lambda x: x >= 0)
-        _check("ramp", self.ramp, "a finite number > 0", lambda x: x > 0)
-        _check("gravity", self.gravity, "a finite number >= 0 m/s^2", lambda x: x >= 0)
         _check_choice("separation", self.separation, SEPARATION_CRITERIA)
 
     # Derived quantities (SI) -------------------------------------------------

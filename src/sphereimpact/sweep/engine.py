@@ -1,0 +1,187 @@
+"""The sweep engine: a table of scenes in, a table of outcomes out.
+
+Each scene takes the cheapest path that is exact for it:
+
+1. kelvin-voigt without gravity: the explicit closed form, vectorised (:mod:`.closed`);
+2. modified law without gravity, many scenes sharing zeta and criterion (one ball): Chebyshev
+   interpolation in lam over the whole sweep's range, checked against the integrator (:mod:`.similarity`);
+3. everything else without tangential gravity: the batched integrator (:mod:`.batch`), in chunks;
+4. gravity on an inclined flat (stick-slip with re-slip as P falls): the single-impact model, scene by scene.
+
+Tangential velocity, spin and regime follow from the normal impulse as in the
+single-impact core.  Results do not depend on the chunk size: every lane is
+integrated independently and interpolants are built on the whole sweep.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import fields
+
+import numpy as np
+import pandas as pd
+
+from ..scene import Scene, SolverOptions, check_columns
+from ..solve import simulate
+from . import batch, closed
+from .similarity import LambdaInterpolant
+
+#: Scene parameters, with the single-impact defaults for missing columns.
+SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
+DEFAULTS = {f.name: f.default for f in fields(Scene)}
+#: Outputs of a sweep, as ``sphereimpact simulate`` names them.
+SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor", "regime")
+#: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each.
+SIMILARITY_MIN = 2000
+
+
+def scene_table(scenes) -> pd.DataFrame:
+    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row)."""
+    frame = pd.DataFrame(scenes).reset_index(drop=True)
+    unknown = [c for c in frame.columns if c not in SCENE_COLUMNS]
+    if unknown:
+        raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
+    for name in SCENE_COLUMNS:
+        if name not in frame:
+            frame[name] = DEFAULTS[name]
+    frame = frame[list(SCENE_COLUMNS)]
+    check_columns({name: frame[name].to_numpy() for name in SCENE_COLUMNS})
+    for name in SCENE_COLUMNS:
+        if name not in ("model", "separation"):
+            frame[name] = frame[name].astype(float)
+    return frame
+
+
+def _normal_outputs(frame: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
+    """Dimensionless normal outputs of every scene with no tangential gravity."""
+    m, k, b = (frame[c].to_numpy() for c in ("mass", "k", "b"))
+    radius = 0.5 * frame["diameter"].to_numpy()
+    beta = np.radians(frame["angle"].to_numpy())
+    w = np.sqrt(k / m)
+    v_n = frame["speed"].to_numpy() * np.cos(beta)
+    zeta = b / (2.0 * np.sqrt(k * m))
+    lam = frame["ramp"].to_numpy() * v_n / (w * radius)
+    gamma = frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n)
+    modified = (frame["model"] == "modified").to_numpy()
+    out = {key: np.full(len(frame), np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+    todo = np.ones(len(frame), bool)
+    for separation in ("force", "penetration"):
+        sep = (frame["separation"] == separation).to_numpy()
+        linear = sep & ~modified & (gamma == 0)
+        if linear.any():
+            _put(out, linear, closed.events(zeta[linear], separation))
+            todo &= ~linear
+        for z in np.unique(zeta[sep & modified & (gamma == 0)]):
+            group = sep & modified & (gamma == 0) & (zeta == z)
+            if group.sum() >= SIMILARITY_MIN:
+                interpolant = LambdaInterpolant(float(z), lam[group].min(), lam[group].max(), separation, target)
+                _put(out, group, interpolant(lam[group]))
+                todo &= ~group
+        rest = np.flatnonzero(todo & sep)
+        for start in range(0, rest.size, chunk_size):
+            i = rest[start:start + chunk_size]
+            _put(out, i, batch.integrate(zeta[i], lam[i], gamma[i], modified[i], separation, target))
+            if progress:
+                progress(min(start + chunk_size, rest.size), rest.size)
+    return out
+
+
+def _put(out: dict, where, values: dict) -> None:
+    for key in out:
+        out[key][where] = values[key]
+
+
+def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None) -> pd.DataFrame:
+    """Simulate every scene of a table.
+
+    Parameters
+    ----------
+    scenes : DataFrame or dict of arrays
+        Columns named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
+        ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
+        ``separation``); missing columns take the chapter's defaults.
+    target : float
+        Relative accuracy of every output (1e-8: within 1e-8 of the single-impact reference).
+    chunk_size : int
+        Scenes integrated at once (memory stays bounded; results do not depend on it).
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk of integrated scenes.
+
+    Returns
+    -------
+    DataFrame
+        The scene columns followed by :data:`SWEEP_OUTPUTS` (SI units), one row per scene, in order.
+
+    Raises
+    ------
+    ValueError
+        A parameter out of range (naming it and the first bad row), or a bad target or chunk size.
+    ImpactError
+        A scene that never separates.
+    """
+    if not (isinstance(target, float) and 1e-12 <= target <= 1e-3):
+        raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
+    if not (isinstance(chunk_size, int) and chunk_size >= 1):
+        raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
+    frame = scene_table(scenes)
+    n = len(frame)
+    result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key != "regime"}
+    regime = np.full(n, "none", dtype=object)
+    tilted_gravity = ((frame["gravity"] > 0) & (frame["angle"] > 0)).to_numpy()
+    for i in np.flatnonzero(tilted_gravity):  # stick-slip with re-slip: the exact single-impact path
+        out = simulate(Scene(**frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
+                                                                       atol=min(1e-10, target / 100)))
+        for key in result:
+            result[key][i] = getattr(out, key)
+        regime[i] = out.regime
+    rest = ~tilted_gravity
+    if rest.any():
+        part = frame[rest]
+        dim = _normal_outputs(part, target, chunk_size, progress)
+        m, k = part["mass"].to_numpy(), part["k"].to_numpy()
+        w = np.sqrt(k / m)
+        radius = 0.5 * part["diameter"].to_numpy()
+        alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
+        beta = np.radians(part["angle"].to_numpy())
+        v_n = part["speed"].to_numpy() * np.cos(beta)
+        v_t = np.where(part["angle"].to_numpy() == 0, 0.0, part["speed"].to_numpy() * np.sin(beta))
+        # friction acts while P > 0: its impulse is mu J+, J+ = m v_n (1 - y at the end of compression's push)
+        impulse = m * v_n * (1.0 - dim["y_p"])
+        slides = mu * (1.0 + 1.0 / alpha) * impulse / m < v_t
+        vc_t = np.where(slides, v_t - mu * impulse / m, v_t / (1.0 + alpha))
+        omega = np.where(slides, mu * radius * impulse / (alpha * m * radius**2), vc_t / radius)
+        values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
+                  "vc_t": vc_t, "vc_n": -dim["y_f"] * v_n, "ve_t": np.where(slides, vc_t - omega * radius, 0.0),
+                  "ve_n": -dim["y_f"] * v_n, "omega_f": omega, "cor": -dim["y_f"]}
+        for key, value in values.items():
+            result[key][rest] = value
+        regime[rest] = np.where(v_t == 0, "none", np.where(slides, "sliding", "rolling"))
+    table = frame.copy()
+    for key in SWEEP_OUTPUTS:
+        table[key] = regime if key == "regime" else result[key]
+    if not np.isfinite(table[[k for k in SWEEP_OUTPUTS if k != "regime"]].to_numpy(float)).all():
+        raise RuntimeError("sweep produced a non-finite output")  # never a NaN in a table
+    return table
+
+
+def grid(**ranges) -> pd.DataFrame:
+    """The Cartesian product of parameter values, one row per scene (first parameter varies slowest)."""
+    names = list(ranges)
+    mesh = np.meshgrid(*[np.atleast_1d(ranges[n]) for n in names], indexing="ij")
+    return pd.DataFrame({n: m.ravel() for n, m in zip(names, mesh)})
+
+
+def parse_range(text: str) -> np.ndarray:
+    """``START:STOP:STEP`` (STOP included when on the grid) or a single value, as an array."""
+    parts = text.split(":")
+    try:
+        numbers = [float(p) for p in parts]
+    except ValueError:
+        raise ValueError(f"range must be START:STOP:STEP or a number; got {text!r}") from None
+    if len(numbers) == 1:
+        return np.array(numbers)
+    if len(numbers) != 3 or not all(math.isfinite(x) for x in numbers) or numbers[2] <= 0 or numbers[1] < numbers[0]:
+        raise ValueError(f"range must be START:STOP:STEP with STEP > 0 and STOP >= START; got {text!r}")
+    start, stop, step = numbers
+    count = int(math.floor((stop - start) / step + 1e-9)) + 1
+    return start + step * np.arange(count)
