@@ -56,13 +56,60 @@ def _parser() -> argparse.ArgumentParser:
     add("--body", choices=MODELS, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--json", action="store_true", help="print one JSON object (the only output format)")
+
+    swp = sub.add_parser(
+        "sweep", help="simulate a grid of impacts and write one row per scene",
+        description="Simulate every combination of the given values (START:STOP:STEP ranges, stop included, or "
+                    "single numbers) and write one row per scene: its parameters and the outputs of "
+                    "`simulate` (t_m, delta_m, t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime), SI units.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    ranged = {"angle": ("deg", _D.angle), "speed": ("m/s", _D.speed), "mu": ("-", _D.mu), "k": ("N/m", _D.k),
+              "b": ("N s/m", _D.b), "mass": ("kg", _D.mass), "diameter": ("m", _D.diameter),
+              "inertia_factor": ("-", _D.inertia_factor), "ramp": ("-", _D.ramp), "gravity": ("m/s^2", _D.gravity)}
+    for name, (unit, default) in ranged.items():
+        swp.add_argument("--" + name.replace("_", "-"), default=repr(default), metavar="RANGE",
+                         help=f"{name} [{unit}]: a value or START:STOP:STEP")
+    swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(FORCE_MODELS))
+    swp.add_argument("--separation", default=_D.separation, help="force or penetration")
+    swp.add_argument("--target", type=float, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
+    swp.add_argument("--chunk-size", type=int, default=100_000, help="scenes integrated at once (memory bound)")
+    swp.add_argument("--out", required=True, metavar="FILE", help="output table: .csv or .parquet")
     return parser
 
 
+def _progress(done: int, total: int) -> None:
+    sys.stderr.write(f"\rsphereimpact sweep: {done}/{total} integrated scenes")
+    if done == total:
+        sys.stderr.write("\n")
+
+
+def _sweep(args) -> None:
+    from .sweep.engine import grid, parse_range, sweep
+    from .sweep.io import write_table
+
+    names = ("angle", "speed", "mu", "k", "b", "mass", "diameter", "inertia_factor", "ramp", "gravity")
+    ranges = {}
+    for name in names:
+        try:
+            ranges[name] = parse_range(getattr(args, name))
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    scenes = grid(**ranges).assign(model=args.model, separation=args.separation)
+    big = len(scenes) >= 100_000 and sys.stderr.isatty()
+    table = sweep(scenes, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
+    write_table(table, args.out)
+
+
 def run(argv=None) -> int:
-    """Parse ``argv``, simulate, print JSON; return the exit status."""
+    """Parse ``argv``, run the command; return the exit status."""
     parser = _parser()
     args = parser.parse_args(argv)
+    if args.command == "sweep":
+        try:
+            _sweep(args)
+        except (ValueError, ImpactError) as err:
+            parser.exit(2, f"sphereimpact: error: {err}\n")
+        return 0
     try:
         scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor,
                       angle=args.angle, speed=args.speed, mu=args.mu, model=args.model, k=args.k, b=args.b,

@@ -80,7 +80,7 @@ def check_columns(columns: dict) -> None:
                 bad = ~(np.isfinite(arr) & ok(arr))
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
-                raise ValueError(f"{name} must be {allowed}; got {arr[i]!r} (row {i})")
+                raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in ("model", "separation"):
             choices = tuple(FORCE_MODELS) if name == "model" else SEPARATION_CRITERIA
             unknown = sorted(set(map(str, values)) - set(choices))

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.integrate import DOP853
+from scipy.special import wrightomega
 
 from ..events import ImpactError
 from ..forces import ramp_continued
@@ -36,23 +37,38 @@ NEWTON_ITERATIONS = 12
 HORIZON = 100.0 * np.pi
 
 
+def _ramp(u):
+    """:func:`sphereimpact.forces.ramp_continued`, with the polynomial evaluated only where u < 0."""
+    ramp = -np.expm1(-np.maximum(u, 0.0))
+    negative = u < 0
+    if negative.any():
+        ramp[negative] = ramp_continued(u[negative])
+    return ramp
+
+
 class _Lanes:
     """Per-lane parameters of one batch (arrays of equal length)."""
 
     def __init__(self, zeta, lam, gamma, modified):
         self.zeta, self.lam, self.gamma, self.modified = zeta, lam, gamma, modified
+        self.kind = "modified" if modified.all() else "linear" if not modified.any() else "mixed"
 
     def take(self, index):
         return _Lanes(self.zeta[index], self.lam[index], self.gamma[index], self.modified[index])
 
+    def ramp(self, x):
+        if self.kind == "linear":
+            return 1.0
+        ramp = _ramp(self.lam * x)
+        return ramp if self.kind == "modified" else np.where(self.modified, ramp, 1.0)
+
     def force(self, x, y):
-        ramp = np.where(self.modified, ramp_continued(self.lam * x), 1.0)
-        return x + 2.0 * self.zeta * y * ramp
+        return x + 2.0 * self.zeta * y * self.ramp(x)
 
     def force_rate(self, x, y, dy):
         """d P_hat / d tau (its ramp derivative only approximate past x = 0: Newton needs no more)."""
         u = self.lam * x
-        ramp = np.where(self.modified, ramp_continued(u), 1.0)
+        ramp = self.ramp(x)
         slope = np.where(self.modified, np.exp(-np.maximum(u, 0.0)) * self.lam, 0.0)
         return y + 2.0 * self.zeta * (dy * ramp + y * slope * y)
 
@@ -130,14 +146,25 @@ def _first_force_root(lanes: _Lanes, x0, y0, lo, hi, samples: int = 8):
 def step_size(zeta, lam, x, y, target: float):
     """Per-lane dimensionless step from the accuracy target and the lane's fastest time scale ahead.
 
-    The modified ramp varies at rate lam exp(-lam x) in x: fast only near x = 0 (first touch and
-    separation).  The rate is taken at the smallest x the lane can reach within one base step
-    (x - |y| h_base), so a step never leaps into the fast region unresolved.
+    The modified ramp 1 - exp(-u), u = lam x, matters only where exp(-u) is above the target, i.e. for
+    u < U = ln(1/target) + 3, near first touch and separation.  There a step may change u by at most
+    c = 4 h_unit (so the polynomial of one step follows the exponential), and approaching x = 0 also by
+    no more than W(c exp(u)) (Lambert W, as the Wright omega function of u + ln c): the ramp's rate at
+    the step's end is then resolved too.  Outside that band the ramp is constant to the target, and an
+    approaching lane may jump to just inside the band.
     """
-    base = STEP_CONSTANT * target ** 0.125 / np.maximum(1.0, 2.0 * zeta)
-    reach = np.maximum(x - 1.5 * np.abs(y) * base, 0.0)
-    ramp_rate = lam * np.exp(-lam * reach)
-    return STEP_CONSTANT * target ** 0.125 / np.maximum.reduce([np.ones_like(zeta), 2.0 * zeta, ramp_rate / 4.0])
+    unit = STEP_CONSTANT * target ** 0.125
+    c = 4.0 * unit
+    band = np.log(1.0 / target) + 3.0
+    base = unit / np.maximum(1.0, 2.0 * zeta)
+    u = lam * np.maximum(x, 0.0)
+    inside = u < band
+    approach = np.minimum(wrightomega(np.minimum(u, band) + np.log(c)).real, c)
+    du = np.where(y < 0, np.where(inside, approach, u - band + c), np.where(inside, c, np.inf))
+    speed = np.maximum(np.abs(y), 1e-3)  # dtau = du / (lam |y|); |y| > 0 near x = 0 in any contact
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ramp = np.where(lam > 0, du / (lam * speed), np.inf)
+    return np.minimum(base, ramp)
 
 
 def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8) -> dict:
@@ -167,45 +194,29 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
     n = zeta.size
     params = _Lanes(np.asarray(zeta, float), np.asarray(lam, float), np.asarray(gamma, float),
                     np.asarray(modified, bool))
-    out = {k: np.full(n, np.nan) for k in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
-    sep_kind = "delta" if separation == "penetration" else "force"  # force: first of P_hat = 0 and x = 0
+    force_criterion = separation == "force"
     lane = np.arange(n)
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
-    past_max = np.zeros(n, bool)  # maximum compression found
-    tension = np.zeros(n, bool)  # P_hat fell to 0 while delta > 0
+    past_max = np.zeros(n, bool)  # maximum compression passed
+    tension_seen = np.zeros(n, bool)  # P_hat <= 0 seen at a step end (penetration criterion)
+    # Events are only bracketed during the march (step start, size, flags); they are located afterwards
+    # in one vectorised pass per kind, so the per-call cost of the step map is paid a few times, not per step.
+    records = {"max": [], "tension": [], "end": []}
     while lane.size:
         lanes = params.take(lane)
         h = step_size(lanes.zeta, np.where(lanes.modified, lanes.lam, 0.0), x, y, target)
         x1, y1 = _step(lanes, x, y, h)
-        start = np.zeros(lane.size)  # where in the step events may still happen
-        # maximum compression
-        hit = ~past_max & (y1 <= 0)
-        if hit.any():
-            i = np.flatnonzero(hit)
-            s, (xm, _) = _locate("max", lanes.take(i), x[i], y[i], np.zeros(i.size), h[i])
-            out["tau_m"][lane[i]], out["x_m"][lane[i]] = tau[i] + s, xm
-            past_max[i], start[i] = True, s
-        # contact ends: delta = 0 (both criteria), or P_hat = 0 before it (force criterion)
+        hit_max = ~past_max & (y1 <= 0)
+        past_max |= hit_max
+        p1 = lanes.force(x1, y1)
         x_end = past_max & (x1 <= 0)
-        s_x = h.copy()
-        if x_end.any():
-            i = np.flatnonzero(x_end)
-            s_x[i] = _locate("delta", lanes.take(i), x[i], y[i], start[i], h[i])[0]
-        # P_hat = 0 with delta > 0: separation (force) or the start of tension (penetration)
-        look = past_max & ~tension & (x_end | (lanes.force(x1, y1) <= 0))
-        s_p = np.full(lane.size, np.inf)
-        if look.any():
-            i = np.flatnonzero(look)
-            s, yp, found = _first_force_root(lanes.take(i), x[i], y[i], start[i], s_x[i])
-            s_p[i[found]] = s[found]
-            out["y_p"][lane[i[found]]] = yp[found]
-            tension[i[found]] = True
-        done = x_end | (np.isfinite(s_p) if sep_kind == "force" else False)
-        if done.any():
-            i = np.flatnonzero(done)
-            s_end = np.minimum(s_x[i], s_p[i]) if sep_kind == "force" else s_x[i]
-            out["tau_f"][lane[i]] = tau[i] + s_end
-            out["y_f"][lane[i]] = _step(lanes.take(i), x[i], y[i], s_end)[1]
+        done = x_end | (past_max & (p1 <= 0)) if force_criterion else x_end
+        if not force_criterion:
+            first = past_max & ~tension_seen & (p1 <= 0) & ~done
+            tension_seen |= first
+            _record(records["tension"], first, lane, x, y, h, tau)
+        _record(records["max"], hit_max, lane, x, y, h, tau)
+        _record(records["end"], done, lane, x, y, h, tau, x_end=x_end, tension_seen=tension_seen)
         tau = tau + h
         late = ~done & (tau > HORIZON)
         if late.any():
@@ -213,6 +224,54 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
                               f"(first: zeta = {lanes.zeta[late][0]:.3g}, separation '{separation}')")
         keep = ~done
         lane, x, y, tau = lane[keep], x1[keep], y1[keep], tau[keep]
-        past_max, tension = past_max[keep], tension[keep]
+        past_max, tension_seen = past_max[keep], tension_seen[keep]
+    return _locate_events(params, records, n, force_criterion)
+
+
+def _record(store: list, mask, lane, x, y, h, tau, **flags) -> None:
+    if mask.any():
+        i = np.flatnonzero(mask)
+        store.append({"lane": lane[i], "x": x[i], "y": y[i], "h": h[i], "tau": tau[i],
+                      **{k: v[i] for k, v in flags.items()}})
+
+
+def _join(store: list) -> dict:
+    return {k: np.concatenate([r[k] for r in store]) for k in store[0]} if store else None
+
+
+def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool) -> dict:
+    """Locate every bracketed event at once; see :func:`integrate` for the outputs."""
+    out = {k: np.full(n, np.nan) for k in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+    step_of_max = np.full(n, np.nan)
+    s_of_max = np.zeros(n)
+    m = _join(records["max"])
+    s, (xm, _) = _locate("max", params.take(m["lane"]), m["x"], m["y"], np.zeros(m["lane"].size), m["h"])
+    out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s, xm
+    step_of_max[m["lane"]], s_of_max[m["lane"]] = m["tau"], s
+
+    def start_of(rec):  # events after maximum compression only, within the step where it happened
+        return np.where(rec["tau"] == step_of_max[rec["lane"]], s_of_max[rec["lane"]], 0.0)
+
+    t = _join(records["tension"])
+    if t is not None:
+        _, yp, found = _first_force_root(params.take(t["lane"]), t["x"], t["y"], start_of(t), t["h"])
+        out["y_p"][t["lane"][found]] = yp[found]
+    e = _join(records["end"])
+    lanes, start = params.take(e["lane"]), start_of(e)
+    s_x = e["h"].copy()
+    if e["x_end"].any():
+        i = np.flatnonzero(e["x_end"])
+        s_x[i] = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], start[i], e["h"][i])[0]
+    search = ~e["tension_seen"] | force_criterion  # P_hat = 0 with delta > 0, not found before this step
+    s_p, yp, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
+    if search.any():
+        i = np.flatnonzero(search)
+        s_i, y_i, f_i = _first_force_root(lanes.take(i), e["x"][i], e["y"][i], start[i], s_x[i])
+        s_p[i[f_i]], yp[i[f_i]], found[i[f_i]] = s_i[f_i], y_i[f_i], True
+    s_end = np.minimum(s_x, s_p) if force_criterion else s_x
+    out["tau_f"][e["lane"]] = e["tau"] + s_end
+    out["y_f"][e["lane"]] = _step(lanes, e["x"], e["y"], s_end)[1]
+    fresh = found & np.isnan(out["y_p"][e["lane"]])
+    out["y_p"][e["lane"][fresh]] = yp[fresh]
     out["y_p"] = np.where(np.isnan(out["y_p"]), out["y_f"], out["y_p"])
     return out

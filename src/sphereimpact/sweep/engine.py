@@ -52,29 +52,45 @@ def scene_table(scenes) -> pd.DataFrame:
     return frame
 
 
-def _normal_outputs(frame: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
-    """Dimensionless normal outputs of every scene with no tangential gravity."""
+def _dimensionless(frame: pd.DataFrame) -> dict:
+    """zeta, lam, gamma, omega_n, v_n and the law of each scene."""
     m, k, b = (frame[c].to_numpy() for c in ("mass", "k", "b"))
-    radius = 0.5 * frame["diameter"].to_numpy()
     beta = np.radians(frame["angle"].to_numpy())
     w = np.sqrt(k / m)
     v_n = frame["speed"].to_numpy() * np.cos(beta)
-    zeta = b / (2.0 * np.sqrt(k * m))
-    lam = frame["ramp"].to_numpy() * v_n / (w * radius)
-    gamma = frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n)
-    modified = (frame["model"] == "modified").to_numpy()
+    return {"zeta": b / (2.0 * np.sqrt(k * m)), "w": w, "v_n": v_n,
+            "lam": frame["ramp"].to_numpy() * v_n / (w * 0.5 * frame["diameter"].to_numpy()),
+            "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),
+            "modified": (frame["model"] == "modified").to_numpy(), "separation": frame["separation"].to_numpy()}
+
+
+def _interpolants(span: pd.DataFrame, target: float) -> dict:
+    """(zeta, separation) -> LambdaInterpolant for every group of the span large enough to pay off."""
+    d = _dimensionless(span)
+    similar = d["modified"] & (d["gamma"] == 0)
+    groups = pd.DataFrame({"zeta": d["zeta"][similar], "separation": d["separation"][similar],
+                           "lam": d["lam"][similar]}).groupby(["zeta", "separation"])["lam"]
+    stats = groups.agg(["size", "min", "max"])
+    return {(float(z), sep): LambdaInterpolant(float(z), row["min"], row["max"], sep, target)
+            for (z, sep), row in stats[stats["size"] >= SIMILARITY_MIN].iterrows()}
+
+
+def _normal_outputs(frame: pd.DataFrame, span: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
+    """Dimensionless normal outputs of every scene with no tangential gravity (interpolants built on ``span``)."""
+    d = _dimensionless(frame)
+    zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
+    interpolants = _interpolants(span, target)
     out = {key: np.full(len(frame), np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(len(frame), bool)
     for separation in ("force", "penetration"):
-        sep = (frame["separation"] == separation).to_numpy()
+        sep = d["separation"] == separation
         linear = sep & ~modified & (gamma == 0)
         if linear.any():
             _put(out, linear, closed.events(zeta[linear], separation))
             todo &= ~linear
-        for z in np.unique(zeta[sep & modified & (gamma == 0)]):
-            group = sep & modified & (gamma == 0) & (zeta == z)
-            if group.sum() >= SIMILARITY_MIN:
-                interpolant = LambdaInterpolant(float(z), lam[group].min(), lam[group].max(), separation, target)
+        for (z, criterion), interpolant in interpolants.items():
+            group = (criterion == separation) & sep & modified & (gamma == 0) & (zeta == z)
+            if group.any():
                 _put(out, group, interpolant(lam[group]))
                 todo &= ~group
         rest = np.flatnonzero(todo & sep)
@@ -91,7 +107,7 @@ def _put(out: dict, where, values: dict) -> None:
         out[key][where] = values[key]
 
 
-def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None) -> pd.DataFrame:
+def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -106,6 +122,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Scenes integrated at once (memory stays bounded; results do not depend on it).
     progress : callable, optional
         ``progress(done, total)`` after each chunk of integrated scenes.
+    span : DataFrame or dict of arrays, optional
+        The whole sweep when ``scenes`` is one shard of it: interpolants are built on the whole
+        sweep's range, so the merged shards equal the sweep run at once.  Defaults to ``scenes``.
 
     Returns
     -------
@@ -137,7 +156,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     rest = ~tilted_gravity
     if rest.any():
         part = frame[rest]
-        dim = _normal_outputs(part, target, chunk_size, progress)
+        whole = frame if span is None else scene_table(span)
+        dim = _normal_outputs(part, whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))], target, chunk_size,
+                              progress)
         m, k = part["mass"].to_numpy(), part["k"].to_numpy()
         w = np.sqrt(k / m)
         radius = 0.5 * part["diameter"].to_numpy()
