@@ -65,12 +65,19 @@ class _Lanes:
     def force(self, x, y):
         return x + 2.0 * self.zeta * y * self.ramp(x)
 
-    def force_rate(self, x, y, dy):
-        """d P_hat / d tau (its ramp derivative only approximate past x = 0: Newton needs no more)."""
-        u = self.lam * x
-        ramp = self.ramp(x)
-        slope = np.where(self.modified, np.exp(-np.maximum(u, 0.0)) * self.lam, 0.0)
-        return y + 2.0 * self.zeta * (dy * ramp + y * slope * y)
+    def ratio(self, x, y):
+        """Q = P_hat / x = 1 + 2 zeta y ramp(lam x) / x, and its limit as x -> 0+ where x <= 0.
+
+        Same sign as P_hat while x > 0, but without P_hat's forced zero at x = 0; through restitution
+        it only decreases, so its first root (tension, or the force criterion's end) is never skipped
+        by a step that P_hat dips below zero and rises again within.  At x -> 0+ it tends to
+        G = 1 + 2 zeta lam y (modified) or -inf (kelvin-voigt).
+        """
+        positive = x > 1e-300
+        safe = np.where(positive, x, 1.0)
+        inside = 1.0 + 2.0 * self.zeta * y * self.ramp(safe) / safe
+        limit = np.where(self.modified, 1.0 + 2.0 * self.zeta * self.lam * y, -np.inf)
+        return np.where(positive, inside, limit)
 
     def rhs(self, x, y):
         return y, self.gamma - self.force(x, y)
@@ -82,21 +89,24 @@ def _step(lanes: _Lanes, x, y, h):
     ky = np.empty((_STAGES, x.size))
     kx[0], ky[0] = lanes.rhs(x, y)
     for s in range(1, _STAGES):
-        a = _A[s, :s]
-        xs = x + h * (a @ kx[:s])
-        ys = y + h * (a @ ky[:s])
-        kx[s], ky[s] = lanes.rhs(xs, ys)
-    return x + h * (_B @ kx), y + h * (_B @ ky)
+        kx[s], ky[s] = lanes.rhs(x + h * _combine(_A[s, :s], kx), y + h * _combine(_A[s, :s], ky))
+    return x + h * _combine(_B, kx), y + h * _combine(_B, ky)
+
+
+def _combine(weights, stages):
+    """sum_j weights[j] stages[j], lane by lane in a fixed order (a BLAS product may sum differently for
+    different batch widths, and a lane's result must not depend on its batch)."""
+    total = weights[0] * stages[0]
+    for j in range(1, len(weights)):
+        if weights[j] != 0.0:
+            total = total + weights[j] * stages[j]
+    return total
 
 
 def _event_value(kind: str, lanes: _Lanes, x, y):
-    """Event function and its tau-derivative: kind 'max' (y), 'delta' (x) or 'force' (P_hat)."""
+    """Event function and its tau-derivative: kind 'max' (y) or 'delta' (x)."""
     dx, dy = lanes.rhs(x, y)
-    if kind == "max":
-        return y, dy
-    if kind == "delta":
-        return x, dx
-    return lanes.force(x, y), lanes.force_rate(x, y, dy)
+    return (y, dy) if kind == "max" else (x, dx)
 
 
 def _locate(kind: str, lanes: _Lanes, x0, y0, lo, hi):
@@ -120,27 +130,30 @@ def _locate(kind: str, lanes: _Lanes, x0, y0, lo, hi):
     return s, _step(lanes, x0, y0, s)
 
 
-def _first_force_root(lanes: _Lanes, x0, y0, lo, hi, samples: int = 8):
-    """Earliest root of P_hat on (lo, hi] of each lane's step, by sampling then refining.
+def _first_ratio_root(lanes: _Lanes, x0, y0, lo, hi, iterations: int = 60):
+    """Root of Q (see :meth:`_Lanes.ratio`) on (lo, hi] of each lane's step, if Q(hi) <= 0.
 
-    P_hat can fall through zero and rise again within one step near x = 0 (its
-    ramp term is nonlinear there), so a sign check at the step end alone can
-    miss the root.  Returns (s, y at s, found) with s = hi where none is found.
+    Q decreases through restitution, so one sign change brackets it: bisection with a secant guess
+    (regula falsi, Illinois variant), to a few ulp of s.  Returns (s, y at s, found); s = hi where
+    Q(hi) > 0.
     """
-    s_found, y_found, found = hi.copy(), np.full(lo.size, np.nan), np.zeros(lo.size, bool)
-    prev = lo
-    for k in range(1, samples + 1):
-        s_k = lo + (hi - lo) * (k / samples)
-        g = lanes.force(*_step(lanes, x0, y0, s_k))
-        new = ~found & (g <= 0)
-        if new.any():
-            i = np.flatnonzero(new)
-            s, (_, ys) = _locate("force", lanes.take(i), x0[i], y0[i], prev[i], s_k[i])
-            s_found[i], y_found[i], found[i] = s, ys, True
-        prev = s_k
-        if found.all():
+    q_lo = lanes.ratio(*_step(lanes, x0, y0, lo))
+    q_hi = lanes.ratio(*_step(lanes, x0, y0, hi))
+    found = (q_hi <= 0) & (q_lo > 0)
+    a, b, qa, qb = lo.copy(), hi.copy(), q_lo, np.where(np.isfinite(q_hi), q_hi, -1.0)
+    for _ in range(iterations):
+        s = np.where(found, np.where(np.isfinite(qa - qb) & (qa > qb), b - qb * (b - a) / (qa - qb), 0.5 * (a + b)),
+                     hi)
+        s = np.where((s > a) & (s < b), s, 0.5 * (a + b))
+        q = lanes.ratio(*_step(lanes, x0, y0, s))
+        right = q > 0  # root in (s, b]
+        qb = np.where(right, qb * 0.5, q)  # Illinois: halve the stale end
+        qa = np.where(right, q, qa * 0.5)
+        a, b = np.where(right, s, a), np.where(right, b, s)
+        if np.all(~found | (b - a <= 4e-16 * np.maximum(b, 1e-300))):
             break
-    return s_found, y_found, found
+    s = np.where(found, b, hi)
+    return s, _step(lanes, x0, y0, s)[1], found
 
 
 def step_size(zeta, lam, x, y, target: float):
@@ -208,11 +221,11 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
         x1, y1 = _step(lanes, x, y, h)
         hit_max = ~past_max & (y1 <= 0)
         past_max |= hit_max
-        p1 = lanes.force(x1, y1)
+        q1 = lanes.ratio(x1, y1)
         x_end = past_max & (x1 <= 0)
-        done = x_end | (past_max & (p1 <= 0)) if force_criterion else x_end
+        done = x_end | (past_max & (q1 <= 0)) if force_criterion else x_end
         if not force_criterion:
-            first = past_max & ~tension_seen & (p1 <= 0) & ~done
+            first = past_max & ~tension_seen & (q1 <= 0) & ~done
             tension_seen |= first
             _record(records["tension"], first, lane, x, y, h, tau)
         _record(records["max"], hit_max, lane, x, y, h, tau)
@@ -254,7 +267,7 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
 
     t = _join(records["tension"])
     if t is not None:
-        _, yp, found = _first_force_root(params.take(t["lane"]), t["x"], t["y"], start_of(t), t["h"])
+        _, yp, found = _first_ratio_root(params.take(t["lane"]), t["x"], t["y"], start_of(t), t["h"])
         out["y_p"][t["lane"][found]] = yp[found]
     e = _join(records["end"])
     lanes, start = params.take(e["lane"]), start_of(e)
@@ -266,7 +279,7 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
     s_p, yp, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
     if search.any():
         i = np.flatnonzero(search)
-        s_i, y_i, f_i = _first_force_root(lanes.take(i), e["x"][i], e["y"][i], start[i], s_x[i])
+        s_i, y_i, f_i = _first_ratio_root(lanes.take(i), e["x"][i], e["y"][i], start[i], s_x[i])
         s_p[i[f_i]], yp[i[f_i]], found[i[f_i]] = s_i[f_i], y_i[f_i], True
     s_end = np.minimum(s_x, s_p) if force_criterion else s_x
     out["tau_f"][e["lane"]] = e["tau"] + s_end

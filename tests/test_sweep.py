@@ -1,0 +1,112 @@
+"""The sweep engine: the accuracy contract on every path, chunk/shard invariance, validation, CLI."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from sphereimpact import ImpactError, Scene, SolverOptions, simulate
+from sphereimpact.cli import run
+from sphereimpact.numerics.reference import relative_errors
+from sphereimpact.sweep.engine import SCENE_COLUMNS, SIMILARITY_MIN, SWEEP_OUTPUTS, grid, parse_range, sweep
+
+KEYS = [k for k in SWEEP_OUTPUTS if k != "regime"]
+CONTRACT = 1e-8
+
+
+def assert_contract(table: pd.DataFrame, sample: int, seed: int = 0) -> None:
+    """A random sample of the sweep matches the single-impact reference (rtol 1e-12) to 1e-8 on every output."""
+    rows = np.random.default_rng(seed).choice(len(table), size=min(sample, len(table)), replace=False)
+    for row in table.iloc[np.sort(rows)].to_dict("records"):
+        scene = Scene(**{k: row[k] for k in SCENE_COLUMNS})
+        ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))
+        assert row["regime"] == ref.regime, row
+        errors = relative_errors(row, ref.to_dict(), scene, KEYS)
+        assert max(errors.values()) <= CONTRACT, (row, errors)
+
+
+def varied(n: int, seed: int = 1, gravity: bool = True) -> pd.DataFrame:
+    rng = np.random.default_rng(seed)
+    return pd.DataFrame({
+        "angle": rng.uniform(0, 89, n), "speed": rng.uniform(0.1, 30, n), "mu": rng.uniform(0, 0.6, n),
+        "inertia_factor": rng.uniform(0.2, 2 / 3, n), "k": rng.uniform(1e4, 1e6, n), "b": rng.uniform(0, 40, n),
+        "mass": rng.uniform(0.05, 0.5, n), "model": rng.choice(["modified", "kelvin-voigt"], n),
+        "separation": rng.choice(["force", "penetration"], n),
+        "gravity": rng.choice([0.0, 9.81], n) if gravity else np.zeros(n)})
+
+
+def test_contract_batched_integrator_with_per_lane_parameters():
+    assert_contract(sweep(varied(400)), sample=120)
+
+
+def test_contract_similarity_path_for_one_ball():
+    scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
+    assert len(scenes) >= SIMILARITY_MIN
+    assert_contract(sweep(scenes), sample=60)
+
+
+def test_contract_closed_form_path():
+    scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.5), b=[0.0, 10.5, 80.0])
+    assert_contract(sweep(scenes.assign(model="kelvin-voigt")), sample=40)
+
+
+def test_results_do_not_depend_on_chunk_size():
+    scenes = varied(300, seed=3, gravity=False)
+    assert sweep(scenes, chunk_size=7).equals(sweep(scenes, chunk_size=300))
+
+
+def test_merged_shards_equal_the_whole_sweep():
+    scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
+    whole = sweep(scenes)
+    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    assert pd.concat(shards, ignore_index=True).equals(whole)
+
+
+def test_table_layout():
+    table = sweep({"angle": [0.0, 30.0, 60.0]})
+    assert list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS]
+    assert list(table["regime"]) == ["none", "rolling", "sliding"]
+
+
+@pytest.mark.parametrize("scenes, message", [
+    ({"angle": [10.0, 95.0]}, r"angle must be a finite number in \[0, 90\) degrees; got 95.0 \(row 1\)"),
+    ({"mass": [0.1, np.nan]}, r"mass must be a finite number > 0 kg; got nan \(row 1\)"),
+    ({"model": ["hertz"]}, "model must be one of kelvin-voigt, modified"),
+    ({"colour": ["red"]}, "unknown scene parameter 'colour'"),
+])
+def test_bad_scene_tables_name_the_parameter(scenes, message):
+    with pytest.raises(ValueError, match=message):
+        sweep(scenes)
+
+
+def test_never_separating_scene_is_an_error():
+    with pytest.raises(ImpactError, match="no separation"):
+        sweep({"model": ["kelvin-voigt"], "b": [500.0], "separation": ["penetration"]})
+
+
+def test_parse_range():
+    assert len(parse_range("0:89:1")) == 90 and parse_range("0:89:1")[-1] == 89
+    np.testing.assert_allclose(parse_range("0.5:30:0.5"), np.arange(1, 61) * 0.5)
+    assert list(parse_range("3")) == [3.0]
+    with pytest.raises(ValueError, match="START:STOP:STEP"):
+        parse_range("5:1:1")
+
+
+def test_cli_sweep_writes_one_row_per_scene(tmp_path):
+    out = tmp_path / "s.csv"
+    assert run(["sweep", "--angle", "0:60:30", "--speed", "1:3:2", "--out", str(out)]) == 0
+    table = pd.read_csv(out)
+    assert len(table) == 6 and list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS]
+    one = simulate(Scene(angle=30.0, speed=3.0))
+    row = table[(table.angle == 30) & (table.speed == 3)].iloc[0]
+    assert row["omega_f"] == pytest.approx(one.omega_f, rel=1e-9)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--angle", "0:95:5"], "angle must be"),
+    (["--speed", "x"], "speed: range must be"),
+    (["--target", "1"], "target must be"),
+])
+def test_cli_sweep_bad_input_exits_2(args, message, tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        run(["sweep", *args, "--out", str(tmp_path / "s.csv")])
+    assert exc.value.code == 2 and message in capsys.readouterr().err
