@@ -9,6 +9,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
+include: "workflow/rules/sweep.smk"
 include: "workflow/rules/notebook.smk"
 
 
@@ -22,5 +23,7 @@ rule all:
         "results/bench.csv",
         "results/ablation.csv",
         expand("paper_figures/{study}.png", study=["work_precision", "stability"]),
+        expand("paper_figures/{map}.png", map=["spin_map", "cor_speed", "contact_speed"]),
+        "results/bench_sweep.csv",
         expand("results/notebooks/{name}.html", name=NOTEBOOKS),
     default_target: True

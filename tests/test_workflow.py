@@ -15,6 +15,9 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
            "paper_figures/work_precision.png", "paper_figures/stability.png",
+           "results/sweep/angle_speed.csv", "results/sweep/speed.csv", "results/bench_sweep.csv",
+           "paper_figures/spin_map.png", "paper_figures/cor_speed.png", "paper_figures/contact_speed.png",
+           "results/notebooks/sweeps.html",
            *[f"paper_figures/{f}.{ext}" for f in FIGURES for ext in ("png", "pdf")],
            *[f"results/runs/{c}_{m}.{ext}" for c in ("normal", "oblique60") for m in ("kelvin-voigt", "modified")
              for ext in ("csv", "json")]]
@@ -95,3 +98,28 @@ def test_committed_figure_is_current(workdir, name):
     assert committed.is_file(), f"{committed} is not committed"
     assert compare_images(str(committed), str(workdir / "paper_figures" / f"{name}.png"),
                           tol=FIGURE_TOLERANCE) is None
+
+
+def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
+    """The sharded angle x speed sweep, merged, is byte-identical to the same sweep run in one piece."""
+    import yaml
+
+    from sphereimpact.study.sweeps import angle_speed_scenes
+    from sphereimpact.sweep.engine import sweep
+    from sphereimpact.sweep.io import write_table
+
+    config = yaml.safe_load((workdir / "config" / "config.yaml").read_text())
+    assert config["sweep"]["shards"] >= 2
+    whole = tmp_path / "whole.csv"
+    write_table(sweep(angle_speed_scenes(config), target=config["sweep"]["target"]), str(whole))
+    assert (workdir / "results/sweep/angle_speed.csv").read_bytes() == whole.read_bytes()
+
+
+def test_slurm_profile_dry_run(workdir):
+    """The cluster profile plans every job (where the SLURM executor plugin is installed)."""
+    pytest.importorskip("snakemake_executor_plugin_slurm")
+    run = subprocess.run(["snakemake", "-n", "--forceall", "--profile", "workflow/profiles/slurm"], cwd=workdir,
+                         capture_output=True, text=True)
+    text = run.stdout + run.stderr
+    assert run.returncode == 0, text[-2000:]
+    assert re.search(r"^sweep_shard\s+2$", text, re.M)

@@ -48,6 +48,14 @@ NOTEBOOKS = {
         "paper_figures/work_precision.png",
         "paper_figures/stability.png",
     ],
+    "sweeps": [
+        "results/sweep/angle_speed.csv",
+        "results/sweep/speed.csv",
+        "results/bench_sweep.csv",
+        "paper_figures/spin_map.png",
+        "paper_figures/cor_speed.png",
+        "paper_figures/contact_speed.png",
+    ],
 }
 
 

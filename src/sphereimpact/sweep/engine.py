@@ -89,10 +89,11 @@ def _normal_outputs(frame: pd.DataFrame, span: pd.DataFrame, target: float, chun
             _put(out, linear, closed.events(zeta[linear], separation))
             todo &= ~linear
         for (z, criterion), interpolant in interpolants.items():
-            group = (criterion == separation) & sep & modified & (gamma == 0) & (zeta == z)
-            if group.any():
-                _put(out, group, interpolant(lam[group]))
-                todo &= ~group
+            group = np.flatnonzero((criterion == separation) & sep & modified & (gamma == 0) & (zeta == z))
+            for start in range(0, group.size, chunk_size):  # evaluated in chunks: memory stays bounded
+                i = group[start:start + chunk_size]
+                _put(out, i, interpolant(lam[i]))
+            todo[group] = False
         rest = np.flatnonzero(todo & sep)
         for start in range(0, rest.size, chunk_size):
             i = rest[start:start + chunk_size]

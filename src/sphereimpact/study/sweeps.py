@@ -1,0 +1,60 @@
+"""The configured sweeps: the sharded angle x speed table and the speed table behind the maps."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..solve import simulate
+from ..sweep.engine import grid, parse_range, sweep
+from ..sweep.io import write_table
+from .config import SCENE_KEYS, options_for, scene_for
+
+
+def _ball(config: dict) -> dict:
+    """The configured ball and contact as Scene fields (no angle or speed)."""
+    return {field: config[key] for key, field in SCENE_KEYS.items() if key != "speed"}
+
+
+def angle_speed_scenes(config: dict) -> pd.DataFrame:
+    """The whole angle x speed sweep of the configured ball (primary model and criterion)."""
+    spec = config["sweep"]
+    scenes = grid(angle=parse_range(spec["angle"]), speed=parse_range(spec["speed"]))
+    primary = config["primary"]
+    return scenes.assign(**_ball(config), model=primary["model"], separation=primary["separation"])
+
+
+def write_shard(config: dict, shard: int, shards: int, csv_path: str) -> None:
+    """Rows ``shard`` of ``shards`` contiguous blocks; interpolants span the whole sweep, so the merged
+    shards equal the sweep run at once."""
+    whole = angle_speed_scenes(config)
+    rows = np.array_split(np.arange(len(whole)), shards)[shard]
+    write_table(sweep(whole.iloc[rows], target=config["sweep"]["target"], span=whole), csv_path)
+
+
+def merge(paths, csv_path: str) -> None:
+    """Concatenate shard tables in shard order (bytes as written, no re-formatting)."""
+    with open(csv_path, "w") as out:
+        for i, path in enumerate(paths):
+            with open(path) as handle:
+                header = handle.readline()
+                if i == 0:
+                    out.write(header)
+                out.write(handle.read())
+
+
+def write_speed_table(config: dict, csv_path: str) -> None:
+    """Normal impact against speed, both force laws: COR and t_f (sweep) and peak force (single impacts)."""
+    speeds = parse_range(config["sweep"]["cor_speed"])
+    frames = []
+    for model in config["models"]:
+        scenes = pd.DataFrame({"speed": speeds}).assign(**_ball(config), angle=0.0, model=model,
+                                                        separation=config["primary"]["separation"])
+        table = sweep(scenes, target=config["sweep"]["target"])
+        peaks = []
+        for speed in speeds:
+            scene = scene_for(config, next(iter(config["cases"])), model, config["primary"]["separation"],
+                              angle=0.0, speed=float(speed))
+            peaks.append(simulate(scene, options_for(config, scene)).force_max)
+        frames.append(table.assign(force_max=peaks))
+    pd.concat(frames, ignore_index=True).to_csv(csv_path, index=False, float_format="%.12g")
