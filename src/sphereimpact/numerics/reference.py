@@ -12,7 +12,6 @@ delta_dot(t_f) exactly: the tangential outputs by the impulse algebra
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import mpmath
@@ -117,6 +116,3 @@ def float64_check(scene: Scene, ref: Reference) -> float:
     got = simulate(scene, SolverOptions(method="DOP853", rtol=1e-13, atol=1e-15)).to_dict()
     return worst_error(got, ref.outputs, scene)
 
-
-def is_finite_number(x) -> bool:
-    return isinstance(x, float) and math.isfinite(x)

@@ -75,13 +75,12 @@ def _interpolants(span: pd.DataFrame, target: float) -> dict:
             for (z, sep), row in stats[stats["size"] >= SIMILARITY_MIN].iterrows()}
 
 
-def _normal_outputs(frame: pd.DataFrame, span: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
-    """Dimensionless normal outputs of every scene with no tangential gravity (interpolants built on ``span``)."""
-    d = _dimensionless(frame)
+def _normal_outputs(d: dict, span: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
+    """Dimensionless normal outputs of scenes ``d`` (see :func:`_dimensionless`), interpolants built on ``span``."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
-    out = {key: np.full(len(frame), np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
-    todo = np.ones(len(frame), bool)
+    out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+    todo = np.ones(zeta.size, bool)
     for separation in ("force", "penetration"):
         sep = d["separation"] == separation
         linear = sep & ~modified & (gamma == 0)
@@ -158,16 +157,16 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if rest.any():
         part = frame[rest]
         whole = frame if span is None else scene_table(span)
-        dim = _normal_outputs(part, whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))], target, chunk_size,
+        d = _dimensionless(part)
+        dim = _normal_outputs(d, whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))], target, chunk_size,
                               progress)
-        m, k = part["mass"].to_numpy(), part["k"].to_numpy()
-        w = np.sqrt(k / m)
+        w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
         alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
-        beta = np.radians(part["angle"].to_numpy())
-        v_n = part["speed"].to_numpy() * np.cos(beta)
-        v_t = np.where(part["angle"].to_numpy() == 0, 0.0, part["speed"].to_numpy() * np.sin(beta))
-        # friction acts while P > 0: its impulse is mu J+, J+ = m v_n (1 - y at the end of compression's push)
+        angle = part["angle"].to_numpy()
+        v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
+        # friction acts while P > 0, so its impulse is mu J+ with J+ = m v_n (1 - y_p): y_p is the
+        # dimensionless rate where P first falls to 0 (at separation if it never pulls); no gravity here
         impulse = m * v_n * (1.0 - dim["y_p"])
         slides = mu * (1.0 + 1.0 / alpha) * impulse / m < v_t
         vc_t = np.where(slides, v_t - mu * impulse / m, v_t / (1.0 + alpha))
