@@ -13,15 +13,15 @@ KEYS = [k for k in SWEEP_OUTPUTS if k != "regime"]
 CONTRACT = 1e-8
 
 
-def assert_contract(table: pd.DataFrame, sample: int, seed: int = 0) -> None:
-    """A random sample of the sweep matches the single-impact reference (rtol 1e-12) to 1e-8 on every output."""
+def assert_contract(table: pd.DataFrame, sample: int, seed: int = 0, target: float = CONTRACT) -> None:
+    """A random sample of the sweep matches the single-impact reference (rtol 1e-12) to ``target`` on every output."""
     rows = np.random.default_rng(seed).choice(len(table), size=min(sample, len(table)), replace=False)
     for row in table.iloc[np.sort(rows)].to_dict("records"):
         scene = Scene(**{k: row[k] for k in SCENE_COLUMNS})
         ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))
         assert row["regime"] == ref.regime, row
         errors = relative_errors(row, ref.to_dict(), scene, KEYS)
-        assert max(errors.values()) <= CONTRACT, (row, errors)
+        assert max(errors.values()) <= target, (row, errors)
 
 
 def varied(n: int, seed: int = 1, gravity: bool = True) -> pd.DataFrame:
@@ -36,6 +36,12 @@ def varied(n: int, seed: int = 1, gravity: bool = True) -> pd.DataFrame:
 
 def test_contract_batched_integrator_with_per_lane_parameters():
     assert_contract(sweep(varied(400)), sample=120)
+
+
+@pytest.mark.parametrize("target", [1e-3, 1e-6, 1e-10])
+def test_contract_holds_across_the_target_range(target):
+    """Loose targets still take a dozen steps per contact and resolve the ramp (steps are capped)."""
+    assert_contract(sweep(varied(150, seed=7, gravity=False), target=target), sample=60, target=target)
 
 
 def test_contract_similarity_path_for_one_ball():

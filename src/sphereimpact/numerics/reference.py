@@ -51,10 +51,13 @@ class Reference:
     how: str
 
 
-def _outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, rate_f: float) -> dict:
-    """Every output from the normal events (g = 0), by the impulse algebra."""
+def outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, rate_f: float) -> dict:
+    """Every output from the normal events (g = 0, friction impulse mu J), by the impulse algebra.
+
+    Exact where the force does not pull before separation (always under the force criterion).
+    """
     if scene.gravity != 0:
-        raise ValueError("the Taylor reference covers gravity = 0 only")
+        raise ValueError("outputs from the normal events need gravity = 0")
     m, alpha = scene.mass, scene.inertia_factor
     vc_n = -rate_f
     impulse = m * (scene.v_normal + vc_n)
@@ -68,7 +71,7 @@ def _outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, r
         vc_t = vt0 - scene.mu * impulse / m
         omega = scene.mu * scene.radius * impulse / scene.inertia
     return {"t_m": t_m, "delta_m": delta_m, "t_f": t_f, "cor": vc_n / scene.v_normal, "omega_f": omega,
-            "ve_t": vc_t - omega * scene.radius, "vc_t": vc_t, "vc_n": vc_n}
+            "ve_t": vc_t - omega * scene.radius, "vc_t": vc_t, "vc_n": vc_n, "ve_n": vc_n}
 
 
 def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float]:
@@ -105,8 +108,8 @@ def reference(scene: Scene) -> Reference:
     if scene.model == "kelvin-voigt":
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")
-    fine = _outputs_from_normal(scene, *taylor_normal(scene, 32))
-    coarse = _outputs_from_normal(scene, *taylor_normal(scene, 22))
+    fine = outputs_from_normal(scene, *taylor_normal(scene, 32))
+    coarse = outputs_from_normal(scene, *taylor_normal(scene, 22))
     bound = max(worst_error(coarse, fine, scene), 2.2e-16)
     return Reference(fine, bound, "mpmath Taylor (32 digits); bound = its distance from 22 digits")
 

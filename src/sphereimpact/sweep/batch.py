@@ -31,7 +31,12 @@ _STAGES = DOP853.n_stages
 
 #: Step h = STEP_CONSTANT * target**(1/8) / max(1, 2 zeta, lam exp(-lam x) / 4): calibrated so that the worst relative
 #: error over every output stays below the target (checked by tests/test_sweep.py on random samples).
-STEP_CONSTANT = 1.2
+STEP_CONSTANT = 3.6
+#: At most this change of u = lam x per step inside the ramp's band, whatever the target (one step's
+#: polynomial cannot follow exp(-u) over more e-folds at loose targets).
+MAX_RAMP_STEP = 2.0
+#: Longest dimensionless step (a contact lasts about pi): loose targets still take a dozen steps.
+MAX_UNIT_STEP = 0.4
 NEWTON_ITERATIONS = 12
 #: Dimensionless horizon: far past any contact that ends (see sphereimpact.normal.horizon).
 HORIZON = 100.0 * np.pi
@@ -162,12 +167,13 @@ def step_size(zeta, lam, x, y, target: float):
     The modified ramp 1 - exp(-u), u = lam x, matters only where exp(-u) is above the target, i.e. for
     u < U = ln(1/target) + 3, near first touch and separation.  There a step may change u by at most
     c = 4 h_unit (so the polynomial of one step follows the exponential), and approaching x = 0 also by
-    no more than W(c exp(u)) (Lambert W, as the Wright omega function of u + ln c): the ramp's rate at
+    no more than W(c exp(u)) (Lambert W, as the Wright omega function of u + ln c; c is capped at
+    MAX_RAMP_STEP): the ramp's rate at
     the step's end is then resolved too.  Outside that band the ramp is constant to the target, and an
     approaching lane may jump to just inside the band.
     """
-    unit = STEP_CONSTANT * target ** 0.125
-    c = 4.0 * unit
+    unit = min(STEP_CONSTANT * target ** 0.125, MAX_UNIT_STEP)
+    c = min(4.0 * unit, MAX_RAMP_STEP)
     band = np.log(1.0 / target) + 3.0
     base = unit / np.maximum(1.0, 2.0 * zeta)
     u = lam * np.maximum(x, 0.0)
