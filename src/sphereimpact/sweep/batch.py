@@ -25,8 +25,7 @@ from ..events import ImpactError
 from ..forces import ramp_continued
 
 _A = DOP853.A
-_B = DOP853.B
-_C = DOP853.C
+_B = DOP853.B  # the right-hand side is autonomous: the stage times DOP853.C are not needed
 _STAGES = DOP853.n_stages
 
 #: Step h = STEP_CONSTANT * target**(1/8) / max(1, 2 zeta, lam exp(-lam x) / 4): calibrated so that the worst relative
