@@ -99,12 +99,15 @@ def ramp_continued(u):
     polynomial is below 1e-16 for |u| < 0.01, far more than one step overshoots).
     """
     u = np.asarray(u, dtype=float)
-    inside = -np.expm1(-np.maximum(u, 0.0))
-    w = -np.clip(u, -1.0, 0.0)  # w = -u >= 0
-    poly = np.zeros_like(w)
-    for c in reversed(_INVERSE_FACTORIALS):  # sum_{n=1..8} w^n / n!, by Horner
-        poly = (poly + c) * w
-    return np.where(u >= 0, inside, -poly)
+    ramp = np.atleast_1d(-np.expm1(-np.maximum(u, 0.0)))
+    negative = np.atleast_1d(u < 0)
+    if negative.any():  # only the stages past separation pay for the polynomial
+        w = np.minimum(-np.atleast_1d(u)[negative], 1.0)  # w = -u in (0, 1]
+        poly = np.zeros_like(w)
+        for c in reversed(_INVERSE_FACTORIALS):  # sum_{n=1..8} w^n / n!, by Horner
+            poly = (poly + c) * w
+        ramp[negative] = -poly
+    return ramp.reshape(u.shape)
 
 
 def modified_continued(delta, delta_dot, p):

@@ -42,15 +42,6 @@ NEWTON_ITERATIONS = 12
 HORIZON = 100.0 * np.pi
 
 
-def _ramp(u):
-    """:func:`sphereimpact.forces.ramp_continued`, with the polynomial evaluated only where u < 0."""
-    ramp = -np.expm1(-np.maximum(u, 0.0))
-    negative = u < 0
-    if negative.any():
-        ramp[negative] = ramp_continued(u[negative])
-    return ramp
-
-
 class _Lanes:
     """Per-lane parameters of one batch (arrays of equal length)."""
 
@@ -64,7 +55,7 @@ class _Lanes:
     def ramp(self, x):
         if self.kind == "linear":
             return 1.0
-        ramp = _ramp(self.lam * x)
+        ramp = ramp_continued(self.lam * x)
         return ramp if self.kind == "modified" else np.where(self.modified, ramp, 1.0)
 
     def force(self, x, y):
