@@ -48,6 +48,7 @@ class _Lanes:
     def __init__(self, zeta, lam, gamma, modified):
         self.zeta, self.lam, self.gamma, self.modified = zeta, lam, gamma, modified
         self.kind = "modified" if modified.all() else "linear" if not modified.any() else "mixed"
+        self.ramp_lam = np.where(modified, lam, 0.0)  # lam where a ramp limits the step, 0 where none
 
     def take(self, index):
         return _Lanes(self.zeta[index], self.lam[index], self.gamma[index], self.modified[index])
@@ -159,9 +160,8 @@ def step_size(zeta, lam, x, y, target: float):
     u < U = ln(1/target) + 3, near first touch and separation.  There a step may change u by at most
     c = 4 h_unit (so the polynomial of one step follows the exponential), and approaching x = 0 also by
     no more than W(c exp(u)) (Lambert W, as the Wright omega function of u + ln c; c is capped at
-    MAX_RAMP_STEP): the ramp's rate at
-    the step's end is then resolved too.  Outside that band the ramp is constant to the target, and an
-    approaching lane may jump to just inside the band.
+    MAX_RAMP_STEP): the ramp's rate at the step's end is then resolved too.  Outside that band the ramp
+    is constant to the target, and an approaching lane may jump to just inside the band.
     """
     unit = min(STEP_CONSTANT * target ** 0.125, MAX_UNIT_STEP)
     c = min(4.0 * unit, MAX_RAMP_STEP)
@@ -214,7 +214,7 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
     records = {"max": [], "tension": [], "end": []}
     while lane.size:
         lanes = params.take(lane)
-        h = step_size(lanes.zeta, np.where(lanes.modified, lanes.lam, 0.0), x, y, target)
+        h = step_size(lanes.zeta, lanes.ramp_lam, x, y, target)
         x1, y1 = _step(lanes, x, y, h)
         hit_max = ~past_max & (y1 <= 0)
         past_max |= hit_max
