@@ -10,6 +10,11 @@ SCENE_KEYS = {"mass": "mass", "diameter": "diameter", "inertia_factor": "inertia
               "stiffness": "k", "damping": "b", "ramp": "ramp", "speed": "speed", "gravity": "gravity"}
 
 
+def shared_fields(config: dict) -> dict:
+    """The Scene fields every case shares (ball, surface, contact, approach), from the config's keys."""
+    return {field: config[key] for key, field in SCENE_KEYS.items()}
+
+
 def scene_for(config: dict, case: str, model: str, separation: str, **changes) -> Scene:
     """The Scene of one case under one force model and separation criterion.
 
@@ -24,7 +29,7 @@ def scene_for(config: dict, case: str, model: str, separation: str, **changes) -
     **changes
         Further Scene fields to override (used by the replication's hypotheses).
     """
-    fields = {field: config[key] for key, field in SCENE_KEYS.items()}
+    fields = shared_fields(config)
     fields.update(config["cases"][case])
     fields.update(model=model, separation=separation, **changes)
     return Scene(**fields)

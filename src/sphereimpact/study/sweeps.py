@@ -8,12 +8,7 @@ import pandas as pd
 from ..solve import simulate
 from ..sweep.engine import grid, parse_range, sweep
 from ..sweep.io import write_table
-from .config import SCENE_KEYS, options_for, scene_for
-
-
-def _ball(config: dict) -> dict:
-    """The configured ball and contact as Scene fields (no angle or speed)."""
-    return {field: config[key] for key, field in SCENE_KEYS.items() if key != "speed"}
+from .config import options_for, scene_for, shared_fields
 
 
 def angle_speed_scenes(config: dict) -> pd.DataFrame:
@@ -21,7 +16,8 @@ def angle_speed_scenes(config: dict) -> pd.DataFrame:
     spec = config["sweep"]
     scenes = grid(angle=parse_range(spec["angle"]), speed=parse_range(spec["speed"]))
     primary = config["primary"]
-    return scenes.assign(**_ball(config), model=primary["model"], separation=primary["separation"])
+    ball = {k: v for k, v in shared_fields(config).items() if k != "speed"}  # speeds come from the grid
+    return scenes.assign(**ball, model=primary["model"], separation=primary["separation"])
 
 
 def write_shard(config: dict, shard: int, shards: int, csv_path: str) -> None:
@@ -48,8 +44,8 @@ def write_speed_table(config: dict, csv_path: str) -> None:
     speeds = parse_range(config["sweep"]["cor_speed"])
     frames = []
     for model in config["models"]:
-        scenes = pd.DataFrame({"speed": speeds}).assign(**_ball(config), angle=0.0, model=model,
-                                                        separation=config["primary"]["separation"])
+        scenes = pd.DataFrame(shared_fields(config) | {"speed": speeds}).assign(
+            angle=0.0, model=model, separation=config["primary"]["separation"])
         table = sweep(scenes, target=config["sweep"]["target"])
         peaks = []
         for speed in speeds:
