@@ -9,9 +9,9 @@ import math
 import pytest
 import yaml
 
-from sphereimpact import simulate
-from sphereimpact.study.config import options_for, scene_for
-from sphereimpact.study.replication import as_printed, load_published, status
+from sphereimpact.study import replication
+from sphereimpact.study.config import scene_for
+from sphereimpact.study.replication import load_published, status
 
 CONFIG = yaml.safe_load(open("config/config.yaml"))
 PUBLISHED = {e["id"]: e for e in load_published("config/published.yaml")}
@@ -37,10 +37,7 @@ EXPECTED = {
 
 
 def reproduce(entry, **changes):
-    primary = CONFIG["primary"]
-    fields = {"model": primary["model"], "separation": primary["separation"], **changes}
-    scene = scene_for(CONFIG, entry["case"], fields.pop("model"), fields.pop("separation"), **fields)
-    return as_printed(entry["quantity"], getattr(simulate(scene, options_for(CONFIG, scene)), entry["quantity"]))
+    return replication.reproduce(CONFIG, entry, **changes)
 
 
 def test_every_published_value_has_an_expectation():

@@ -67,6 +67,15 @@ def status(published: float, reproduced: float, resolution: float) -> str:
     return "discrepancy"
 
 
+def reproduce(config: dict, entry: dict, **changes) -> float:
+    """A published entry's quantity from the primary model and criterion, with Scene ``changes``,
+    in the chapter's sign convention."""
+    primary = config["primary"]
+    fields = {"model": primary["model"], "separation": primary["separation"], **changes}
+    scene = scene_for(config, entry["case"], fields.pop("model"), fields.pop("separation"), **fields)
+    return as_printed(entry["quantity"], getattr(simulate(scene, options_for(config, scene)), entry["quantity"]))
+
+
 def _hypothesis_value(config: dict, entry: dict, name: str) -> float | None:
     """The entry's quantity under one hypothesis, or None where it does not apply."""
     primary = config["primary"]
@@ -85,9 +94,7 @@ def _hypothesis_value(config: dict, entry: dict, name: str) -> float | None:
         if name == "half-contact":
             return 0.5 * out.t_f
         return extremum(out.motion.force, out.motion.grid, "max")[0]
-    fields = {"model": primary["model"], "separation": primary["separation"], **changes}
-    scene = scene_for(config, case, fields.pop("model"), fields.pop("separation"), **fields)
-    return as_printed(quantity, getattr(simulate(scene, options_for(config, scene)), quantity))
+    return reproduce(config, entry, **changes)
 
 
 def compare(config: dict, published: list[dict], runs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame]:
