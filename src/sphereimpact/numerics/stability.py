@@ -26,6 +26,7 @@ import pandas as pd
 from scipy.integrate import solve_ivp
 
 from ..events import ImpactError
+from ..normal import separation_function
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
 from .reference import reference, worst_error
@@ -78,6 +79,17 @@ def _budgeted(rhs):
     return wrapped
 
 
+def _separation_event(scene: Scene):
+    """Terminal solve_ivp event ending contact under the scene's criterion, on an SI state (delta, delta_dot, ...)."""
+    sep = separation_function(scene)
+
+    def separation(t, z):
+        return float(sep(z[0], z[1]))
+
+    separation.terminal, separation.direction = True, -1
+    return separation
+
+
 def _through_contact(scene: Scene, method: str, rtol: float, lead: float):
     """Free flight and contact in one ODE with the physical (discontinuous) law, from ``lead`` seconds before."""
     m = scene.mass
@@ -88,11 +100,8 @@ def _through_contact(scene: Scene, method: str, rtol: float, lead: float):
     def max_compression(t, z):
         return z[1]
 
-    def separation(t, z):
-        return z[0] if z[0] <= 0 else float(scene.force(z[0], z[1]))
-
-    max_compression.direction = separation.direction = -1
-    separation.terminal = True
+    max_compression.direction = -1
+    separation = _separation_event(scene)
     v = scene.v_normal
     sol = solve_ivp(_budgeted(rhs), (-lead, 1.0), [-v * lead, v], method=method, rtol=rtol, atol=rtol * 1e-3,
                     events=(max_compression, separation))
@@ -131,12 +140,8 @@ def _friction_ode(scene: Scene, law, method: str, rtol: float):
         f = -mu * p * law(z[2] - z[3] * radius)
         return [z[1], -p / m, f / m, -f * radius / inertia]
 
-    def separation(t, z):
-        return z[0] if z[0] <= 0 else float(scene.force(z[0], z[1]))
-
-    separation.terminal, separation.direction = True, -1
     sol = solve_ivp(_budgeted(rhs), (0.0, 1.0), [0.0, scene.v_normal, scene.v_tangent, 0.0], method=method,
-                    rtol=rtol, atol=rtol * 1e-3, events=separation)
+                    rtol=rtol, atol=rtol * 1e-3, events=_separation_event(scene))
     if sol.status != 1:
         raise ImpactError(f"no separation ({sol.message})")
     return sol.y_events[0][0][2], sol.nfev
