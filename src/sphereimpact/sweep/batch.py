@@ -138,17 +138,23 @@ def _first_ratio_root(lanes: _Lanes, x0, y0, lo, hi, iterations: int = 60):
     q_hi = lanes.ratio(*_step(lanes, x0, y0, hi))
     found = (q_hi <= 0) & (q_lo > 0)
     a, b, qa, qb = lo.copy(), hi.copy(), q_lo, np.where(np.isfinite(q_hi), q_hi, -1.0)
+    side = np.zeros(a.size, np.int8)  # end replaced last: +1 a, -1 b
+    # converged lanes stay put while others iterate: a lane's root never depends on its batch
+    active = found & (b - a > 4e-16 * np.maximum(b, 1e-300))
     for _ in range(iterations):
-        s = np.where(found, np.where(np.isfinite(qa - qb) & (qa > qb), b - qb * (b - a) / (qa - qb), 0.5 * (a + b)),
-                     hi)
+        if not active.any():
+            break
+        s = np.where(np.isfinite(qa - qb) & (qa > qb), a + qa * (b - a) / (qa - qb), 0.5 * (a + b))
         s = np.where((s > a) & (s < b), s, 0.5 * (a + b))
         q = lanes.ratio(*_step(lanes, x0, y0, s))
         right = q > 0  # root in (s, b]
-        qb = np.where(right, qb * 0.5, q)  # Illinois: halve the stale end
-        qa = np.where(right, q, qa * 0.5)
-        a, b = np.where(right, s, a), np.where(right, b, s)
-        if np.all(~found | (b - a <= 4e-16 * np.maximum(b, 1e-300))):
-            break
+        # Illinois: when the same end is replaced twice running, halve the value kept at the other end
+        qb = np.where(active, np.where(right, np.where(side == 1, 0.5 * qb, qb), q), qb)
+        qa = np.where(active, np.where(right, q, np.where(side == -1, 0.5 * qa, qa)), qa)
+        side = np.where(right, 1, -1).astype(np.int8)
+        a = np.where(active & (right | (q == 0)), s, a)  # an exact zero closes the bracket
+        b = np.where(active & ~right, s, b)
+        active &= b - a > 4e-16 * np.maximum(b, 1e-300)
     s = np.where(found, b, hi)
     return s, _step(lanes, x0, y0, s)[1], found
 
