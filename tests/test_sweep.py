@@ -7,6 +7,7 @@ import pytest
 from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.numerics.reference import relative_errors
+from sphereimpact.sweep import batch
 from sphereimpact.sweep.engine import SCENE_COLUMNS, SIMILARITY_MIN, SWEEP_OUTPUTS, grid, parse_range, sweep
 
 KEYS = [k for k in SWEEP_OUTPUTS if k != "regime"]
@@ -58,6 +59,21 @@ def test_contract_closed_form_path():
 def test_results_do_not_depend_on_chunk_size():
     scenes = varied(300, seed=3, gravity=False)
     assert sweep(scenes, chunk_size=7).equals(sweep(scenes, chunk_size=300))
+    few = scenes.iloc[:12]
+    assert sweep(few, chunk_size=1).equals(sweep(few, chunk_size=12))  # one lane per batch, too
+
+
+@pytest.mark.parametrize("width", [1, 2, 7, 8, 33, 1000])
+def test_stage_sums_are_sequential_whatever_the_batch_width(width):
+    """Each lane's Runge-Kutta sums equal the plain left-to-right sum, bit for bit (pairwise or BLAS
+    summation would round a lane differently in batches of different widths)."""
+    stages = np.random.default_rng(width).standard_normal((12, width)) * np.exp(np.linspace(-20, 20, 12))[:, None]
+    for weights in batch._STAGE_WEIGHTS[1:] + [batch._STEP_WEIGHTS]:
+        index, column = weights
+        total = column[0, 0] * stages[index[0]]
+        for j in range(1, index.size):
+            total = total + column[j, 0] * stages[index[j]]
+        assert np.array_equal(batch._combine(weights, stages), total)
 
 
 def test_merged_shards_equal_the_whole_sweep():

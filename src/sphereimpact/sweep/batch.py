@@ -86,18 +86,31 @@ def _step(lanes: _Lanes, x, y, h):
     ky = np.empty((_STAGES, x.size))
     kx[0], ky[0] = lanes.rhs(x, y)
     for s in range(1, _STAGES):
-        kx[s], ky[s] = lanes.rhs(x + h * _combine(_A[s, :s], kx), y + h * _combine(_A[s, :s], ky))
-    return x + h * _combine(_B, kx), y + h * _combine(_B, ky)
+        kx[s], ky[s] = lanes.rhs(x + h * _combine(_STAGE_WEIGHTS[s], kx), y + h * _combine(_STAGE_WEIGHTS[s], ky))
+    return x + h * _combine(_STEP_WEIGHTS, kx), y + h * _combine(_STEP_WEIGHTS, ky)
 
 
-def _combine(weights, stages):
-    """sum_j weights[j] stages[j], lane by lane in a fixed order (a BLAS product may sum differently for
-    different batch widths, and a lane's result must not depend on its batch)."""
-    total = weights[0] * stages[0]
-    for j in range(1, len(weights)):
-        if weights[j] != 0.0:
-            total = total + weights[j] * stages[j]
-    return total
+def _nonzero(weights) -> tuple:
+    """(indices, column of weights) of the nonzero entries of one tableau row."""
+    index = np.flatnonzero(weights)
+    return index, weights[index][:, None]
+
+
+#: Tableau rows without their zeros: stage s combines the earlier stages with _STAGE_WEIGHTS[s].
+_STAGE_WEIGHTS = [None] + [_nonzero(_A[s, :s]) for s in range(1, _STAGES)]
+_STEP_WEIGHTS = _nonzero(_B)
+
+
+def _combine(weights: tuple, stages):
+    """sum_j w_j stages[j] over a row's nonzero weights (see :func:`_nonzero`), lane by lane.
+
+    A running sum (``add.accumulate``: r_j = r_{j-1} + term_j) adds the terms in order for every lane,
+    so a lane's result does not depend on the batch's width.  A BLAS product, or ``add.reduce`` (which
+    sums a single lane pairwise), may round differently for different widths; tests/test_sweep.py checks
+    this against the plain sequential sum.
+    """
+    index, column = weights
+    return np.add.accumulate(column * stages[index], axis=0)[-1]
 
 
 def _event_value(kind: str, lanes: _Lanes, x, y):
