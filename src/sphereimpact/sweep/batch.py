@@ -119,57 +119,71 @@ def _event_value(kind: str, lanes: _Lanes, x, y):
     return (y, dy) if kind == "max" else (x, dx)
 
 
-def _locate(kind: str, lanes: _Lanes, x0, y0, lo, hi):
-    """Root in s of the event on the one-step map from (x0, y0), bracketed by g(lo) > 0 >= g(hi)."""
-    g_lo = _event_value(kind, lanes, *_step(lanes, x0, y0, lo))[0]
-    g_hi = _event_value(kind, lanes, *_step(lanes, x0, y0, hi))[0]
+def _start_state(lanes: _Lanes, x0, y0, s):
+    """State on each lane's one-step map at s, where s is mostly 0: only lanes with s > 0 pay for a step."""
+    x, y = x0.copy(), y0.copy()
+    inner = np.flatnonzero(s > 0)
+    if inner.size:
+        x[inner], y[inner] = _step(lanes.take(inner), x0[inner], y0[inner], s[inner])
+    return x, y
+
+
+def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
+    """Root in s of the event on the one-step map from (x0, y0) at time tau0, bracketed by g(lo) > 0 >= g(hi).
+
+    ``at_hi`` is the state at hi (known from the march).  Newton with bisection fallback; a lane freezes
+    at the last point it evaluated once its Newton step is below 2 ulp of the event time tau0 + s
+    (below that the update is round-off in g, and would never settle).  Returns (s, state at s).
+    """
+    g_lo = _event_value(kind, lanes, *_start_state(lanes, x0, y0, lo))[0]
+    g_hi = _event_value(kind, lanes, *at_hi)[0]
     s = np.where(g_lo - g_hi > 0, lo + (hi - lo) * g_lo / np.where(g_lo - g_hi > 0, g_lo - g_hi, 1.0), hi)
-    frozen = np.zeros(s.size, bool)  # converged lanes stay put: a lane's root never depends on its batch
-    for _ in range(NEWTON_ITERATIONS):
+    frozen = np.zeros(s.size, bool)  # frozen lanes stay put: a lane's root never depends on its batch
+    for iteration in range(NEWTON_ITERATIONS):
         xs, ys = _step(lanes, x0, y0, s)
         g, dg = _event_value(kind, lanes, xs, ys)
         lo = np.where(g > 0, s, lo)
         hi = np.where(g < 0, s, hi)
         newton = s - g / np.where(dg != 0, dg, -1.0)
-        inside = (newton >= lo) & (newton <= hi)
-        s_new = np.where(frozen | (g == 0), s, np.where(inside, newton, 0.5 * (lo + hi)))
-        frozen |= np.abs(s_new - s) <= 4e-16 * np.maximum(np.abs(s), 1e-300)
-        s = s_new
-        if frozen.all():
+        s_new = np.where((newton >= lo) & (newton <= hi), newton, 0.5 * (lo + hi))
+        frozen |= (g == 0) | (np.abs(s_new - s) <= 4.5e-16 * np.maximum(tau0 + np.abs(s), 1e-300))
+        if frozen.all() or iteration == NEWTON_ITERATIONS - 1:
             break
-    return s, _step(lanes, x0, y0, s)
+        s = np.where(frozen, s, s_new)
+    return s, (xs, ys)
 
 
-def _first_ratio_root(lanes: _Lanes, x0, y0, lo, hi, iterations: int = 60):
+def _first_ratio_root(lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi, iterations: int = 60):
     """Root of Q (see :meth:`_Lanes.ratio`) on (lo, hi] of each lane's step, if Q(hi) <= 0.
 
     Q decreases through restitution, so one sign change brackets it: bisection with a secant guess
-    (regula falsi, Illinois variant), to a few ulp of s.  Returns (s, y at s, found); s = hi where
-    Q(hi) > 0.
+    (regula falsi, Illinois variant), until the bracket is within 2 ulp of the event time tau0 + s.
+    ``at_hi`` is the state at hi.  Returns (s, y at s, found); s = hi where Q(hi) > 0.
     """
-    q_lo = lanes.ratio(*_step(lanes, x0, y0, lo))
-    q_hi = lanes.ratio(*_step(lanes, x0, y0, hi))
+    q_lo = lanes.ratio(*_start_state(lanes, x0, y0, lo))
+    q_hi = lanes.ratio(*at_hi)
     found = (q_hi <= 0) & (q_lo > 0)
-    a, b, qa, qb = lo.copy(), hi.copy(), q_lo, np.where(np.isfinite(q_hi), q_hi, -1.0)
+    a, b, qa, qb, yb = lo.copy(), hi.copy(), q_lo, np.where(np.isfinite(q_hi), q_hi, -1.0), at_hi[1].copy()
     side = np.zeros(a.size, np.int8)  # end replaced last: +1 a, -1 b
     # converged lanes stay put while others iterate: a lane's root never depends on its batch
-    active = found & (b - a > 4e-16 * np.maximum(b, 1e-300))
+    active = found & (b - a > 4.5e-16 * np.maximum(tau0 + b, 1e-300))
     for _ in range(iterations):
         if not active.any():
             break
         s = np.where(np.isfinite(qa - qb) & (qa > qb), a + qa * (b - a) / (qa - qb), 0.5 * (a + b))
         s = np.where((s > a) & (s < b), s, 0.5 * (a + b))
-        q = lanes.ratio(*_step(lanes, x0, y0, s))
+        xs, ys = _step(lanes, x0, y0, s)
+        q = lanes.ratio(xs, ys)
         right = q > 0  # root in (s, b]
         # Illinois: when the same end is replaced twice running, halve the value kept at the other end
         qb = np.where(active, np.where(right, np.where(side == 1, 0.5 * qb, qb), q), qb)
         qa = np.where(active, np.where(right, q, np.where(side == -1, 0.5 * qa, qa)), qa)
         side = np.where(right, 1, -1).astype(np.int8)
         a = np.where(active & (right | (q == 0)), s, a)  # an exact zero closes the bracket
+        yb = np.where(active & ~right, ys, yb)
         b = np.where(active & ~right, s, b)
-        active &= b - a > 4e-16 * np.maximum(b, 1e-300)
-    s = np.where(found, b, hi)
-    return s, _step(lanes, x0, y0, s)[1], found
+        active &= b - a > 4.5e-16 * np.maximum(tau0 + b, 1e-300)
+    return np.where(found, b, hi), yb, found
 
 
 def step_size(zeta, lam, x, y, target: float):
@@ -249,9 +263,9 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
         if not force_criterion:
             first = past_max & ~tension_seen & (q1 <= 0) & ~done
             tension_seen |= first
-            _record(records["tension"], first, lane, x, y, h, tau)
-        _record(records["max"], hit_max, lane, x, y, h, tau)
-        _record(records["end"], done, lane, x, y, h, tau, x_end=x_end, tension_seen=tension_seen)
+            _record(records["tension"], first, lane, x, y, h, tau, x1=x1, y1=y1)
+        _record(records["max"], hit_max, lane, x, y, h, tau, x1=x1, y1=y1)
+        _record(records["end"], done, lane, x, y, h, tau, x1=x1, y1=y1, x_end=x_end, tension_seen=tension_seen)
         tau = tau + h
         late = ~done & (tau > HORIZON)
         if late.any():
@@ -280,7 +294,8 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
     step_of_max = np.full(n, np.nan)
     s_of_max = np.zeros(n)
     m = _join(records["max"])
-    s, (xm, _) = _locate("max", params.take(m["lane"]), m["x"], m["y"], np.zeros(m["lane"].size), m["h"])
+    s, (xm, _) = _locate("max", params.take(m["lane"]), m["x"], m["y"], m["tau"], np.zeros(m["lane"].size),
+                           m["h"], (m["x1"], m["y1"]))
     out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s, xm
     step_of_max[m["lane"]], s_of_max[m["lane"]] = m["tau"], s
 
@@ -289,23 +304,26 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
 
     t = _join(records["tension"])
     if t is not None:
-        _, yp, found = _first_ratio_root(params.take(t["lane"]), t["x"], t["y"], start_of(t), t["h"])
+        _, yp, found = _first_ratio_root(params.take(t["lane"]), t["x"], t["y"], t["tau"], start_of(t), t["h"],
+                                         (t["x1"], t["y1"]))
         out["y_p"][t["lane"][found]] = yp[found]
     e = _join(records["end"])
     lanes, start = params.take(e["lane"]), start_of(e)
-    s_x = e["h"].copy()
+    s_x, x_x, y_x = e["h"].copy(), e["x1"].copy(), e["y1"].copy()  # where delta = 0, and the state there
     if e["x_end"].any():
         i = np.flatnonzero(e["x_end"])
-        s_x[i] = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], start[i], e["h"][i])[0]
+        s_x[i], (x_x[i], y_x[i]) = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i],
+                                           e["h"][i], (e["x1"][i], e["y1"][i]))
     search = ~e["tension_seen"] | force_criterion  # P_hat = 0 with delta > 0, not found before this step
     s_p, yp, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
     if search.any():
         i = np.flatnonzero(search)
-        s_i, y_i, f_i = _first_ratio_root(lanes.take(i), e["x"][i], e["y"][i], start[i], s_x[i])
+        s_i, y_i, f_i = _first_ratio_root(lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i], s_x[i],
+                                          (x_x[i], y_x[i]))
         s_p[i[f_i]], yp[i[f_i]], found[i[f_i]] = s_i[f_i], y_i[f_i], True
-    s_end = np.minimum(s_x, s_p) if force_criterion else s_x
-    out["tau_f"][e["lane"]] = e["tau"] + s_end
-    out["y_f"][e["lane"]] = _step(lanes, e["x"], e["y"], s_end)[1]
+    ends_at_p = force_criterion & found & (s_p <= s_x)
+    out["tau_f"][e["lane"]] = e["tau"] + np.where(ends_at_p, s_p, s_x)
+    out["y_f"][e["lane"]] = np.where(ends_at_p, yp, y_x)
     fresh = found & np.isnan(out["y_p"][e["lane"]])
     out["y_p"][e["lane"][fresh]] = yp[fresh]
     out["y_p"] = np.where(np.isnan(out["y_p"]), out["y_f"], out["y_p"])
