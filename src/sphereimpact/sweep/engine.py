@@ -24,7 +24,7 @@ import pandas as pd
 from ..scene import Scene, SolverOptions, check_columns
 from ..solve import simulate
 from . import batch, closed
-from .similarity import LambdaInterpolant
+from .similarity import InterpolationError, LambdaInterpolant
 
 #: Scene parameters, with the single-impact defaults for missing columns.
 SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
@@ -71,8 +71,13 @@ def _interpolants(span: pd.DataFrame, target: float) -> dict:
     groups = pd.DataFrame({"zeta": d["zeta"][similar], "separation": d["separation"][similar],
                            "lam": d["lam"][similar]}).groupby(["zeta", "separation"])["lam"]
     stats = groups.agg(["size", "min", "max"])
-    return {(float(z), sep): LambdaInterpolant(float(z), row["min"], row["max"], sep, target)
-            for (z, sep), row in stats[stats["size"] >= SIMILARITY_MIN].iterrows()}
+    interpolants = {}
+    for (z, sep), row in stats[stats["size"] >= SIMILARITY_MIN].iterrows():
+        try:
+            interpolants[(float(z), sep)] = LambdaInterpolant(float(z), row["min"], row["max"], sep, target)
+        except InterpolationError:  # such a group is integrated scene by scene instead
+            continue
+    return interpolants
 
 
 def _normal_outputs(d: dict, span: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
