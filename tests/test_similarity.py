@@ -1,0 +1,58 @@
+"""The one-ball interpolant in lam: its tension onset, its accuracy between nodes, its fallback."""
+
+import numpy as np
+import pytest
+
+from sphereimpact import Scene
+from sphereimpact.sweep import batch, similarity
+from sphereimpact.sweep.engine import grid, sweep
+
+ZETA = Scene().zeta
+LAM_MIN, LAM_MAX = 0.05, 150.0  # the chapter's ball from 0.01 to 30 m/s normal speed
+
+
+def solve(lam, separation="force", target=1e-12):
+    lam = np.atleast_1d(np.asarray(lam, float))
+    return batch.integrate(np.full(lam.size, ZETA), lam, np.zeros(lam.size), np.ones(lam.size, bool), separation,
+                           target)
+
+
+@pytest.fixture(scope="module")
+def interpolant():
+    return similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, "force", 1e-8)
+
+
+def test_tension_onset_is_where_the_exit_force_ratio_vanishes(interpolant):
+    """At u*, G = 1 + 2 zeta lam y_f = 0 (solved directly); just below it the force criterion ends at
+    delta = 0 like the penetration criterion, just above it at P = 0, before delta = 0."""
+    (cut,) = interpolant.cuts
+    lam_star = np.exp(cut)
+    y_f = solve(lam_star, "penetration")["y_f"][0]
+    assert abs(1 + 2 * ZETA * lam_star * y_f) < 1e-9
+    below, above = solve(lam_star * (1 - 1e-4)), solve(lam_star * (1 + 1e-4))
+    pen_below = solve(lam_star * (1 - 1e-4), "penetration")
+    pen_above = solve(lam_star * (1 + 1e-4), "penetration")
+    assert below["tau_f"][0] == pytest.approx(pen_below["tau_f"][0], abs=1e-12)
+    assert above["tau_f"][0] < pen_above["tau_f"][0] - 1e-9
+
+
+@pytest.mark.parametrize("separation", ["force", "penetration"])
+def test_interpolant_matches_direct_solves_between_nodes(separation):
+    interp = similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, separation, 1e-8)
+    lam = np.exp(np.random.default_rng(5).uniform(np.log(LAM_MIN), np.log(LAM_MAX), 40))
+    got, ref = interp(lam), solve(lam, separation)
+    assert similarity._errors(got, ref, similarity.OUTPUTS) < 1e-9
+
+
+def test_failed_check_falls_back_to_integration(monkeypatch):
+    """With too few nodes allowed the interpolant refuses, and the engine integrates each scene instead."""
+    scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 0.5))
+    monkeypatch.setattr(similarity, "FIRST_NODES", 3)
+    monkeypatch.setattr(similarity, "MAX_NODES", 5)
+    with pytest.raises(similarity.InterpolationError, match="did not reach"):
+        similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, "force", 1e-8)
+    monkeypatch.setattr("sphereimpact.sweep.engine.SIMILARITY_MIN", 100)
+    fallback = sweep(scenes)
+    monkeypatch.undo()
+    direct = sweep(scenes)  # 1800 scenes: below SIMILARITY_MIN, integrated directly
+    assert np.array_equal(fallback["cor"].to_numpy(), direct["cor"].to_numpy())
