@@ -15,11 +15,16 @@ CONTRACT = 1e-8
 
 
 def assert_contract(table: pd.DataFrame, sample: int, seed: int = 0, target: float = CONTRACT) -> None:
-    """A random sample of the sweep matches the single-impact reference (rtol 1e-12) to ``target`` on every output."""
+    """A random sample of the sweep matches the single-impact reference to ``target`` on every output.
+
+    The reference runs at rtol 1e-12, or 1e-13 for targets below 1e-9: at rtol 1e-12 its own worst error
+    is about 1.6e-10 (results/bench_sweep.csv, against rtol 1e-13), too close to a 1e-10 target.
+    """
+    rtol = 1e-12 if target >= 1e-9 else 1e-13
     rows = np.random.default_rng(seed).choice(len(table), size=min(sample, len(table)), replace=False)
     for row in table.iloc[np.sort(rows)].to_dict("records"):
         scene = Scene(**{k: row[k] for k in SCENE_COLUMNS})
-        ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))
+        ref = simulate(scene, SolverOptions(rtol=rtol, atol=rtol))
         assert row["regime"] == ref.regime, row
         errors = relative_errors(row, ref.to_dict(), scene, KEYS)
         assert max(errors.values()) <= target, (row, errors)
@@ -49,6 +54,12 @@ def test_contract_similarity_path_for_one_ball():
     scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
     assert len(scenes) >= SIMILARITY_MIN
     assert_contract(sweep(scenes), sample=60)
+
+
+@pytest.mark.parametrize("target", [1e-4, 1e-6, 1e-10])
+def test_contract_similarity_path_across_the_target_range(target):
+    scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.1, 30.01, 0.5), separation=["force", "penetration"])
+    assert_contract(sweep(scenes, target=target), sample=30, seed=2, target=target)
 
 
 def test_contract_closed_form_path():
