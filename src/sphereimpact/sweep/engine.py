@@ -37,19 +37,15 @@ SIMILARITY_MIN = 2000
 
 def scene_table(scenes) -> pd.DataFrame:
     """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row)."""
-    frame = pd.DataFrame(scenes).reset_index(drop=True)
-    unknown = [c for c in frame.columns if c not in SCENE_COLUMNS]
+    given = pd.DataFrame(scenes)
+    unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
     if unknown:
         raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
-    for name in SCENE_COLUMNS:
-        if name not in frame:
-            frame[name] = DEFAULTS[name]
-    frame = frame[list(SCENE_COLUMNS)]
-    check_columns({name: frame[name].to_numpy() for name in SCENE_COLUMNS})
-    for name in SCENE_COLUMNS:
-        if name not in ("model", "separation"):
-            frame[name] = frame[name].astype(float)
-    return frame
+    n = len(given)
+    columns = {name: given[name].to_numpy() if name in given else np.full(n, DEFAULTS[name]) for name in SCENE_COLUMNS}
+    check_columns(columns)
+    return pd.DataFrame({name: values if name in ("model", "separation") else np.asarray(values, dtype=float)
+                         for name, values in columns.items()})
 
 
 def _dimensionless(frame: pd.DataFrame) -> dict:
@@ -182,12 +178,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         for key, value in values.items():
             result[key][rest] = value
         regime[rest] = np.where(v_t == 0, "none", np.where(slides, "sliding", "rolling"))
-    table = frame.copy()
-    for key in SWEEP_OUTPUTS:
-        table[key] = regime if key == "regime" else result[key]
-    if not np.isfinite(table[[k for k in SWEEP_OUTPUTS if k != "regime"]].to_numpy(float)).all():
+    if not all(np.isfinite(values).all() for values in result.values()):
         raise RuntimeError("sweep produced a non-finite output")  # never a NaN in a table
-    return table
+    return pd.concat([frame, pd.DataFrame(result | {"regime": regime})[list(SWEEP_OUTPUTS)]], axis=1)
 
 
 def grid(**ranges) -> pd.DataFrame:

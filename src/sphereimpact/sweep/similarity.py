@@ -37,9 +37,10 @@ SMOOTH = ("tau_m", "x_m", "tau_f", "y_f")
 #: The first check compares FIRST_NODES nodes with their FIRST_NODES - 1 midpoints (one solve).
 FIRST_NODES = 65
 MAX_NODES = 513
-#: Node accuracy relative to the sweep's target: the fixed step rule's error stays below a fifth of its
-#: target, so nodes solved at target / 100 sit far below the check's 0.1 target.
-NODE_FACTOR = 1e-2
+#: Nodes are solved at NODE_FACTOR x the sweep's target: the fixed step rule's error stays below a fifth
+#: of its target, so node errors stay below target / 50, a fifth of the check's 0.1 target, and
+#: interpolation plus nodes below 0.12 target.
+NODE_FACTOR = 0.1
 NODE_TARGET_MIN = 1e-13
 
 
@@ -71,8 +72,9 @@ class _Series:
 
     def __init__(self, a: float, b: float, values: dict):
         self.a, self.b, self.keys = a, b, tuple(values)
-        table = np.stack([values[k] for k in self.keys], axis=1)  # (N, outputs), from u = b down to a
-        coef = dct(table, type=1, axis=0) / (table.shape[0] - 1)
+        self.values = np.stack([values[k] for k in self.keys], axis=1)  # (N, outputs), from u = b down to a
+        self.nodes = _lobatto(a, b, self.values.shape[0])
+        coef = dct(self.values, type=1, axis=0) / (self.values.shape[0] - 1)
         coef[0] /= 2.0
         coef[-1] /= 2.0
         self.coef = coef
@@ -83,10 +85,9 @@ class _Series:
 
     def renamed(self, new: str, old: str) -> "_Series":
         """The same series with output ``new`` added as a copy of ``old``."""
-        copy = object.__new__(_Series)
-        copy.a, copy.b, copy.keys = self.a, self.b, self.keys + (new,)
-        copy.coef = np.concatenate([self.coef, self.coef[:, [self.keys.index(old)]]], axis=1)
-        return copy
+        column = self.keys.index(old)
+        return _Series(self.a, self.b, {k: self.values[:, i] for i, k in enumerate(self.keys)}
+                       | {new: self.values[:, column]})
 
 
 def _fit(zeta: float, a: float, b: float, separation: str, target: float, keys) -> tuple[_Series, int]:
@@ -119,14 +120,30 @@ def _fit(zeta: float, a: float, b: float, separation: str, target: float, keys) 
                              f"(zeta = {zeta:g}, lam in [{np.exp(a):g}, {np.exp(b):g}])")
 
 
-def _onset(zeta: float, series: _Series) -> float | None:
-    """u* where G = 1 + 2 zeta lam y_f changes sign on the series' range, or None (G is monotone in practice)."""
-    def g(u):
-        return 1.0 + 2.0 * zeta * np.exp(u) * series([u])["y_f"][0]
+def _onset(zeta: float, series: _Series) -> tuple[float | None, bool]:
+    """(u* where G = 1 + 2 zeta lam y_f changes sign on the series' range or None, tension at the top end).
 
-    if np.sign(g(series.a)) == np.sign(g(series.b)):
-        return None
-    return brentq(g, series.a, series.b, xtol=1e-14, rtol=1e-15)
+    G's sign change is bracketed between two of the series' nodes, then refined on the y_f series.
+
+    Raises
+    ------
+    InterpolationError
+        If G changes sign more than once (the two-piece split would not hold).
+    """
+    u = series.nodes
+    g = 1.0 + 2.0 * zeta * np.exp(u) * series.values[:, series.keys.index("y_f")]
+    change = np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))
+    if change.size > 1:
+        raise InterpolationError(f"the tension onset is not unique for zeta = {zeta:g}")
+    if change.size == 0:
+        return None, bool(g[0] < 0)
+    y_f = series.coef[:, series.keys.index("y_f")]
+
+    def g_series(v):
+        return 1.0 + 2.0 * zeta * np.exp(v) * chebval((2.0 * v - (series.a + series.b)) / (series.b - series.a), y_f)
+
+    j = change[0]  # nodes run from u = b down to a
+    return brentq(g_series, u[j + 1], u[j], xtol=1e-14, rtol=1e-15), bool(g[0] < 0)
 
 
 class LambdaInterpolant:
@@ -159,10 +176,10 @@ class LambdaInterpolant:
         if u_hi - u_lo < 1e-12:
             u_hi = u_lo + 1e-6
         whole, self.nodes = _fit(zeta, u_lo, u_hi, "penetration", target, SMOOTH)
-        cut = _onset(zeta, whole)
+        cut, tension_at_top = _onset(zeta, whole)
         calm = whole.renamed("y_p", "y_f")  # no tension: both criteria end at delta = 0, y_p = y_f
         self.cuts, self.pieces = np.array([] if cut is None else [cut]), [calm]
-        if cut is not None or 1.0 + 2.0 * zeta * lam_max * whole([u_hi])["y_f"][0] < 0:  # tension on [cut, u_hi]
+        if tension_at_top:  # on [cut, u_hi], or everywhere
             tense, nodes = _fit(zeta, u_lo if cut is None else cut, u_hi, separation, target, OUTPUTS)
             self.pieces = [tense] if cut is None else [calm, tense]
             self.nodes += nodes
