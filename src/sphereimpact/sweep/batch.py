@@ -49,6 +49,8 @@ class _Lanes:
         self.zeta, self.lam, self.gamma, self.modified = zeta, lam, gamma, modified
         self.kind = "modified" if modified.all() else "linear" if not modified.any() else "mixed"
         self.ramp_lam = np.where(modified, lam, 0.0)  # lam where a ramp limits the step, 0 where none
+        self.two_zeta = 2.0 * zeta
+        self.weightless = not gamma.any()
 
     def take(self, index):
         return _Lanes(self.zeta[index], self.lam[index], self.gamma[index], self.modified[index])
@@ -60,7 +62,7 @@ class _Lanes:
         return ramp if self.kind == "modified" else np.where(self.modified, ramp, 1.0)
 
     def force(self, x, y):
-        return x + 2.0 * self.zeta * y * self.ramp(x)
+        return x + self.two_zeta * y * self.ramp(x)
 
     def ratio(self, x, y):
         """Q = P_hat / x = 1 + 2 zeta y ramp(lam x) / x, and its limit as x -> 0+ where x <= 0.
@@ -77,7 +79,7 @@ class _Lanes:
         return np.where(positive, inside, limit)
 
     def rhs(self, x, y):
-        return y, self.gamma - self.force(x, y)
+        return y, -self.force(x, y) if self.weightless else self.gamma - self.force(x, y)
 
 
 def _step(lanes: _Lanes, x, y, h):

@@ -60,11 +60,18 @@ def _per_scene(solve, sample: pd.DataFrame, refs: list[dict], error: float) -> t
 
 
 def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sample_size: int = 60,
-            seed: int = 0) -> dict:
-    """One benchmark row for the sweep ``scenes``."""
-    start = time.perf_counter()
-    table = sweep(scenes)
-    seconds = time.perf_counter() - start
+            seed: int = 0, repeats: int = 3) -> dict:
+    """One benchmark row for the sweep ``scenes``.
+
+    The sweep's time is the median of ``repeats`` complete runs (each builds its interpolants anew:
+    nothing is cached between calls), so one noisy run on a shared machine does not decide the row.
+    """
+    runs = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        table = sweep(scenes)
+        runs.append(time.perf_counter() - start)
+    seconds = float(np.median(runs))
     tracemalloc.start()  # a second run: tracing allocations slows numpy, so it is kept out of the timing
     sweep(scenes)
     peak = tracemalloc.get_traced_memory()[1]

@@ -21,7 +21,7 @@ from dataclasses import fields
 import numpy as np
 import pandas as pd
 
-from ..scene import Scene, SolverOptions, check_columns
+from ..scene import SEPARATION_CRITERIA, Scene, SolverOptions, check_columns
 from ..solve import simulate
 from . import batch, closed
 from .similarity import InterpolationError, LambdaInterpolant
@@ -60,24 +60,27 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
             "modified": (frame["model"] == "modified").to_numpy(), "separation": frame["separation"].to_numpy()}
 
 
-def _interpolants(span: pd.DataFrame, target: float) -> dict:
-    """(zeta, separation) -> LambdaInterpolant for every group of the span large enough to pay off."""
-    d = _dimensionless(span)
-    similar = d["modified"] & (d["gamma"] == 0)
-    groups = pd.DataFrame({"zeta": d["zeta"][similar], "separation": d["separation"][similar],
-                           "lam": d["lam"][similar]}).groupby(["zeta", "separation"])["lam"]
-    stats = groups.agg(["size", "min", "max"])
+def _interpolants(d: dict, target: float) -> dict:
+    """(zeta, separation) -> LambdaInterpolant for every group of the span's scenes ``d`` (see
+    :func:`_dimensionless`) large enough to pay off."""
+    similar = np.flatnonzero(d["modified"] & (d["gamma"] == 0))
     interpolants = {}
-    for (z, sep), row in stats[stats["size"] >= SIMILARITY_MIN].iterrows():
-        try:
-            interpolants[(float(z), sep)] = LambdaInterpolant(float(z), row["min"], row["max"], sep, target)
-        except InterpolationError:  # such a group is integrated scene by scene instead
-            continue
+    for criterion in SEPARATION_CRITERIA:
+        mine = similar[d["separation"][similar] == criterion]
+        zetas, group, counts = np.unique(d["zeta"][mine], return_inverse=True, return_counts=True)
+        for i in np.flatnonzero(counts >= SIMILARITY_MIN):
+            lam = d["lam"][mine[group == i]]
+            try:
+                interpolants[(float(zetas[i]), criterion)] = LambdaInterpolant(float(zetas[i]), lam.min(), lam.max(),
+                                                                               criterion, target)
+            except InterpolationError:  # such a group is integrated scene by scene instead
+                continue
     return interpolants
 
 
-def _normal_outputs(d: dict, span: pd.DataFrame, target: float, chunk_size: int, progress) -> dict:
-    """Dimensionless normal outputs of scenes ``d`` (see :func:`_dimensionless`), interpolants built on ``span``."""
+def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progress) -> dict:
+    """Dimensionless normal outputs of scenes ``d``, interpolants built on the scenes ``span`` (both as
+    :func:`_dimensionless` gives them)."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
@@ -157,10 +160,13 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     rest = ~tilted_gravity
     if rest.any():
         part = frame[rest]
-        whole = frame if span is None else scene_table(span)
         d = _dimensionless(part)
-        dim = _normal_outputs(d, whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))], target, chunk_size,
-                              progress)
+        if span is None:
+            d_span = d
+        else:
+            whole = scene_table(span)
+            d_span = _dimensionless(whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))])
+        dim = _normal_outputs(d, d_span, target, chunk_size, progress)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
         alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
