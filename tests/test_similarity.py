@@ -37,9 +37,12 @@ def test_tension_onset_is_where_the_exit_force_ratio_vanishes(interpolant):
 
 
 @pytest.mark.parametrize("separation", ["force", "penetration"])
-def test_interpolant_matches_direct_solves_between_nodes(separation):
-    interp = similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, separation, 1e-8)
-    lam = np.exp(np.random.default_rng(5).uniform(np.log(LAM_MIN), np.log(LAM_MAX), 40))
+@pytest.mark.parametrize("lam_range, cuts", [((LAM_MIN, LAM_MAX), 1), ((LAM_MIN, 5.0), 0), ((20.0, LAM_MAX), 0)],
+                         ids=["across the onset", "no tension", "tension throughout"])
+def test_interpolant_matches_direct_solves_between_nodes(separation, lam_range, cuts):
+    interp = similarity.LambdaInterpolant(ZETA, *lam_range, separation, 1e-8)
+    assert interp.cuts.size == cuts
+    lam = np.exp(np.random.default_rng(5).uniform(*np.log(lam_range), 40))
     got, ref = interp(lam), solve(lam, separation)
     assert similarity._errors(got, ref, similarity.OUTPUTS) < 1e-9
 

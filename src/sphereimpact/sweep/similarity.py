@@ -87,7 +87,7 @@ class _Series:
         t = (2.0 * np.asarray(u, dtype=float) - (self.a + self.b)) / (self.b - self.a)
         return dict(zip(self.keys, chebval(t, self.coef)))  # chebval: (outputs, len(u))
 
-    def renamed(self, new: str, old: str) -> "_Series":
+    def with_alias(self, new: str, old: str) -> "_Series":
         """The same series with output ``new`` added as a copy of ``old``."""
         column = self.keys.index(old)
         return _Series(self.a, self.b, {k: self.values[:, i] for i, k in enumerate(self.keys)}
@@ -184,12 +184,16 @@ class LambdaInterpolant:
             u_hi = u_lo + 1e-6
         whole, self.nodes = _fit(zeta, u_lo, u_hi, "penetration", target, SMOOTH)
         cut, tension_at_top = _onset(zeta, whole)
-        calm = whole.renamed("y_p", "y_f")  # no tension: both criteria end at delta = 0, y_p = y_f
-        self.cuts, self.pieces = np.array([] if cut is None else [cut]), [calm]
-        if tension_at_top:  # on [cut, u_hi], or everywhere
-            tense, nodes = _fit(zeta, u_lo if cut is None else cut, u_hi, separation, target, OUTPUTS)
-            self.pieces = [tense] if cut is None else [calm, tense]
-            self.nodes += nodes
+        calm = whole.with_alias("y_p", "y_f")  # no tension: both criteria end at delta = 0, y_p = y_f
+        self.cuts = np.array([] if cut is None else [cut])
+        if cut is None and not tension_at_top:
+            self.pieces = [calm]
+            return
+        # tension on [cut, u_hi] (G falls as lam grows), everywhere, or in principle on [u_lo, cut]
+        a, b = (u_lo if cut is None else cut, u_hi) if tension_at_top else (u_lo, cut)
+        tense, nodes = _fit(zeta, a, b, separation, target, OUTPUTS)
+        self.nodes += nodes
+        self.pieces = [tense] if cut is None else [calm, tense] if tension_at_top else [tense, calm]
 
     def __call__(self, lam) -> dict:
         u = np.log(np.asarray(lam, dtype=float))
