@@ -83,7 +83,7 @@ def check_columns(columns: dict) -> None:
                 raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in ("model", "separation"):
             choices = tuple(FORCE_MODELS) if name == "model" else SEPARATION_CRITERIA
-            unknown = sorted(set(map(str, values)) - set(choices))
+            unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
         else:
