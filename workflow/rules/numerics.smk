@@ -7,6 +7,7 @@ rule work_precision:
         csv="results/work_precision.csv",
     params:
         config=config,
+    threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/work_precision.log",
     conda:
@@ -21,6 +22,7 @@ rule bench:
         csv="results/work_precision.csv",
     output:
         csv="results/bench.csv",
+    threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/bench.log",
     conda:

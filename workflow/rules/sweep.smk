@@ -76,6 +76,7 @@ rule bench_sweep:
     """Throughput of the sweep engine against per-scene solving at equal accuracy (a benchmark)."""
     output:
         csv="results/bench_sweep.csv",
+    threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/bench_sweep.log",
     conda:
