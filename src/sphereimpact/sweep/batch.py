@@ -78,6 +78,20 @@ class _Lanes:
         limit = np.where(self.modified, 1.0 + 2.0 * self.zeta * self.lam * y, -np.inf)
         return np.where(positive, inside, limit)
 
+    def ratio_rate(self, x, y, dy):
+        """dQ/dtau along the motion (dx/dtau = y, dy/dtau = ``dy``): Newton's slope for Q's root.
+
+        For x > 0, Q = 1 + 2 zeta y r(lam x) / x gives 2 zeta (dy r / x + lam y^2 r'(lam x) / x - y^2 r / x^2),
+        with r' = exp(-u) (modified, u > 0 there) or 0 (kelvin-voigt); for x <= 0, the limit's 2 zeta lam dy,
+        or 0 where the limit is -inf.  Only the search speed depends on it: the root is kept bracketed.
+        """
+        positive = x > 1e-300
+        safe = np.where(positive, x, 1.0)
+        ramp = self.ramp(safe)
+        slope = np.where(self.modified, np.exp(-self.lam * safe), 0.0)
+        inside = self.two_zeta * (dy * ramp / safe + self.lam * y * y * slope / safe - y * y * ramp / (safe * safe))
+        return np.where(positive, inside, np.where(self.modified, self.two_zeta * self.lam * dy, 0.0))
+
     def rhs(self, x, y):
         return y, -self.force(x, y) if self.weightless else self.gamma - self.force(x, y)
 
@@ -133,8 +147,11 @@ def _combine(weights: tuple, stages):
 
 
 def _event_value(kind: str, lanes: _Lanes, x, y):
-    """Event function and its tau-derivative: kind 'max' (y) or 'delta' (x)."""
+    """Event function and its tau-derivative: kind 'max' (y), 'delta' (x) or 'ratio' (Q, see
+    :meth:`_Lanes.ratio`)."""
     dx, dy = lanes.rhs(x, y)
+    if kind == "ratio":
+        return lanes.ratio(x, y), lanes.ratio_rate(x, y, dy)
     return (y, dy) if kind == "max" else (x, dx)
 
 
@@ -172,37 +189,21 @@ def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
     return s, (xs, ys)
 
 
-def _first_ratio_root(lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi, iterations: int = 60):
+def _first_ratio_root(lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
     """Root of Q (see :meth:`_Lanes.ratio`) on (lo, hi] of each lane's step, if Q(hi) <= 0.
 
-    Q decreases through restitution, so one sign change brackets it: bisection with a secant guess
-    (regula falsi, Illinois variant), until the bracket is within 2 ulp of the event time tau0 + s.
-    ``at_hi`` is the state at hi.  Returns (s, y at s, found); s = hi where Q(hi) > 0.
+    Q decreases through restitution, so one sign change brackets it, and :func:`_locate` finds it by
+    Newton on the one-step map, kept inside the bracket.  ``at_hi`` is the state at hi.  Returns
+    (s, y at s, found); s = hi where Q(hi) > 0.
     """
     q_lo = lanes.ratio(*_start_state(lanes, x0, y0, lo))
-    q_hi = lanes.ratio(*at_hi)
-    found = (q_hi <= 0) & (q_lo > 0)
-    a, b, qa, qb, yb = lo.copy(), hi.copy(), q_lo, np.where(np.isfinite(q_hi), q_hi, -1.0), at_hi[1].copy()
-    side = np.zeros(a.size, np.int8)  # end replaced last: +1 a, -1 b
-    # converged lanes stay put while others iterate: a lane's root never depends on its batch
-    active = found & (b - a > 4.5e-16 * np.maximum(tau0 + b, 1e-300))
-    for _ in range(iterations):
-        if not active.any():
-            break
-        s = np.where(np.isfinite(qa - qb) & (qa > qb), a + qa * (b - a) / (qa - qb), 0.5 * (a + b))
-        s = np.where((s > a) & (s < b), s, 0.5 * (a + b))
-        xs, ys = _step(lanes, x0, y0, s)
-        q = lanes.ratio(xs, ys)
-        right = q > 0  # root in (s, b]
-        # Illinois: when the same end is replaced twice running, halve the value kept at the other end
-        qb = np.where(active, np.where(right, np.where(side == 1, 0.5 * qb, qb), q), qb)
-        qa = np.where(active, np.where(right, q, np.where(side == -1, 0.5 * qa, qa)), qa)
-        side = np.where(right, 1, -1).astype(np.int8)
-        a = np.where(active & (right | (q == 0)), s, a)  # an exact zero closes the bracket
-        yb = np.where(active & ~right, ys, yb)
-        b = np.where(active & ~right, s, b)
-        active &= b - a > 4.5e-16 * np.maximum(tau0 + b, 1e-300)
-    return np.where(found, b, hi), yb, found
+    found = (lanes.ratio(*at_hi) <= 0) & (q_lo > 0)
+    s, y = hi.copy(), at_hi[1].copy()
+    if found.any():
+        i = np.flatnonzero(found)
+        s[i], (_, y[i]) = _locate("ratio", lanes.take(i), x0[i], y0[i], tau0[i], lo[i], hi[i],
+                                  (at_hi[0][i], at_hi[1][i]))
+    return s, y, found
 
 
 def step_size(zeta, lam, x, y, target: float):
