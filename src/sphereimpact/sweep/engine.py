@@ -31,7 +31,8 @@ SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
 DEFAULTS = {f.name: f.default for f in fields(Scene)}
 #: Outputs of a sweep, as ``sphereimpact simulate`` names them.
 SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor", "regime")
-#: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each.
+#: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each (measured for the
+#: chapter's ball: 43 ms against 47 ms at 2000 scenes, 42 against 29 ms at 1000).
 SIMILARITY_MIN = 2000
 
 
