@@ -8,7 +8,14 @@ from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
-from sphereimpact.sweep.engine import SCENE_COLUMNS, SIMILARITY_MIN, SWEEP_OUTPUTS, grid, parse_range, sweep
+from sphereimpact.sweep.engine import (
+    SCENE_COLUMNS,
+    SIMILARITY_MIN,
+    SWEEP_OUTPUTS,
+    grid,
+    parse_range,
+    sweep,
+)
 
 KEYS = [k for k in SWEEP_OUTPUTS if k != "regime"]
 CONTRACT = 1e-8

@@ -87,7 +87,7 @@ class _Series:
         t = (2.0 * np.asarray(u, dtype=float) - (self.a + self.b)) / (self.b - self.a)
         return dict(zip(self.keys, chebval(t, self.coef)))  # chebval: (outputs, len(u))
 
-    def with_alias(self, new: str, old: str) -> "_Series":
+    def with_alias(self, new: str, old: str) -> _Series:
         """The same series with output ``new`` added as a copy of ``old``."""
         column = self.keys.index(old)
         return _Series(self.a, self.b, {k: self.values[:, i] for i, k in enumerate(self.keys)}
