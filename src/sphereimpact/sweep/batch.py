@@ -81,15 +81,16 @@ class _Lanes:
     def ratio_rate(self, x, y, dy):
         """dQ/dtau along the motion (dx/dtau = y, dy/dtau = ``dy``): Newton's slope for Q's root.
 
-        For x > 0, Q = 1 + 2 zeta y r(lam x) / x gives 2 zeta (dy r / x + lam y^2 r'(lam x) / x - y^2 r / x^2),
-        with r' = exp(-u) (modified, u > 0 there) or 0 (kelvin-voigt); for x <= 0, the limit's 2 zeta lam dy,
-        or 0 where the limit is -inf.  Only the search speed depends on it: the root is kept bracketed.
+        For x > 0, Q = 1 + 2 zeta y r(lam x) / x gives 2 zeta (dy r / x + (y / x) y (lam r'(lam x) - r / x)),
+        with r' = exp(-u) (modified, u > 0 there) or 0 (kelvin-voigt); the bracket tends to -lam^2 x / 2 as
+        x -> 0, so the form stays finite for tiny x.  For x <= 0, the limit's 2 zeta lam dy, or 0 where the
+        limit is -inf.  Only the search speed depends on it: the root is kept bracketed.
         """
         positive = x > 1e-300
         safe = np.where(positive, x, 1.0)
         ramp = self.ramp(safe)
         slope = np.where(self.modified, np.exp(-self.lam * safe), 0.0)
-        inside = self.two_zeta * (dy * ramp / safe + self.lam * y * y * slope / safe - y * y * ramp / (safe * safe))
+        inside = self.two_zeta * (dy * ramp / safe + (y / safe) * y * (self.lam * slope - ramp / safe))
         return np.where(positive, inside, np.where(self.modified, self.two_zeta * self.lam * dy, 0.0))
 
     def rhs(self, x, y):
