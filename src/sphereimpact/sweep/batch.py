@@ -165,14 +165,15 @@ def _start_state(lanes: _Lanes, x0, y0, s):
     return x, y
 
 
-def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
+def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_lo, at_hi):
     """Root in s of the event on the one-step map from (x0, y0) at time tau0, bracketed by g(lo) > 0 >= g(hi).
 
-    ``at_hi`` is the state at hi (known from the march).  Newton with bisection fallback; a lane freezes
+    ``at_lo`` and ``at_hi`` are the states at lo and hi (see :func:`_start_state`; the march knows the
+    step's end).  Newton with bisection fallback; a lane freezes
     at the last point it evaluated once its Newton step is below 2 ulp of the event time tau0 + s
     (below that the update is round-off in g, and would never settle).  Returns (s, state at s).
     """
-    g_lo = _event_value(kind, lanes, *_start_state(lanes, x0, y0, lo))[0]
+    g_lo = _event_value(kind, lanes, *at_lo)[0]
     g_hi = _event_value(kind, lanes, *at_hi)[0]
     s = np.where(g_lo - g_hi > 0, lo + (hi - lo) * g_lo / np.where(g_lo - g_hi > 0, g_lo - g_hi, 1.0), hi)
     frozen = np.zeros(s.size, bool)  # frozen lanes stay put: a lane's root never depends on its batch
@@ -197,13 +198,13 @@ def _first_ratio_root(lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
     Newton on the one-step map, kept inside the bracket.  ``at_hi`` is the state at hi.  Returns
     (s, y at s, found); s = hi where Q(hi) > 0.
     """
-    q_lo = lanes.ratio(*_start_state(lanes, x0, y0, lo))
-    found = (lanes.ratio(*at_hi) <= 0) & (q_lo > 0)
+    at_lo = _start_state(lanes, x0, y0, lo)
+    found = (lanes.ratio(*at_hi) <= 0) & (lanes.ratio(*at_lo) > 0)
     s, y = hi.copy(), at_hi[1].copy()
     if found.any():
         i = np.flatnonzero(found)
         s[i], (_, y[i]) = _locate("ratio", lanes.take(i), x0[i], y0[i], tau0[i], lo[i], hi[i],
-                                  (at_hi[0][i], at_hi[1][i]))
+                                  (at_lo[0][i], at_lo[1][i]), (at_hi[0][i], at_hi[1][i]))
     return s, y, found
 
 
@@ -316,7 +317,7 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
     s_of_max = np.zeros(n)
     m = _join(records["max"])
     s, (xm, _) = _locate("max", params.take(m["lane"]), m["x"], m["y"], m["tau"], np.zeros(m["lane"].size),
-                           m["h"], (m["x1"], m["y1"]))
+                           m["h"], (m["x"], m["y"]), (m["x1"], m["y1"]))
     out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s, xm
     step_of_max[m["lane"]], s_of_max[m["lane"]] = m["tau"], s
 
@@ -333,8 +334,9 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
     s_x, x_x, y_x = e["h"].copy(), e["x1"].copy(), e["y1"].copy()  # where delta = 0, and the state there
     if e["x_end"].any():
         i = np.flatnonzero(e["x_end"])
+        at_start = _start_state(lanes.take(i), e["x"][i], e["y"][i], start[i])
         s_x[i], (x_x[i], y_x[i]) = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i],
-                                           e["h"][i], (e["x1"][i], e["y1"][i]))
+                                           e["h"][i], at_start, (e["x1"][i], e["y1"][i]))
     search = ~e["tension_seen"] | force_criterion  # P_hat = 0 with delta > 0, not found before this step
     s_p, yp, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
     if search.any():

@@ -49,6 +49,11 @@ def scene_table(scenes) -> pd.DataFrame:
                          for name, values in columns.items()})
 
 
+def _tilted_gravity(frame: pd.DataFrame) -> np.ndarray:
+    """Scenes with gravity on an inclined flat (stick-slip with re-slip as P falls)."""
+    return ((frame["gravity"] > 0) & (frame["angle"] > 0)).to_numpy()
+
+
 def _dimensionless(frame: pd.DataFrame) -> dict:
     """zeta, lam, gamma, omega_n, v_n and the law of each scene."""
     m, k, b = (frame[c].to_numpy() for c in ("mass", "k", "b"))
@@ -151,7 +156,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key != "regime"}
     regime = np.full(n, "none", dtype=object)
-    tilted_gravity = ((frame["gravity"] > 0) & (frame["angle"] > 0)).to_numpy()
+    tilted_gravity = _tilted_gravity(frame)
     for i in np.flatnonzero(tilted_gravity):  # stick-slip with re-slip: the exact single-impact path
         out = simulate(Scene(**frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
                                                                        atol=min(1e-10, target / 100)))
@@ -166,7 +171,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
             d_span = d
         else:
             whole = scene_table(span)
-            d_span = _dimensionless(whole[~((whole["gravity"] > 0) & (whole["angle"] > 0))])
+            d_span = _dimensionless(whole[~_tilted_gravity(whole)])
         dim = _normal_outputs(d, d_span, target, chunk_size, progress)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
