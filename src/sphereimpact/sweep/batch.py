@@ -64,7 +64,13 @@ class _Lanes:
     def force(self, x, y):
         return x + self.two_zeta * y * self.ramp(x)
 
-    def ratio(self, x, y):
+    def _ratio_terms(self, x):
+        """(x > 0, x where positive else 1, ramp there): what Q and its slope share."""
+        positive = x > 1e-300
+        safe = np.where(positive, x, 1.0)
+        return positive, safe, self.ramp(safe)
+
+    def ratio(self, x, y, terms=None):
         """Q = P_hat / x = 1 + 2 zeta y ramp(lam x) / x, and its limit as x -> 0+ where x <= 0.
 
         Same sign as P_hat while x > 0, but without P_hat's forced zero at x = 0; through restitution
@@ -72,26 +78,24 @@ class _Lanes:
         by a step that P_hat dips below zero and rises again within.  At x -> 0+ it tends to
         G = 1 + 2 zeta lam y (modified) or -inf (kelvin-voigt).
         """
-        positive = x > 1e-300
-        safe = np.where(positive, x, 1.0)
-        inside = 1.0 + 2.0 * self.zeta * y * self.ramp(safe) / safe
-        limit = np.where(self.modified, 1.0 + 2.0 * self.zeta * self.lam * y, -np.inf)
+        positive, safe, ramp = self._ratio_terms(x) if terms is None else terms
+        inside = 1.0 + self.two_zeta * y * ramp / safe
+        limit = np.where(self.modified, 1.0 + self.two_zeta * self.lam * y, -np.inf)
         return np.where(positive, inside, limit)
 
-    def ratio_rate(self, x, y, dy):
-        """dQ/dtau along the motion (dx/dtau = y, dy/dtau = ``dy``): Newton's slope for Q's root.
+    def ratio_and_rate(self, x, y, dy):
+        """Q and dQ/dtau along the motion (dx/dtau = y, dy/dtau = ``dy``): Newton's slope for Q's root.
 
         For x > 0, Q = 1 + 2 zeta y r(lam x) / x gives 2 zeta (dy r / x + (y / x) y (lam r'(lam x) - r / x)),
         with r' = exp(-u) (modified, u > 0 there) or 0 (kelvin-voigt); the bracket tends to -lam^2 x / 2 as
         x -> 0, so the form stays finite for tiny x.  For x <= 0, the limit's 2 zeta lam dy, or 0 where the
         limit is -inf.  Only the search speed depends on it: the root is kept bracketed.
         """
-        positive = x > 1e-300
-        safe = np.where(positive, x, 1.0)
-        ramp = self.ramp(safe)
+        terms = positive, safe, ramp = self._ratio_terms(x)
         slope = np.where(self.modified, np.exp(-self.lam * safe), 0.0)
         inside = self.two_zeta * (dy * ramp / safe + (y / safe) * y * (self.lam * slope - ramp / safe))
-        return np.where(positive, inside, np.where(self.modified, self.two_zeta * self.lam * dy, 0.0))
+        rate = np.where(positive, inside, np.where(self.modified, self.two_zeta * self.lam * dy, 0.0))
+        return self.ratio(x, y, terms), rate
 
     def rhs(self, x, y):
         return y, -self.force(x, y) if self.weightless else self.gamma - self.force(x, y)
@@ -152,7 +156,7 @@ def _event_value(kind: str, lanes: _Lanes, x, y):
     :meth:`_Lanes.ratio`)."""
     dx, dy = lanes.rhs(x, y)
     if kind == "ratio":
-        return lanes.ratio(x, y), lanes.ratio_rate(x, y, dy)
+        return lanes.ratio_and_rate(x, y, dy)
     return (y, dy) if kind == "max" else (x, dx)
 
 

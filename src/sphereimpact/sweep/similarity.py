@@ -83,9 +83,16 @@ class _Series:
         coef[-1] /= 2.0
         self.coef = coef
 
+    def _local(self, u):
+        """u mapped onto the series' variable t in [-1, 1]."""
+        return (2.0 * np.asarray(u, dtype=float) - (self.a + self.b)) / (self.b - self.a)
+
     def __call__(self, u) -> dict:
-        t = (2.0 * np.asarray(u, dtype=float) - (self.a + self.b)) / (self.b - self.a)
-        return dict(zip(self.keys, chebval(t, self.coef)))  # chebval: (outputs, len(u))
+        return dict(zip(self.keys, chebval(self._local(u), self.coef)))  # chebval: (outputs, len(u))
+
+    def value(self, key: str, u):
+        """One output at u (a root search needs no others)."""
+        return chebval(self._local(u), self.coef[:, self.keys.index(key)])
 
     def with_alias(self, new: str, old: str) -> _Series:
         """The same series with output ``new`` added as a copy of ``old``."""
@@ -144,10 +151,8 @@ def _onset(zeta: float, series: _Series) -> tuple[float | None, bool]:
         raise InterpolationError(f"the tension onset is not unique for zeta = {zeta:g}")
     if change.size == 0:
         return None, bool(g[0] < 0)
-    y_f = series.coef[:, series.keys.index("y_f")]
-
     def g_series(v):
-        return 1.0 + 2.0 * zeta * np.exp(v) * chebval((2.0 * v - (series.a + series.b)) / (series.b - series.a), y_f)
+        return 1.0 + 2.0 * zeta * np.exp(v) * series.value("y_f", v)
 
     j = change[0]  # nodes run from u = b down to a
     return brentq(g_series, u[j + 1], u[j], xtol=1e-14, rtol=1e-15), bool(g[0] < 0)
