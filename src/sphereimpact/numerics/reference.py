@@ -14,8 +14,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import mpmath
-
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
 
@@ -78,6 +76,8 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
     """(t_m, delta_m, t_f, delta_dot(t_f)) of the modified law by mpmath's Taylor integrator."""
     if scene.model != "modified":
         raise ValueError("the Taylor reference is written for the modified law")
+    import mpmath  # only the reference needs arbitrary precision; the metrics above do not
+
     with mpmath.workdps(digits):
         w, v = scene.omega_n, scene.v_normal
         zeta, lam = mpmath.mpf(scene.zeta), mpmath.mpf(scene.ramp * v / (w * scene.radius))
