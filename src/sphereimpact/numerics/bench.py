@@ -1,27 +1,100 @@
-"""Speed-up at equal accuracy, read off one work-precision run (so the timings share a machine state)."""
+"""Speed at equal accuracy: ``simulate`` against the hand-written script, and the reduced model against the
+planar one (a benchmark: timings are written to files, never asserted).
+
+``simulate`` at its default options is timed beside
+:func:`sphereimpact.numerics.handwritten.handwritten` run at the loosest tolerance of :data:`TOLERANCES`
+whose error (against :func:`sphereimpact.numerics.reference.reference`) is no larger than
+``simulate``'s.  Both are timed with one protocol, :func:`per_call_seconds`.
+"""
 
 from __future__ import annotations
 
+import statistics
+import time
+
 import pandas as pd
 
+from ..scene import Scene, SolverOptions
+from ..solve import simulate
+from .handwritten import handwritten
+from .reference import reference, worst_error
 from .workprecision import TARGET
+
+TOLERANCES = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
+#: Calls per timed run: one impact takes milliseconds, so each run times a batch.
+BATCH = 10
+
+
+def per_call_seconds(call, repeats: int) -> float:
+    """Median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call]."""
+    runs = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for _ in range(BATCH):
+            call()
+        runs.append((time.perf_counter() - start) / BATCH)
+    return statistics.median(runs)
+
+
+def bench_scenes(chapter: dict[str, Scene]) -> dict[str, Scene]:
+    """The chapter's cases plus scenes across the domain (30° at 3 m/s, 45° at 20 m/s), under both laws,
+    force criterion, no gravity."""
+    base = next(iter(chapter.values()))
+    scenes = dict(chapter)
+    for model in ("modified", "kelvin-voigt"):
+        scenes[f"30deg-3ms/{model}"] = base.with_(angle=30.0, speed=3.0, model=model)
+        scenes[f"45deg-20ms/{model}"] = base.with_(angle=45.0, speed=20.0, model=model)
+    return {name: s.with_(separation="force", gravity=0.0) for name, s in scenes.items()}
+
+
+def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
+    """Two rows per scene: ``simulate`` (default options) and the hand-written script at equal accuracy.
+
+    Columns: ``scene``, ``model``, ``angle``, ``speed``, ``contender``, ``method``, ``rtol``, ``error``
+    (worst relative error over t_m, delta_m, t_f, COR, omega_f, v_E,t), ``reached`` (False: no tolerance
+    on the ladder met simulate's error; timed at the tightest), ``time`` [s per impact], ``nfev``,
+    ``time_ratio`` (time / the hand-written script's time), ``repeats`` and ``batch`` (the protocol).
+    """
+    rows = []
+    default = SolverOptions()
+    for name, scene in scenes.items():
+        ref = reference(scene).outputs
+        out = simulate(scene, default)
+        sim_error = worst_error(out.to_dict(), ref, scene)
+        for rtol in TOLERANCES:
+            hand = handwritten(scene, rtol)
+            hand_error = worst_error(hand, ref, scene)
+            if hand_error <= sim_error:
+                break
+        sim_time = per_call_seconds(lambda: simulate(scene, default), repeats)
+        hand_time = per_call_seconds(lambda: handwritten(scene, rtol), repeats)
+        base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed,
+                "repeats": repeats, "batch": BATCH}
+        rows.append(base | {"contender": "simulate", "method": default.method, "rtol": default.rtol,
+                            "error": sim_error, "reached": True, "time": sim_time, "nfev": out.nfev,
+                            "time_ratio": sim_time / hand_time})
+        rows.append(base | {"contender": "handwritten", "method": "DOP853", "rtol": rtol, "error": hand_error,
+                            "reached": bool(hand_error <= sim_error), "time": hand_time, "nfev": hand["nfev"],
+                            "time_ratio": 1.0})
+    return pd.DataFrame(rows)
 
 
 def cheapest(frame: pd.DataFrame, target: float = TARGET) -> pd.DataFrame:
-    """Per case, model and body: the fastest point whose error meets ``target``."""
+    """Per case, model and body of a work-precision table: the fastest point whose error meets ``target``."""
     ok = frame[(frame["status"] == "ok") & (frame["error"] <= target)]
     best = ok.loc[ok.groupby(["case", "model", "body"])["time"].idxmin()]
     return best[["case", "model", "body", "method", "rtol", "error", "time", "nfev"]].reset_index(drop=True)
 
 
 def speedups(frame: pd.DataFrame, target: float = TARGET) -> pd.DataFrame:
-    """Reduced over planar at equal accuracy, and the closed form over both (kelvin-voigt)."""
+    """Reduced over planar at equal accuracy, and the closed form over both (kelvin-voigt), from one
+    work-precision table (so the timings share a machine state)."""
     best = cheapest(frame, target)
     rows = []
     for (case, model), group in best.groupby(["case", "model"], sort=True):
         times = dict(zip(group["body"], group["time"]))
         for _, row in group.iterrows():
             rows.append({**row.to_dict(), "target": target,
-                         "speedup_over_planar": times["planar"] / row["time"],
+                         "speedup_over_planar": times["planar"] / row["time"] if "planar" in times else None,
                          "closed_speedup": times["reduced"] / times["closed"] if "closed" in times else None})
     return pd.DataFrame(rows)

@@ -55,14 +55,14 @@ def _package_point(study, scene, ref, method, x_name, x, rtol=1e-8, variant="pac
     return _row(study, variant, method, x_name, x, worst_error(out.to_dict(), ref, scene), out.nfev, seconds)
 
 
-def stiffness(base: Scene) -> list[dict]:
+def stiffness(base: Scene, methods=METHODS) -> list[dict]:
     """Cost against damping ratio (b varied) and against stiffness k (b fixed), ``base``'s law, force criterion."""
     rows = []
     sweeps = [("zeta", z, base.with_(b=z * 2 * math.sqrt(base.k * base.mass))) for z in (0.05, 0.5, 1, 5, 20, 100)]
     sweeps += [("k [N/m]", k, base.with_(k=k)) for k in (1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9)]
     for x_name, x, scene in sweeps:
         ref = reference(scene).outputs
-        for method in METHODS:
+        for method in methods:
             rows.append(_package_point("stiffness", scene, ref, method, x_name, x))
     return rows
 
@@ -112,12 +112,12 @@ def _through_contact(scene: Scene, method: str, rtol: float, lead: float):
     return out, sol.nfev
 
 
-def onset(base: Scene) -> list[dict]:
+def onset(base: Scene, methods=METHODS) -> list[dict]:
     """The kelvin-voigt force jump at first touch: through-contact integration vs starting at contact."""
     scene = base.with_(model="kelvin-voigt", angle=0.0)
     ref = reference(scene).outputs
     rows = []
-    for method in METHODS:
+    for method in methods:
         for rtol in (1e-4, 1e-6, 1e-8, 1e-10):
             rows.append(_package_point("onset", scene, ref, method, "rtol", rtol, rtol=rtol,
                                        variant="start at contact (package)"))
@@ -147,14 +147,14 @@ def _friction_ode(scene: Scene, law, method: str, rtol: float):
     return sol.y_events[0][0][2], sol.nfev
 
 
-def grip(base: Scene, angle: float = 50.0) -> list[dict]:
+def grip(base: Scene, methods=("RK45", "DOP853", "Radau", "LSODA"), angle: float = 50.0) -> list[dict]:
     """Coulomb friction at grip: error in the final v_t against vt0 / (1 + alpha), and cost."""
     scene = base.with_(angle=angle)
     exact = scene.v_tangent / (1 + scene.inertia_factor)
     laws = [("sign(slip)", None, np.sign)]
     laws += [("tanh(slip/eps)", eps, (lambda e: lambda s: math.tanh(s / e))(eps)) for eps in 10.0 ** -np.arange(1, 7)]
     rows = []
-    for method in ("RK45", "DOP853", "Radau", "LSODA"):
+    for method in methods:
         for variant, eps, law in laws:
             try:
                 seconds, (v_t, nfev) = median_time(lambda: _friction_ode(scene, law, method, 1e-8), budget=0.2)
@@ -182,12 +182,12 @@ def _step_end_separation(scene: Scene, method: str, rtol: float) -> tuple[float,
     return float(sol.t[ended[0]]), sol.nfev
 
 
-def separation(base: Scene) -> list[dict]:
+def separation(base: Scene, methods=METHODS) -> list[dict]:
     """t_f error at loose tolerances: step-end detection vs root finding on the dense output."""
     scene = base.with_(angle=0.0)
     exact = reference(scene).outputs["t_f"]
     rows = []
-    for method in METHODS:
+    for method in methods:
         for rtol in (1e-2, 1e-3, 1e-4, 1e-6):
             t_f, nfev = _step_end_separation(scene, method, rtol)
             rows.append(_row("separation", "first step end past separation", method, "rtol", rtol,
@@ -203,11 +203,11 @@ def _unguarded_modified(delta, delta_dot, p):
     return p.k * delta + p.b * delta_dot * (1.0 - np.exp(-p.ramp * delta / p.radius))
 
 
-def past_separation(base: Scene, window: float = 0.2) -> list[dict]:
+def past_separation(base: Scene, methods=METHODS, window: float = 0.2) -> list[dict]:
     """The unguarded modified law over a fixed window [0, window] s: when does it overflow?"""
     scene = base.with_(angle=0.0)
     rows = []
-    for method in METHODS:
+    for method in methods:
         reached = [0.0]
 
         def rhs(t, z):
@@ -237,6 +237,11 @@ STUDIES = {"stiffness": stiffness, "onset": onset, "grip": grip, "separation": s
            "past-separation": past_separation}
 
 
-def stability(base: Scene, studies=tuple(STUDIES)) -> pd.DataFrame:
-    """All studies on the chapter's scene ``base`` (angle and model set per study)."""
-    return pd.DataFrame([row for name in studies for row in STUDIES[name](base)])
+def stability(base: Scene, studies=tuple(STUDIES), methods=METHODS) -> pd.DataFrame:
+    """The ``studies`` on the chapter's scene ``base`` (angle and model set per study), for ``methods``
+    (the grip study keeps to the explicit and implicit methods among them that it contrasts)."""
+    rows = []
+    for name in studies:
+        chosen = [m for m in methods if m in ("RK45", "DOP853", "Radau", "LSODA")] if name == "grip" else methods
+        rows += STUDIES[name](base, chosen)
+    return pd.DataFrame(rows)

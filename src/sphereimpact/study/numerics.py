@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import pandas as pd
-
 from ..numerics.ablation import ablation
-from ..numerics.bench import speedups
+from ..numerics.bench import bench_scenes, simulate_vs_handwritten
 from ..numerics.stability import stability
 from ..numerics.workprecision import work_precision
 from .config import scene_for
@@ -21,22 +19,38 @@ def chapter_cases(config: dict, models=("modified", "kelvin-voigt")) -> dict:
 
 
 def write_work_precision(config: dict, csv_path: str) -> None:
-    frame = work_precision(chapter_cases(config))
+    numerics = config["numerics"]
+    frame = work_precision(chapter_cases(config), numerics["tolerances"], numerics["methods"])
     frame["case"] = frame["case"].str.split("/").str[0]
     frame.to_csv(csv_path, **CSV)
 
 
-def write_bench(work_precision_csv: str, csv_path: str) -> None:
-    speedups(pd.read_csv(work_precision_csv)).to_csv(csv_path, **CSV)
+def write_bench(config: dict, csv_path: str) -> None:
+    """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain."""
+    frame = simulate_vs_handwritten(bench_scenes(chapter_cases(config)), config["bench"]["repeats"])
+    frame.to_csv(csv_path, **CSV)
 
 
 def write_stability(config: dict, csv_path: str) -> None:
     """The failure-mode studies on the first configured case's ball (each study sets its own angle)."""
     base = scene_for(config, next(iter(config["cases"])), "modified", "force")
-    stability(base).to_csv(csv_path, **CSV)
+    numerics = config["numerics"]
+    stability(base, numerics["stability"], numerics["methods"]).to_csv(csv_path, **CSV)
 
 
 def write_ablation(config: dict, published_path: str, csv_path: str) -> None:
     cases = {case: scene_for(config, case, config["primary"]["model"], config["primary"]["separation"])
              for case in config["cases"]}
     ablation(cases, load_published(published_path)).to_csv(csv_path, **CSV)
+
+
+def write_study(rule: str, config: dict, csv_path: str, published: str | None = None) -> None:
+    """The study of workflow rule ``rule`` (``work_precision``, ``stability`` or ``ablation``)."""
+    if rule == "ablation":
+        write_ablation(config, published, csv_path)
+    elif rule == "work_precision":
+        write_work_precision(config, csv_path)
+    elif rule == "stability":
+        write_stability(config, csv_path)
+    else:
+        raise ValueError(f"no numerical study for rule {rule!r}")
