@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
@@ -22,22 +24,40 @@ def grip_boundary(table: pd.DataFrame) -> float | None:
     return float(np.interp(0.0, g.iloc[i:i + 2], table["angle"].iloc[i:i + 2]))
 
 
-def spin_map(angle_speed_csv: str, published_path: str, speed: float, outputs) -> None:
-    """Spin and rebound contact-point slip against impact angle at one speed, with the grip/slide boundary."""
+def printed(published_path: str, config: dict, quantity: str) -> list[dict]:
+    """The chapter's printed values of ``quantity`` for the configured cases, each with its case's angle
+    [deg] and normal approach speed v_n [m/s] (from the config: the chapter's speed and the case's angle)."""
+    cases = config["cases"]
+    out = []
+    for entry in load_published(published_path):
+        if entry["quantity"] == quantity and entry["case"] in cases:
+            angle = float(cases[entry["case"]]["angle"])
+            out.append(entry | {"angle": angle, "v_n": config["speed"] * math.cos(math.radians(angle))})
+    return out
+
+
+def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs) -> None:
+    """Spin and rebound contact-point slip against impact angle at ``config['sweep']['map_speed']``, with
+    the grip/slide boundary; the chapter's printed values are marked when that is the chapter's speed."""
+    speed = config["sweep"]["map_speed"]
     table = pd.read_csv(angle_speed_csv)
     table = table[np.isclose(table["speed"], speed)].sort_values("angle")
-    pub = {e["quantity"]: e["value"] for e in load_published(published_path) if e["case"] == "oblique60"}
+    if table.empty:
+        raise ValueError(f"sweep.map_speed = {speed:g} m/s is not on the sweep's speed grid: the spin map "
+                         "would be empty")
+    same_speed = math.isclose(speed, config["speed"])
     boundary = grip_boundary(table)
     with plt.rc_context(RC | {"figure.figsize": (6.4, 6.4)}):
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True)
         top.plot(table["angle"], table["omega_f"], label="spin after impact $\\omega_f$")
         bottom.plot(table["angle"], table["ve_t"], color="tab:orange", label="contact-point slip $v_{E,t}$")
-        for ax, key, label in ((top, "omega_f", "chapter, 60°: $\\omega_f$"), (bottom, "ve_t", "chapter, 60°: $v_{E,t}$")):
+        for ax, key in ((top, "omega_f"), (bottom, "ve_t")):
             if boundary is not None:
                 ax.axvline(boundary, color="gray", linestyle="--",
                            label=f"grip/slide boundary {boundary:.1f}°: tan β = (1 + 1/α) μ (1 + e)")
-            if key in pub:
-                ax.plot([60.0], [pub[key]], label=label, **PUBLISHED_STYLE)
+            for entry in printed(published_path, config, key) if same_speed else []:
+                ax.plot([entry["angle"]], [entry["value"]], label=f"chapter, {entry['angle']:g}°: {entry['printed']}",
+                        **PUBLISHED_STYLE)
             ax.legend(loc="best")
         top.set(ylabel="spin [rad/s]", title=f"Spin and slip against impact angle at {speed:g} m/s")
         bottom.set(xlabel="inclination of the flat β [deg]", ylabel="slip [m/s]")
@@ -45,16 +65,16 @@ def spin_map(angle_speed_csv: str, published_path: str, speed: float, outputs) -
         save(fig, outputs)
 
 
-def cor_speed(speed_csv: str, outputs) -> None:
-    """COR against impact speed for both force laws (normal impact)."""
+def cor_speed(speed_csv: str, published_path: str, config: dict, outputs) -> None:
+    """COR against normal impact speed for both force laws, with the chapter's printed CORs at their v_n."""
     table = pd.read_csv(speed_csv)
     with plt.rc_context(RC):
         fig, ax = plt.subplots()
         for model, part in table.groupby("model", sort=True):
             ax.plot(part["speed"], part["cor"], "--" if model == "kelvin-voigt" else "-", label=model)
-        ax.plot([3.0], [0.85], label="chapter, 0°: 0.85 at v_n = 3 m/s", **PUBLISHED_STYLE)
-        ax.plot([1.5], [0.86], label="chapter, 60°: 0.86 at v_n = 1.5 m/s", color="purple", marker="x",
-                markersize=9, mew=2, linestyle="none")
+        for entry, color in zip(printed(published_path, config, "cor"), ("crimson", "purple", "teal", "olive")):
+            ax.plot([entry["v_n"]], [entry["value"]], **(PUBLISHED_STYLE | {"color": color}),
+                    label=f"chapter, {entry['angle']:g}°: {entry['value']:g} at v_n = {entry['v_n']:.3g} m/s")
         ax.set(xscale="log", xlabel="normal approach speed v_n [m/s]", ylabel="coefficient of restitution [-]",
                title="COR against speed: constant for eq. 4.1, not for eq. 4.2")
         ax.legend(loc="best")
@@ -75,3 +95,15 @@ def contact_speed(speed_csv: str, outputs) -> None:
         top.legend()
         fig.tight_layout()
         save(fig, outputs)
+
+
+def draw_map(name: str, angle_speed_csv: str, speed_csv: str, published_path: str, config: dict, outputs) -> None:
+    """Draw sweep map ``name`` (``spin_map``, ``cor_speed`` or ``contact_speed``) to ``outputs``."""
+    if name == "spin_map":
+        spin_map(angle_speed_csv, published_path, config, outputs)
+    elif name == "cor_speed":
+        cor_speed(speed_csv, published_path, config, outputs)
+    elif name == "contact_speed":
+        contact_speed(speed_csv, outputs)
+    else:
+        raise ValueError(f"no sweep map named {name!r}")

@@ -143,39 +143,105 @@ def compare(config: dict, published: list[dict], runs: list[dict]) -> tuple[pd.D
     return pd.DataFrame(rows), pd.DataFrame(tests)
 
 
-def findings(config: dict) -> list[str]:
-    """Measured statements about the chapter's claims, one Markdown bullet each."""
-    out = []
+#: A force counts as pulling only when P_min < -PULL_RESOLUTION * P_max: the accuracy every output of the
+#: default solver is held to (work-precision target), far above round-off.  A smaller negative P_min is
+#: the event location's round-off, not tension.
+PULL_RESOLUTION = 1e-9
+
+
+def pulls(force_min: float, force_max: float) -> bool:
+    """True when the force pulls beyond the solver's resolution (see :data:`PULL_RESOLUTION`)."""
+    return force_min < -PULL_RESOLUTION * force_max
+
+
+#: Display of an output in the findings: (label, scale, unit).
+_SHOW = {"t_m": ("t_m", 1e3, "ms"), "delta_m": ("δ_m", 1e3, "mm"), "t_f": ("t_f", 1e3, "ms"),
+         "vc_t": ("v_C,t", 1.0, "m/s"), "vc_n": ("v_C,n", 1.0, "m/s"), "ve_t": ("v_E,t", 1.0, "m/s"),
+         "ve_n": ("v_E,n", 1.0, "m/s"), "omega_f": ("ω_f", 1.0, "rad/s"), "cor": ("COR", 1.0, "")}
+
+
+def _tension(config: dict, case: str) -> str:
+    scene = scene_for(config, case, "modified", "penetration")
+    res = simulate(scene, options_for(config, scene))
+    limit = scene.k * scene.radius / (scene.ramp * scene.b)
+    predicted = res.vc_n > limit  # near delta = 0, P ~ delta (k + c b delta_dot / R)
+    found = pulls(res.force_min, res.force_max)
+    verdict = (f"pulls: P_min = {res.force_min:.4g} N" if found else
+               f"does not pull: P_min = {res.force_min:.3g} N is round-off (above −{PULL_RESOLUTION:g} × P_max "
+               f"= {-PULL_RESOLUTION * res.force_max:.3g} N)")
+    agree = "as" if predicted == found else "**unlike** what"
+    return (f"**Tension, modified law, {case}** ({scene.angle:g}°): with contact held until δ = 0 the force "
+            f"{verdict}. Near δ = 0, P ≈ δ (k + c b δ̇ / R), negative once the rebound speed exceeds kR/(c b) "
+            f"= {limit:.3g} m/s; the rebound is {res.vc_n:.4g} m/s, {'above' if predicted else 'below'} it, "
+            f"{agree} the force shows.")
+
+
+def _cor(config: dict, published: list[dict]) -> str:
+    separation = config["primary"]["separation"]
+    parts, spread = [], {}
+    for model in ("kelvin-voigt", "modified"):
+        values = []
+        for case in config["cases"]:
+            scene = scene_for(config, case, model, separation)
+            cor = simulate(scene, options_for(config, scene)).cor
+            values.append(cor)
+            parts.append(f"{model}, {case} (v_n = {scene.v_normal:.3g} m/s): {cor:.4f}")
+        spread[model] = max(values) - min(values)
+    printed = ", ".join(f"{e['value']:g} ({e['case']})" for e in published if e["quantity"] == "cor")
+    linear_same = spread["kelvin-voigt"] < PULL_RESOLUTION
+    if linear_same and spread["modified"] > PULL_RESOLUTION:
+        why = (f"so the chapter's two printed CORs ({printed}) differ because the modified law's COR depends on "
+               "v_n, and its cases approach at different v_n")
+    else:
+        why = f"against the chapter's printed CORs ({printed})"
+    return ("**COR and approach speed**: " + "; ".join(parts) + ". Across these normal approach speeds the "
+            f"linear law's COR {'does not change' if linear_same else 'changes'} (spread "
+            f"{spread['kelvin-voigt']:.2g}) and the modified law's changes by {spread['modified']:.4f}, {why}.")
+
+
+def _gravity(config: dict, table: pd.DataFrame, tests: pd.DataFrame) -> str:
+    primary = config["primary"]
+    parts = []
     for case in config["cases"]:
-        scene = scene_for(config, case, "modified", "penetration")
-        res = simulate(scene, options_for(config, scene))
-        limit = scene.k * scene.radius / (scene.ramp * scene.b)
-        sign = "pulls" if res.force_min < 0 else "never pulls"
-        out.append(
-            f"**Negative force, modified model, {case}** ({scene.angle:g}°): with contact held until δ = 0 the "
-            f"force {sign} (P_min = {res.force_min:.4g} N). Near δ = 0, P ≈ δ (k + c b δ̇ / R), which is "
-            f"negative when the rebound speed exceeds kR/(c b) = {limit:.3g} m/s; here it is {res.vc_n:.4g} m/s.")
-    cors = []
-    for case in config["cases"]:
-        for model in ("kelvin-voigt", "modified"):
-            scene = scene_for(config, case, model, config["primary"]["separation"])
-            cors.append(f"{model} {case}: {simulate(scene, options_for(config, scene)).cor:.4f}")
-    out.append("**COR depends on the approach speed only for the modified model**: " + "; ".join(cors)
-               + ". The linear law's COR is the same for every speed, so the chapter's two values "
-                 "(0.85, 0.86) come from the modified law at v_n = 3 and 1.5 m/s.")
-    scene = scene_for(config, "normal" if "normal" in config["cases"] else next(iter(config["cases"])),
-                      config["primary"]["model"], config["primary"]["separation"])
-    base, heavy = simulate(scene), simulate(scene.with_(gravity=STANDARD_GRAVITY))
-    changes = ", ".join(f"{k} {abs(getattr(heavy, k) / getattr(base, k) - 1):.2%}"
-                        for k in ("delta_m", "t_m", "t_f", "cor"))
-    out.append(f"**Gravity** changes the {scene.angle:g}° outputs by: {changes}; the chapter's g = 0 is what "
-               "its printed δ_m reproduces.")
+        scene = scene_for(config, case, primary["model"], primary["separation"])
+        base = simulate(scene, options_for(config, scene))
+        heavy = simulate(scene.with_(gravity=STANDARD_GRAVITY), options_for(config, scene))
+        changes = {k: getattr(heavy, k) / getattr(base, k) - 1 for k in _SHOW if getattr(base, k) != 0}
+        largest = max(changes, key=lambda k: abs(changes[k]))
+        listed = ", ".join(f"{_SHOW[k][0]} {v:+.2%}" for k, v in changes.items())
+        parts.append(f"{case} ({scene.angle:g}°): {listed} (largest: {_SHOW[largest][0]}, "
+                     f"{getattr(base, largest) * _SHOW[largest][1]:.4g} → "
+                     f"{getattr(heavy, largest) * _SHOW[largest][1]:.4g} {_SHOW[largest][2]})")
+    moved = []
+    for _, row in table.iterrows():
+        with_g = tests[(tests["id"] == row["id"]) & (tests["hypothesis"] == "gravity")]
+        if len(with_g) and with_g["status"].iloc[0] != row["status"]:
+            moved.append(f"{row['id']} ({row['status']} → {with_g['status'].iloc[0]})")
+    verdict = ("gravity changes the status of " + "; ".join(moved)) if moved else \
+        "gravity changes the status of no printed value"
+    return (f"**Gravity** (g = {STANDARD_GRAVITY} m/s²) changes the outputs by: " + "; ".join(parts)
+            + f". Against the printed values, {verdict}.")
+
+
+def findings(config: dict, published: list[dict], table: pd.DataFrame, tests: pd.DataFrame) -> list[str]:
+    """Measured statements about the chapter's claims, one Markdown bullet each, every number computed.
+
+    Parameters
+    ----------
+    table, tests : DataFrame
+        The replication and hypothesis tables of :func:`compare`.
+    """
+    out = [_tension(config, case) for case in config["cases"]]
+    out.append(_cor(config, published))
+    out.append(_gravity(config, table, tests))
     return out
 
 
-def write_report(config: dict, published_path: str, json_paths, csv_path: str, md_path: str) -> None:
-    """Write ``replication.csv`` and ``replication.md``."""
-    table, tests = compare(config, load_published(published_path), load_runs(json_paths))
+def write_report(config: dict, published_path: str, json_paths, csv_path: str, md_path: str,
+                 findings_path: str | None = None) -> None:
+    """Write ``replication.csv``, ``replication.md`` and (optionally) the findings alone as Markdown bullets."""
+    published = load_published(published_path)
+    table, tests = compare(config, published, load_runs(json_paths))
     table.to_csv(csv_path, index=False, float_format="%.12g")
     primary = config["primary"]
     counts = table["status"].value_counts()
@@ -197,6 +263,10 @@ def write_report(config: dict, published_path: str, json_paths, csv_path: str, m
     pivot = grid.pivot(index="id", columns="hypothesis", values="cell").reindex(table["id"]).reset_index()
     pivot = pivot.fillna("")
     lines.append(markdown_table(pivot, {c: (c, None) for c in ["id", *[h for h in HYPOTHESES if h in pivot]]}))
-    lines += ["\n## Findings\n", "\n".join(f"- {f}" for f in findings(config)) + "\n"]
+    bullets = "\n".join(f"- {f}" for f in findings(config, published, table, tests)) + "\n"
+    lines += ["\n## Findings\n", bullets]
     with open(md_path, "w") as handle:
         handle.write("\n".join(lines))
+    if findings_path is not None:
+        with open(findings_path, "w") as handle:
+            handle.write(bullets)
