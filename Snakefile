@@ -1,7 +1,15 @@
 # Replication of Chapter 4 (oblique impact of an elastic sphere on a rigid flat).
 # `snakemake --cores 2` regenerates every table and figure; see README.md.
+# `snakemake --cores 2 --report results/report.html` then builds the HTML report of every figure and table.
+from snakemake.utils import min_version
+
+min_version("9.0")
+
 
 configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
@@ -25,5 +33,7 @@ rule all:
         expand("paper_figures/{study}.png", study=["work_precision", "stability"]),
         expand("paper_figures/{map}.png", map=["spin_map", "cor_speed", "contact_speed"]),
         "results/bench_sweep.csv",
+        "results/readme/replication.md",
+        "results/readme/speed.md",
         expand("results/notebooks/{name}.html", name=NOTEBOOKS),
     default_target: True

@@ -1,17 +1,26 @@
-"""The pipeline, run for real in a temporary copy: outputs, idempotence, determinism, config errors, lint, figures."""
+"""The pipeline, run for real in a temporary copy on the small test config (config/test.yaml): outputs,
+idempotence, determinism, what reruns when what changes, config errors, logs, lint, report, figures.
+
+The full studies (every method, tolerance and benchmark size) run once, in `.ci/run`.
+"""
 
 import hashlib
+import os
 import re
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
 from matplotlib.testing.compare import compare_images
 
 ROOT = Path(__file__).resolve().parents[1]
+TEST_CONFIG = "config/test.yaml"
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
+           "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
+           "results/readme/speed.md",
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
            "paper_figures/work_precision.png", "paper_figures/stability.png",
@@ -23,21 +32,50 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
              for ext in ("csv", "json")]]
 #: Pixel tolerance (RMS on 0-255) for the committed figures: fonts and anti-aliasing only.
 FIGURE_TOLERANCE = 2.0
+IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
+#: Rules whose jobs are benchmarks or heavy studies.
+HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard")
 
 
-def snakemake(cwd, *args):
-    return subprocess.run(["snakemake", "--cores", "2", *args], cwd=cwd, capture_output=True, text=True)
+def snakemake(cwd, *args, configfiles=(), path=()):
+    """Run snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
+    copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path."""
+    env = os.environ | {"PYTHONPATH": os.pathsep.join([*map(str, path), str(Path(cwd) / "src")])}
+    return subprocess.run(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
+                          capture_output=True, text=True, env=env)
+
+
+def planned(run) -> dict:
+    """Rule -> job count from a dry run's job table."""
+    return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", run.stdout + run.stderr, re.M)}
 
 
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):
     work = tmp_path_factory.mktemp("pipeline")
-    for item in ("Snakefile", "workflow", "config", "notebooks"):
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
         src = ROOT / item
-        (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item)
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
+                                                            **({"ignore": IGNORE} if src.is_dir() else {}))
     run = snakemake(work)
     assert run.returncode == 0, run.stderr[-3000:]
     return work
+
+
+@pytest.fixture
+def scratch(workdir, tmp_path):
+    """A copy of the finished pipeline that a test may break."""
+    copy = tmp_path / "copy"
+    shutil.copytree(workdir, copy, ignore=shutil.ignore_patterns(".snakemake"))
+    shutil.copytree(workdir / ".snakemake", copy / ".snakemake", ignore=shutil.ignore_patterns("conda", "log"))
+    return copy
+
+
+def edit(path: Path) -> None:
+    """Change a source file's content (a comment) and make it newer than every output."""
+    path.write_text(path.read_text() + "\n# edited by the test\n")
+    stat = path.stat()
+    os.utime(path, ns=(stat.st_atime_ns, time.time_ns() + 10**12))
 
 
 def digest(path):
@@ -50,13 +88,18 @@ def test_every_output_exists_and_is_not_empty(workdir):
         assert path.is_file() and path.stat().st_size > 0, name
 
 
+def test_sweep_shards_are_temporary(workdir):
+    assert not list((workdir / "results/sweep/shards").glob("*.csv"))
+
+
 def test_second_run_does_nothing(workdir):
     run = snakemake(workdir, "-n")
     assert run.returncode == 0 and "Nothing to be done" in run.stdout + run.stderr
 
 
 def test_tables_are_byte_identical_when_rebuilt(workdir):
-    tables = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md"]
+    tables = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
+              "results/replication_findings.md"]
     before = {t: digest(workdir / t) for t in tables}
     run = snakemake(workdir, "--forcerun", "simulate", "--until", "tabulate", "replicate")
     assert run.returncode == 0, run.stderr[-2000:]
@@ -66,13 +109,35 @@ def test_tables_are_byte_identical_when_rebuilt(workdir):
 def test_changing_one_case_reruns_only_its_jobs(workdir, tmp_path):
     other = tmp_path / "other.yaml"
     other.write_text("cases:\n  normal: {angle: 0.0}\n  oblique60: {angle: 45.0}\n")
-    run = snakemake(workdir, "-n", "--configfile", str(other))
-    text = run.stdout + run.stderr
+    run = snakemake(workdir, "-n", configfiles=[str(other)])
+    jobs = planned(run)
     assert run.returncode == 0
-    assert re.search(r"^simulate\s+2$", text, re.M)  # the two oblique60 runs, not the normal ones
-    assert re.search(r"^figure\s+4$", text, re.M)  # figs 4.3, 4.5, 4.6, 4.8 only
-    assert not re.search(r"^stability\s", text, re.M)  # the stability study uses the normal case only
-    assert "wildcards: case=normal" not in text
+    assert jobs.get("simulate") == 2  # the two oblique60 runs, not the normal ones
+    assert jobs.get("figure") == 4  # figs 4.3, 4.5, 4.6, 4.8 only
+    assert "stability" not in jobs and "bench_sweep" not in jobs and "sweep_shard" not in jobs
+    assert "wildcards: case=normal" not in run.stdout + run.stderr
+
+
+def test_samples_rerun_the_histories_not_the_benchmarks(workdir):
+    run = snakemake(workdir, "-n", "--config", "samples=201")
+    jobs = planned(run)
+    assert run.returncode == 0
+    assert jobs.get("simulate") == 4 and jobs.get("figure") == 7
+    assert not set(HEAVY) & set(jobs), jobs
+
+
+def test_editing_a_drawing_module_redraws_without_recomputing(scratch):
+    edit(scratch / "src/sphereimpact/figures/style.py")
+    jobs = planned(snakemake(scratch, "-n"))
+    assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 2 and jobs.get("sweep_map") == 3
+    assert not {"simulate", *HEAVY} & set(jobs), jobs
+
+
+def test_editing_the_physics_reruns_what_uses_it(scratch):
+    edit(scratch / "src/sphereimpact/normal.py")
+    jobs = planned(snakemake(scratch, "-n"))
+    assert jobs.get("simulate") == 4
+    assert {"work_precision", "stability", "bench", "sweep_shard", "speed_table", "bench_sweep"} <= set(jobs)
 
 
 @pytest.mark.parametrize("args, message", [
@@ -84,6 +149,36 @@ def test_bad_config_stops_before_any_job(workdir, args, message):
     run = snakemake(workdir, "-n", *args)
     assert run.returncode != 0
     assert message in run.stdout + run.stderr
+
+
+def test_a_failing_job_writes_its_traceback_to_its_log(scratch, tmp_path):
+    import yaml
+
+    sweep = yaml.safe_load((scratch / TEST_CONFIG).read_text())["sweep"]
+    assert sweep["speed"] == "1:5:2"
+    off_grid = tmp_path / "off_grid.yaml"  # a config file replaces whole sections: give all of `sweep`
+    off_grid.write_text(yaml.safe_dump({"sweep": sweep | {"map_speed": 2.0}}))
+    run = snakemake(scratch, "paper_figures/spin_map.png", configfiles=[str(off_grid)])
+    assert run.returncode != 0
+    log = (scratch / "logs/figures/spin_map.log").read_text()
+    assert "Traceback (most recent call last)" in log
+    assert "map_speed = 2 m/s is not on the sweep's speed grid" in log
+
+
+def test_parsing_the_workflow_does_not_import_matplotlib(workdir, tmp_path):
+    blocker = tmp_path / "blocker" / "matplotlib"
+    blocker.mkdir(parents=True)
+    (blocker / "__init__.py").write_text("raise ImportError('matplotlib imported while parsing the Snakefile')\n")
+    run = snakemake(workdir, "-n", "--forceall", path=[blocker.parent])
+    assert run.returncode == 0, (run.stdout + run.stderr)[-2000:]
+
+
+def test_html_report_has_every_figure_and_table(scratch):
+    run = snakemake(scratch, "--report", "results/report.html")
+    assert run.returncode == 0, run.stderr[-2000:]
+    html = (scratch / "results/report.html").read_text(errors="replace")
+    for name in ["fig4_7.png", "work_precision.png", "spin_map.png", "replication.csv", "bench_sweep.csv"]:
+        assert name in html, name
 
 
 def test_lint_is_clean(workdir):
@@ -108,7 +203,7 @@ def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
     from sphereimpact.sweep.engine import sweep
     from sphereimpact.sweep.io import write_table
 
-    config = yaml.safe_load((workdir / "config" / "config.yaml").read_text())
+    config = yaml.safe_load((workdir / "results" / "config.yaml").read_text())
     assert config["sweep"]["shards"] >= 2
     whole = tmp_path / "whole.csv"
     write_table(sweep(angle_speed_scenes(config), target=config["sweep"]["target"]), str(whole))
@@ -118,8 +213,7 @@ def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
 def test_slurm_profile_dry_run(workdir):
     """The cluster profile plans every job (where the SLURM executor plugin is installed)."""
     pytest.importorskip("snakemake_executor_plugin_slurm")
-    run = subprocess.run(["snakemake", "-n", "--forceall", "--profile", "workflow/profiles/slurm"], cwd=workdir,
-                         capture_output=True, text=True)
+    run = snakemake(workdir, "-n", "--forceall", "--profile", "workflow/profiles/slurm")
     text = run.stdout + run.stderr
     assert run.returncode == 0, text[-2000:]
     assert re.search(r"^sweep_shard\s+2$", text, re.M)

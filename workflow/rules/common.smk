@@ -1,12 +1,15 @@
 # Validate the configuration before any job runs; helpers shared by the rules.
+import os
+
 from snakemake.utils import validate
 
-from sphereimpact.figures.paper import FIGURES
+from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.study.config import check_config
+from sphereimpact.study.workflow import config_subset, file_sources
 
 
 # Fail at once, naming every bad key; then let snakemake fill the schema's defaults.
-check_config(config, workflow.source_path("../../config/schema.yaml"))
+check_config(config, f"{workflow.basedir}/config/schema.yaml")
 validate(config, schema="../../config/schema.yaml")
 
 CASES = list(config["cases"])
@@ -15,9 +18,26 @@ PUBLISHED = "config/published.yaml"
 ENV = "../envs/sphereimpact.yaml"
 
 
-def config_for_case(case):
-    """The config restricted to one case, so that editing another case does not rerun a job."""
-    return {k: v for k, v in config.items() if k != "cases"} | {"cases": {case: config["cases"][case]}}
+def params_for(rule, case=None):
+    """Only the config keys the rule's job reads, so that other edits do not rerun it."""
+    return config_subset(config, rule, case)
+
+
+def in_project(paths):
+    """Paths inside the project (an editable install's src/) named relative to it, the others as they are."""
+    base = workflow.basedir + os.sep
+    return sorted({os.path.relpath(p, workflow.basedir) if p.startswith(base) else p for p in paths})
+
+
+def code(*files):
+    """The package sources that project files (scripts, notebooks) run, followed through the package's own
+    imports: editing any of them reruns the job (a rule's script itself is tracked by snakemake)."""
+    return in_project(p for f in files for p in file_sources(f"{workflow.basedir}/{f}"))
+
+
+def notebook_code(wildcards):
+    """The package sources a notebook and its runner import."""
+    return code("workflow/scripts/notebook.py", f"notebooks/{wildcards.name}.py")
 
 
 def run_files(ext):
@@ -28,8 +48,8 @@ def drawable_figures():
     """Chapter figures whose case and force models are configured."""
     return [
         name
-        for name, (_, case, models, _) in FIGURES.items()
-        if case in CASES and all(m in MODELS for m in models)
+        for name, spec in FIGURES.items()
+        if spec.case in CASES and all(m in MODELS for m in spec.models)
     ]
 
 
@@ -39,8 +59,9 @@ def figure_outputs():
 
 #: Notebook -> the results it reads.
 NOTEBOOKS = {
-    "replication": ["results/summary.csv", "results/replication.csv"],
+    "replication": ["results/config.yaml", "results/summary.csv", "results/replication.csv"],
     "numerics": [
+        "results/config.yaml",
         "results/work_precision.csv",
         "results/bench.csv",
         "results/stability.csv",
@@ -49,6 +70,7 @@ NOTEBOOKS = {
         "paper_figures/stability.png",
     ],
     "sweeps": [
+        "results/config.yaml",
         "results/sweep/angle_speed.csv",
         "results/sweep/speed.csv",
         "results/bench_sweep.csv",
@@ -65,5 +87,5 @@ def notebook_inputs(wildcards):
 
 
 def figure_runs(wildcards):
-    _, case, models, _ = FIGURES[wildcards.fig]
-    return [f"results/runs/{case}_{model}.csv" for model in models]
+    spec = FIGURES[wildcards.fig]
+    return [f"results/runs/{spec.case}_{model}.csv" for model in spec.models]

@@ -3,11 +3,12 @@ rule figure:
     input:
         runs=figure_runs,
         published=PUBLISHED,
+        code=code("workflow/scripts/figure.py"),
     output:
-        png="paper_figures/{fig}.png",
+        png=report("paper_figures/{fig}.png", caption="../report/chapter_figure.rst", category="Chapter figures"),
         pdf="paper_figures/{fig}.pdf",
     params:
-        separation=config["figure_separation"],
+        config=params_for("figure"),
     wildcard_constraints:
         fig="fig4_[2-8]",
     log:

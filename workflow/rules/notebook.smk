@@ -3,8 +3,9 @@ rule notebook:
     input:
         notebook="notebooks/{name}.py",
         results=notebook_inputs,
+        code=notebook_code,
     output:
-        html="results/notebooks/{name}.html",
+        html=report("results/notebooks/{name}.html", caption="../report/notebook.rst", category="Notebooks"),
     wildcard_constraints:
         name="|".join(NOTEBOOKS),
     log:

@@ -3,10 +3,12 @@
 
 rule work_precision:
     """Every solve_ivp method x body x tolerance (plus the closed form) against reference solutions."""
+    input:
+        code=code("workflow/scripts/numerics.py"),
     output:
-        csv="results/work_precision.csv",
+        csv=report("results/work_precision.csv", caption="../report/work_precision.rst", category="Numerics"),
     params:
-        config=config,
+        config=params_for("work_precision"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/work_precision.log",
@@ -17,11 +19,13 @@ rule work_precision:
 
 
 rule bench:
-    """Speed-up of the reduced model over the planar one, and of the closed form, at equal accuracy."""
+    """simulate against a hand-written solve_ivp script, and the reduced model against the planar one."""
     input:
-        csv="results/work_precision.csv",
+        code=code("workflow/scripts/bench.py"),
     output:
-        csv="results/bench.csv",
+        csv=report("results/bench.csv", caption="../report/bench.rst", category="Numerics"),
+    params:
+        config=params_for("bench"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/bench.log",
@@ -33,10 +37,12 @@ rule bench:
 
 rule stability:
     """Five failure modes measured for every method beside the package's default path."""
+    input:
+        code=code("workflow/scripts/numerics.py"),
     output:
-        csv="results/stability.csv",
+        csv=report("results/stability.csv", caption="../report/stability.rst", category="Numerics"),
     params:
-        config=config_for_case(CASES[0]),
+        config=params_for("stability", CASES[0]),
     log:
         "logs/stability.log",
     conda:
@@ -49,10 +55,11 @@ rule ablation:
     """Change in every output when the model adds or drops one thing."""
     input:
         published=PUBLISHED,
+        code=code("workflow/scripts/numerics.py"),
     output:
-        csv="results/ablation.csv",
+        csv=report("results/ablation.csv", caption="../report/ablation.rst", category="Numerics"),
     params:
-        config=config,
+        config=params_for("ablation"),
     log:
         "logs/ablation.log",
     conda:
@@ -65,8 +72,9 @@ rule numerics_figure:
     """Work-precision and stability charts from their CSV files."""
     input:
         csv="results/{study}.csv",
+        code=code("workflow/scripts/numerics_figure.py"),
     output:
-        png="paper_figures/{study}.png",
+        png=report("paper_figures/{study}.png", caption="../report/numerics_figure.rst", category="Numerics"),
     wildcard_constraints:
         study="work_precision|stability",
     log:

@@ -2,8 +2,9 @@ rule tabulate:
     """Summary table: one row per case x force model x separation criterion."""
     input:
         runs=run_files("json"),
+        code=code("workflow/scripts/tabulate.py"),
     output:
-        csv="results/summary.csv",
+        csv=report("results/summary.csv", caption="../report/summary.rst", category="Replication"),
         md="results/summary.md",
     log:
         "logs/tabulate.log",
@@ -18,14 +19,53 @@ rule replicate:
     input:
         runs=run_files("json"),
         published=PUBLISHED,
+        code=code("workflow/scripts/replicate.py"),
     output:
-        csv="results/replication.csv",
-        md="results/replication.md",
+        csv=report("results/replication.csv", caption="../report/replication.rst", category="Replication"),
+        md=report("results/replication.md", caption="../report/replication_md.rst", category="Replication"),
+        findings="results/replication_findings.md",
     params:
-        config=config,
+        config=params_for("replicate"),
     log:
         "logs/replicate.log",
     conda:
         ENV
     script:
         "../scripts/replicate.py"
+
+
+rule readme_snippets:
+    """The README's generated blocks (replication table, speed table), from the result files."""
+    input:
+        replication="results/replication.csv",
+        findings="results/replication_findings.md",
+        bench="results/bench.csv",
+        bench_sweep="results/bench_sweep.csv",
+        code=code("workflow/scripts/readme_snippets.py"),
+    output:
+        replication="results/readme/replication.md",
+        speed="results/readme/speed.md",
+    params:
+        config=params_for("readme"),
+    log:
+        "logs/readme_snippets.log",
+    conda:
+        ENV
+    script:
+        "../scripts/readme_snippets.py"
+
+
+rule used_config:
+    """The configuration this run used (validated, defaults filled in), for the notebooks to read."""
+    input:
+        code=code("workflow/scripts/used_config.py"),
+    output:
+        yaml=report("results/config.yaml", caption="../report/used_config.rst", category="Replication"),
+    params:
+        config=config,
+    log:
+        "logs/used_config.log",
+    conda:
+        ENV
+    script:
+        "../scripts/used_config.py"

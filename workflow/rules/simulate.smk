@@ -1,10 +1,17 @@
 rule simulate:
     """One impact per case x force model, under every configured separation criterion."""
+    input:
+        code=code("workflow/scripts/simulate.py"),
     output:
-        csv="results/runs/{case}_{model}.csv",
+        csv=report(
+            "results/runs/{case}_{model}.csv",
+            caption="../report/run.rst",
+            category="Runs",
+            labels={"case": "{case}", "model": "{model}"},
+        ),
         json="results/runs/{case}_{model}.json",
     params:
-        config=lambda wildcards: config_for_case(wildcards.case),
+        config=lambda wildcards: params_for("simulate", wildcards.case),
     wildcard_constraints:
         case="[A-Za-z][A-Za-z0-9]*",
         model="[a-z-]+",

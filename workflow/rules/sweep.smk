@@ -5,10 +5,12 @@ SHARDS = list(range(config["sweep"]["shards"]))
 
 rule sweep_shard:
     """One contiguous block of the angle x speed sweep (interpolants span the whole sweep)."""
+    input:
+        code=code("workflow/scripts/sweep_shard.py"),
     output:
-        csv="results/sweep/shards/angle_speed_{shard}.csv",
+        csv=temp("results/sweep/shards/angle_speed_{shard}.csv"),
     params:
-        config=config,
+        config=params_for("sweep_shard"),
         shard=lambda wildcards: int(wildcards.shard),
         shards=len(SHARDS),
     wildcard_constraints:
@@ -28,8 +30,9 @@ rule sweep_merge:
     """The shards, concatenated in order: the same table as the sweep run in one piece."""
     input:
         shards=expand("results/sweep/shards/angle_speed_{shard}.csv", shard=SHARDS),
+        code=code("workflow/scripts/sweep_merge.py"),
     output:
-        csv="results/sweep/angle_speed.csv",
+        csv=report("results/sweep/angle_speed.csv", caption="../report/angle_speed.rst", category="Sweeps"),
     log:
         "logs/sweep/merge.log",
     conda:
@@ -40,10 +43,12 @@ rule sweep_merge:
 
 rule speed_table:
     """Normal impact against speed, both force laws: COR, contact time, peak force."""
+    input:
+        code=code("workflow/scripts/speed_table.py"),
     output:
-        csv="results/sweep/speed.csv",
+        csv=report("results/sweep/speed.csv", caption="../report/speed.rst", category="Sweeps"),
     params:
-        config=config,
+        config=params_for("speed_table"),
     log:
         "logs/sweep/speed.log",
     conda:
@@ -58,10 +63,11 @@ rule sweep_map:
         angle_speed="results/sweep/angle_speed.csv",
         speed="results/sweep/speed.csv",
         published=PUBLISHED,
+        code=code("workflow/scripts/sweep_map.py"),
     output:
-        png="paper_figures/{map}.png",
+        png=report("paper_figures/{map}.png", caption="../report/sweep_map.rst", category="Sweeps"),
     params:
-        map_speed=config["sweep"]["map_speed"],
+        config=params_for("sweep_map"),
     wildcard_constraints:
         map="spin_map|cor_speed|contact_speed",
     log:
@@ -74,8 +80,12 @@ rule sweep_map:
 
 rule bench_sweep:
     """Throughput of the sweep engine against per-scene solving at equal accuracy (a benchmark)."""
+    input:
+        code=code("workflow/scripts/bench_sweep.py"),
     output:
-        csv="results/bench_sweep.csv",
+        csv=report("results/bench_sweep.csv", caption="../report/bench_sweep.rst", category="Sweeps"),
+    params:
+        config=params_for("bench_sweep"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
         "logs/bench_sweep.log",

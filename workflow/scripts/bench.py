@@ -1,7 +1,6 @@
-"""Snakemake script: speed-ups at equal accuracy (see rule bench)."""
-import logging
-
+"""Snakemake script: simulate against the hand-written script (see rule bench)."""
 from sphereimpact.study.numerics import write_bench
+from sphereimpact.study.workflow import job_log
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-write_bench(snakemake.input.csv, snakemake.output.csv)
+with job_log(snakemake.log[0], "bench"):
+    write_bench(snakemake.params.config, snakemake.output.csv)

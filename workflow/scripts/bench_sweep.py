@@ -1,7 +1,6 @@
 """Snakemake script: the sweep benchmark (see rule bench_sweep)."""
-import logging
-
+from sphereimpact.study.workflow import job_log
 from sphereimpact.sweep.bench import run
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-run(snakemake.output.csv)
+with job_log(snakemake.log[0], "sweep benchmark"):
+    run(snakemake.output.csv, **snakemake.params.config["bench"])

@@ -1,8 +1,6 @@
 """Snakemake script: execute a jupytext notebook to HTML (see rule notebook)."""
-import logging
-
 from sphereimpact.study.notebook import execute_to_html
+from sphereimpact.study.workflow import job_log
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-logging.info("executing %s", snakemake.input.notebook)
-execute_to_html(snakemake.input.notebook, snakemake.output.html, cwd=".")
+with job_log(snakemake.log[0], f"execute {snakemake.input.notebook}"):
+    execute_to_html(snakemake.input.notebook, snakemake.output.html, cwd=".")

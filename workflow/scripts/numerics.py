@@ -1,11 +1,7 @@
 """Snakemake script: one numerical study (rule work_precision, stability or ablation)."""
-import logging
+from sphereimpact.study.numerics import write_study
+from sphereimpact.study.workflow import job_log
 
-from sphereimpact.study import numerics
-
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-logging.info("running %s", snakemake.rule)
-if snakemake.rule == "ablation":
-    numerics.write_ablation(snakemake.params.config, snakemake.input.published, snakemake.output.csv)
-else:
-    getattr(numerics, f"write_{snakemake.rule}")(snakemake.params.config, snakemake.output.csv)
+with job_log(snakemake.log[0], f"study {snakemake.rule}"):
+    write_study(snakemake.rule, snakemake.params.config, snakemake.output.csv,
+                published=getattr(snakemake.input, "published", None))

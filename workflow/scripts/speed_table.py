@@ -1,7 +1,6 @@
 """Snakemake script: the speed table (see rule speed_table)."""
-import logging
-
 from sphereimpact.study.sweeps import write_speed_table
+from sphereimpact.study.workflow import job_log
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-write_speed_table(snakemake.params.config, snakemake.output.csv)
+with job_log(snakemake.log[0], "speed table"):
+    write_speed_table(snakemake.params.config, snakemake.output.csv)

@@ -1,8 +1,6 @@
 """Snakemake script: concatenate the sweep shards (see rule sweep_merge)."""
-import logging
-
 from sphereimpact.study.sweeps import merge
+from sphereimpact.study.workflow import job_log
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-logging.info("merging %d shards", len(snakemake.input.shards))
-merge(snakemake.input.shards, snakemake.output.csv)
+with job_log(snakemake.log[0], f"merge {len(snakemake.input.shards)} shards"):
+    merge(snakemake.input.shards, snakemake.output.csv)

@@ -1,8 +1,6 @@
 """Snakemake script: one shard of the angle x speed sweep (see rule sweep_shard)."""
-import logging
-
 from sphereimpact.study.sweeps import write_shard
+from sphereimpact.study.workflow import job_log
 
-logging.basicConfig(filename=snakemake.log[0], level=logging.INFO)
-logging.info("shard %d of %d", snakemake.params.shard, snakemake.params.shards)
-write_shard(snakemake.params.config, snakemake.params.shard, snakemake.params.shards, snakemake.output.csv)
+with job_log(snakemake.log[0], f"shard {snakemake.params.shard} of {snakemake.params.shards}"):
+    write_shard(snakemake.params.config, snakemake.params.shard, snakemake.params.shards, snakemake.output.csv)

@@ -92,3 +92,13 @@ def stability_figure(csv_path: str, outputs) -> None:
         ax[1, 2].legend()
         fig.tight_layout()
         save(fig, outputs)
+
+
+def draw_study(study: str, csv_path: str, outputs) -> None:
+    """The chart of numerical study ``study`` (``work_precision`` or ``stability``)."""
+    if study == "work_precision":
+        work_precision_figure(csv_path, outputs)
+    elif study == "stability":
+        stability_figure(csv_path, outputs)
+    else:
+        raise ValueError(f"no chart for study {study!r}")

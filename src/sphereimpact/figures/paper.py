@@ -11,6 +11,7 @@ import matplotlib.pyplot as plt
 import pandas as pd
 
 from ..study.replication import load_published
+from .catalog import FIGURES
 from .style import RC, save
 
 PUBLISHED_STYLE = dict(color="crimson", marker="x", markersize=9, mew=2, linestyle="none")
@@ -100,20 +101,12 @@ def force_deflection(previous_csv: str, modified_csv: str, published: list[dict]
     return fig
 
 
-#: Figure name -> (function, case, runs it reads by model, title).
-FIGURES = {
-    "fig4_2": (displacement, "normal", ("modified",), "Fig. 4.2: displacement of the centre, normal impact"),
-    "fig4_3": (displacement, "oblique60", ("modified",), "Fig. 4.3: displacement of the centre, 60° impact"),
-    "fig4_4": (velocity, "normal", ("modified",), "Fig. 4.4: velocities, normal impact"),
-    "fig4_5": (velocity, "oblique60", ("modified",), "Fig. 4.5: velocities, 60° impact"),
-    "fig4_6": (spin, "oblique60", ("modified",), "Fig. 4.6: angular velocity, 60° impact"),
-    "fig4_7": (force_deflection, "normal", ("kelvin-voigt", "modified"), "Fig. 4.7: normal force, normal impact"),
-    "fig4_8": (force_deflection, "oblique60", ("kelvin-voigt", "modified"), "Fig. 4.8: normal force, 60° impact"),
-}
+#: Drawing function of each figure kind in :data:`sphereimpact.figures.catalog.FIGURES`.
+DRAW = {"displacement": displacement, "velocity": velocity, "spin": spin, "force_deflection": force_deflection}
 
 
 def make_figure(name: str, run_csvs, published_path: str, separation: str, outputs) -> None:
     """Draw chapter figure ``name`` from its run CSVs and save it to every path in ``outputs``."""
-    function, case, _, title = FIGURES[name]
-    fig = function(*run_csvs, load_published(published_path), case, separation, title)
+    spec = FIGURES[name]
+    fig = DRAW[spec.kind](*run_csvs, load_published(published_path), spec.case, separation, spec.title)
     save(fig, outputs)

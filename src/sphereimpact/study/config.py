@@ -69,3 +69,21 @@ def check_config(config: dict, schema_path: str) -> None:
     errors = config_errors(config, schema_path)
     if errors:
         raise ValueError("invalid configuration:\n  " + "\n  ".join(errors))
+
+
+def write_config(config: dict, path: str) -> None:
+    """Write the validated configuration of a run as YAML (keys in the config's order)."""
+    import yaml
+
+    with open(path, "w") as handle:
+        handle.write("# The configuration this run used (validated, schema defaults filled in).\n")
+        yaml.safe_dump(_plain(config), handle, sort_keys=False, allow_unicode=True)
+
+
+def _plain(value):
+    """Snakemake's config as plain dicts and lists (YAML cannot represent its mapping types)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value

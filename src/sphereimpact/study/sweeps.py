@@ -5,10 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..scene import Scene
 from ..solve import simulate
 from ..sweep.engine import grid, parse_range, sweep
 from ..sweep.io import write_table
-from .config import options_for, scene_for, shared_fields
+from .config import options_for, shared_fields
 
 
 def angle_speed_scenes(config: dict) -> pd.DataFrame:
@@ -49,8 +50,8 @@ def write_speed_table(config: dict, csv_path: str) -> None:
         table = sweep(scenes, target=config["sweep"]["target"])
         peaks = []
         for speed in speeds:
-            scene = scene_for(config, next(iter(config["cases"])), model, config["primary"]["separation"],
-                              angle=0.0, speed=float(speed))
+            scene = Scene(**(shared_fields(config) | {"speed": float(speed)}), angle=0.0, model=model,
+                          separation=config["primary"]["separation"])
             peaks.append(simulate(scene, options_for(config, scene)).force_max)
         frames.append(table.assign(force_max=peaks))
     pd.concat(frames, ignore_index=True).to_csv(csv_path, index=False, float_format="%.12g")

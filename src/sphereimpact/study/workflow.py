@@ -1,0 +1,158 @@
+"""What the Snakemake rules need from the package: config subsets, source dependencies, job logs.
+
+Snakemake reruns a job when its ``params`` or its input files change.  So that a change reruns exactly
+what depends on it:
+
+- each rule's ``params`` carry only the config keys its job reads (:data:`RULE_KEYS`,
+  :func:`config_subset`): ``--config samples=201`` reruns the history runs, not the benchmarks;
+- the package modules a job imports, followed through the package's own imports, are inputs of that
+  job (:func:`package_sources`): editing ``normal.py`` reruns every computation that uses it.
+
+A key missing from :data:`RULE_KEYS` cannot go unnoticed: the job that reads it fails with a
+``KeyError`` naming it.
+"""
+
+from __future__ import annotations
+
+import ast
+import contextlib
+import logging
+import traceback
+from functools import cache
+from pathlib import Path
+
+from .config import SCENE_KEYS
+
+_SCENE = tuple(SCENE_KEYS)
+_SOLVER = ("method", "rtol", "atol")
+
+#: Rule -> the config keys its job reads (``a.b`` selects one entry of a section).
+RULE_KEYS = {
+    "simulate": (*_SCENE, *_SOLVER, "separations", "samples"),
+    "replicate": (*_SCENE, *_SOLVER, "cases", "primary"),
+    "figure": ("figure_separation",),
+    "work_precision": (*_SCENE, "cases", "primary", "numerics.methods", "numerics.tolerances"),
+    "stability": (*_SCENE, "numerics.methods", "numerics.stability"),
+    "ablation": (*_SCENE, "cases", "primary"),
+    "sweep_shard": (*_SCENE, "primary", "sweep.angle", "sweep.speed", "sweep.target"),
+    "speed_table": (*_SCENE, *_SOLVER, "models", "primary", "sweep.cor_speed", "sweep.target"),
+    "sweep_map": ("speed", "cases", "sweep.map_speed"),
+    "bench": (*_SCENE, "cases", "primary", "bench.repeats"),
+    "bench_sweep": ("bench",),
+    "readme": ("primary",),
+}
+
+
+def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
+    """The part of ``config`` that ``rule``'s job reads (see :data:`RULE_KEYS`).
+
+    Parameters
+    ----------
+    config : dict
+        The validated configuration (schema defaults filled in).
+    rule : str
+        A key of :data:`RULE_KEYS`.
+    case : str, optional
+        Restrict ``cases`` to this one case (and include it even when the rule lists no ``cases``).
+    """
+    out: dict = {}
+    for key in RULE_KEYS[rule]:
+        section, _, entry = key.partition(".")
+        if entry:
+            out.setdefault(section, {})[entry] = config[section][entry]
+        else:
+            out[key] = config[key]
+    if case is not None:
+        out["cases"] = {case: config["cases"][case]}
+    return out
+
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+
+def _module_file(name: str) -> Path | None:
+    """The source file of ``sphereimpact.<...>`` module ``name``, or None outside the package."""
+    parts = name.split(".")
+    if parts[0] != _PACKAGE.name:
+        return None
+    base = _PACKAGE.joinpath(*parts[1:])
+    for path in (base.with_suffix(".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return None
+
+
+def _imports(path: Path) -> set[str]:
+    """Absolute names of the modules ``path`` imports (relative imports resolved inside the package)."""
+    inside = _PACKAGE in path.parents
+    # the package a relative import starts from: the folder of the file (an __init__.py's own package)
+    package = ".".join(path.parent.relative_to(_PACKAGE.parent).parts) if inside else ""
+    names = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join([*anchor, base] if base else anchor)
+            names.add(base)
+            names.update(f"{base}.{a.name}" for a in node.names)  # `from . import batch` names a module
+    return names
+
+
+@cache
+def _closure(module: str) -> tuple[str, ...]:
+    seen: set[Path] = set()
+    todo = [module]
+    while todo:
+        name = todo.pop()
+        parts = name.split(".")
+        # a module's parent packages run their __init__ first
+        for i in range(1, len(parts) + 1):
+            path = _module_file(".".join(parts[:i]))
+            if path is not None and path not in seen:
+                seen.add(path)
+                todo.extend(_imports(path))
+    return tuple(sorted(str(p) for p in seen))
+
+
+def file_sources(path: str) -> list[str]:
+    """Package source files that the script or notebook at ``path`` runs: every package module it
+    imports, directly or through other package modules (see :func:`package_sources`)."""
+    return package_sources(*_imports(Path(path)))
+
+
+def package_sources(*modules: str) -> list[str]:
+    """Source files of ``modules`` and of every package module they import, directly or not.
+
+    Parameters
+    ----------
+    *modules : str
+        Dotted names, e.g. ``"sphereimpact.study.runs"``.
+
+    Returns
+    -------
+    list of str
+        Absolute paths, sorted; the files of the package as installed (an editable install points at
+        ``src/``).
+    """
+    return sorted({p for m in modules for p in _closure(m)})
+
+
+@contextlib.contextmanager
+def job_log(path: str, what: str):
+    """Log to ``path`` for the duration of one job; an exception's traceback is written there too.
+
+    Snakemake shows the ``log:`` file of a failed job, so the traceback must reach it (Python would
+    print it to the job's standard error only).  The exception is re-raised, so the job still fails.
+    """
+    logging.basicConfig(filename=path, level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s",
+                        force=True)
+    logging.info("start: %s", what)
+    try:
+        yield
+    except BaseException:
+        logging.error("failed: %s\n%s", what, traceback.format_exc())
+        raise
+    logging.info("done: %s", what)

@@ -1,0 +1,62 @@
+"""What the rules ask of the package: config subsets and the package sources each job runs."""
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from sphereimpact.study.workflow import RULE_KEYS, config_subset, file_sources, package_sources
+
+ROOT = Path(__file__).resolve().parents[1]
+CONFIG = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+
+
+def names(paths):
+    """Each path as folder/file, e.g. ``figures/paper.py``."""
+    return {"/".join(Path(p).parts[-2:]) for p in paths}
+
+
+def test_subset_holds_only_the_listed_keys():
+    got = config_subset(CONFIG, "sweep_shard")
+    assert set(got) == {"mass", "diameter", "inertia_factor", "mu", "stiffness", "damping", "ramp", "speed",
+                        "gravity", "primary", "sweep"}
+    assert set(got["sweep"]) == {"angle", "speed", "target"}
+    assert config_subset(CONFIG, "simulate", case="oblique60")["cases"] == {"oblique60": {"angle": 60.0}}
+
+
+def test_every_listed_key_exists_in_the_config():
+    for rule in RULE_KEYS:
+        config_subset(CONFIG, rule)  # KeyError names a key the config lacks
+
+
+def test_the_figure_catalogue_pulls_in_no_drawing_code():
+    assert names(package_sources("sphereimpact.figures.catalog")) == {
+        "sphereimpact/__init__.py", "figures/__init__.py", "figures/catalog.py",
+        # the package's __init__ imports the public API (solve imports planar inside a function: counted)
+        "sphereimpact/events.py", "sphereimpact/forces.py", "sphereimpact/outcome.py", "sphereimpact/scene.py",
+        "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/tangential.py",
+        "sphereimpact/planar.py"}
+
+
+def test_sources_follow_imports_through_the_package():
+    figure = names(file_sources(str(ROOT / "workflow/scripts/figure.py")))
+    assert {"figures/paper.py", "figures/style.py", "figures/catalog.py", "study/replication.py",
+            "study/workflow.py"} <= figure
+    assert "sweep/batch.py" not in figure and "numerics/stability.py" not in figure
+    shard = names(file_sources(str(ROOT / "workflow/scripts/sweep_shard.py")))
+    assert {"sweep/batch.py", "sweep/similarity.py", "study/sweeps.py"} <= shard
+    assert not any(n.startswith("figures/") for n in shard)
+
+
+def test_an_unknown_rule_is_a_key_error():
+    with pytest.raises(KeyError):
+        config_subset(CONFIG, "no_such_rule")
+
+
+def test_conda_environment_mirrors_environment_txt():
+    """`--sdm conda` must install what `pip install -r environment.txt` does (minus the workflow tools)."""
+    pins = {line.split("#")[0].strip() for line in (ROOT / "environment.txt").read_text().splitlines()}
+    conda = yaml.safe_load((ROOT / "workflow/envs/sphereimpact.yaml").read_text())
+    pip = {p for entry in conda["dependencies"] if isinstance(entry, dict) for p in entry["pip"]}
+    tools = {p for p in pins if p.split("==")[0] in ("snakemake", "pytest", "snakemake-executor-plugin-slurm")}
+    assert {p for p in pins if "==" in p} - tools == {p for p in pip if "==" in p}
