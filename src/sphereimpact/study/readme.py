@@ -1,0 +1,227 @@
+"""The README's generated blocks: written by the pipeline, copied into README.md, checked by CI.
+
+No measured number in the README is typed by hand.  The pipeline writes each block to
+``results/readme/<name>.md`` (:func:`write_snippets`); ``python -m sphereimpact.study.readme --update``
+copies them between the README's markers::
+
+    <!-- BEGIN GENERATED <name> ... -->
+    ...
+    <!-- END GENERATED <name> -->
+
+and ``--check`` (run by ``.ci/run`` after the pipeline) fails when a block disagrees with what the
+pipeline wrote: exactly, except for the cells of timed columns (:data:`TIMED`), which differ from run to
+run and must agree within a factor :data:`TIMING_RANGE`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+#: Blocks of the README, in order.
+BLOCKS = ("replication", "speed")
+#: A timed cell of a fresh run may differ from the README's by up to this factor either way.
+TIMING_RANGE = 2.0
+#: Table headers whose cells are timings or ratios of timings.
+TIMED = ("simulate [ms]", "script [ms]", "simulate / script", "time", "impacts/s", "speed-up")
+
+_BEGIN = re.compile(r"<!-- BEGIN GENERATED (\w+)[^>]*-->\n")
+_UNITS = {"delta_m": (1e3, "mm"), "t_m": (1e3, "ms"), "t_f": (1e3, "ms"), "ve_t": (1.0, "m/s"),
+          "ve_n": (1.0, "m/s"), "cor": (1.0, ""), "omega_f": (1.0, "rad/s")}
+
+
+def _row(cells) -> str:
+    return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+def _table(headers, rows) -> str:
+    return "\n".join([_row(headers), "|" + "|".join("---" for _ in headers) + "|", *(_row(r) for r in rows)])
+
+
+def _shown(quantity: str, value: float, digits: int) -> str:
+    scale, unit = _UNITS.get(quantity, (1.0, ""))
+    text = f"{value * scale:.{digits}g}".replace("-", "−")
+    return f"{text} {unit}".strip()
+
+
+def replication_block(config: dict, replication_csv: str, findings_md: str) -> str:
+    """The replication table (every printed value, reproduced, status) and the computed findings."""
+    table = pd.read_csv(replication_csv, keep_default_na=False)
+    primary = config["primary"]
+    rows = []
+    for r in table.itertuples():
+        status = f"**{r.status}**" if r.status == "discrepancy" else r.status
+        note = f": {r.explanation}" if r.explanation else ""
+        rows.append((f"{r.quantity}, {r.case}", r.printed, _shown(r.quantity, r.reproduced, 5), status + note))
+    counts = table["status"].value_counts()
+    head = (f"Reproduction: the `{primary['model']}` law, contact ending under the `{primary['separation']}` "
+            "criterion, no gravity. Values are in the chapter's conventions: δ_m is the displacement of the "
+            "centre (negative towards the flat; the package's `delta_m` output is the compression, positive), "
+            "and v_E(t_f) is the contact point's velocity in the contact frame (I along the flat, J along its "
+            "outward normal), as the chapter prints it. **match**: within half a unit of the last printed "
+            "digit; **agree**: within one unit; **discrepancy**: further. "
+            f"Totals: {', '.join(f'{counts.get(s, 0)} {s}' for s in ('match', 'agree', 'discrepancy'))}.")
+    findings = Path(findings_md).read_text(encoding="utf-8").strip()
+    return "\n\n".join([head, _table(("printed value", "chapter", "reproduced", "status"), rows),
+                        "What the replication measures about the chapter's claims (`results/replication.md`):",
+                        findings]) + "\n"
+
+
+def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
+    """The single-impact and sweep speed tables against the hand-written baseline, equal accuracy shown."""
+    single = pd.read_csv(bench_csv)
+    rows = []
+    for name, part in single.groupby("scene", sort=False):
+        sim, hand = (part[part["contender"] == c].iloc[0] for c in ("simulate", "handwritten"))
+        reached = "" if hand["reached"] else " (not reached)"
+        rows.append((name, f"{sim['time'] * 1e3:.3g}", f"{hand['time'] * 1e3:.3g}", f"{sim['time_ratio']:.2f}",
+                     f"{sim['error']:.1e}", f"{hand['error']:.1e} at rtol {hand['rtol']:.0e}{reached}"))
+    one = _table(("scene", "simulate [ms]", "script [ms]", "simulate / script", "error, simulate",
+                  "error, script"), rows)
+    sweeps = pd.read_csv(bench_sweep_csv)
+    rows = []
+    for r in sweeps.itertuples():
+        reached = "" if r.handwritten_reached else " (not reached)"
+        goal = "" if pd.isna(r.target_speedup) else f"{r.target_speedup:g}×"
+        rows.append((r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{r.throughput:.3g}",
+                     f"{r.speedup_over_handwritten:.3g}×", f"{r.worst_error:.1e}",
+                     f"{r.handwritten_error:.1e} at rtol {r.handwritten_rtol:.0e}{reached}", goal))
+    many = _table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
+                   "target speed-up"), rows)
+    repeats = int(sweeps["repeats"].iloc[0])
+    return "\n\n".join([
+        "One impact (`results/bench.csv`): `simulate` at its default options against the hand-written script "
+        "(one `solve_ivp` call, scalar right-hand side, the two events, no dense output) at the loosest tolerance "
+        "whose error is no larger than `simulate`'s. Error: the worst relative error over t_m, δ_m, t_f, COR, "
+        "ω_f and v_E,t against the closed form or the 32-digit Taylor reference. Times are medians over "
+        f"{int(single['repeats'].iloc[0])} runs of {int(single['batch'].iloc[0])} calls each.",
+        one,
+        "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
+        f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
+        f"the median of {repeats} complete runs; speed-up = the script's time per scene × the engine's "
+        "impacts per second.",
+        many,
+        f"Timings vary from run to run and machine to machine: CI fails when a fresh run's timed cell differs "
+        f"from these by more than a factor {TIMING_RANGE:g}.",
+    ]) + "\n"
+
+
+def _seconds(value: float) -> str:
+    return f"{value * 1e3:.3g} ms" if value < 1 else f"{value:.3g} s"
+
+
+def write_snippets(config: dict, replication_csv: str, findings_md: str, bench_csv: str, bench_sweep_csv: str,
+                   replication_out: str, speed_out: str) -> None:
+    """Write the README's generated blocks (see the module docstring)."""
+    Path(replication_out).write_text(replication_block(config, replication_csv, findings_md), encoding="utf-8")
+    Path(speed_out).write_text(speed_block(bench_csv, bench_sweep_csv), encoding="utf-8")
+
+
+def blocks(text: str) -> dict[str, tuple[int, int]]:
+    """name -> (start, end) character span of each generated block's body in ``text``."""
+    spans = {}
+    for match in _BEGIN.finditer(text):
+        name = match.group(1)
+        end = text.find(f"<!-- END GENERATED {name} -->", match.end())
+        if end < 0:
+            raise ValueError(f"README: block {name!r} has no END marker")
+        spans[name] = (match.end(), end)
+    return spans
+
+
+def update(readme: str, snippets: str) -> str:
+    """``readme``'s text with every block replaced by ``snippets/<name>.md``."""
+    text = Path(readme).read_text(encoding="utf-8")
+    for name, (start, end) in sorted(blocks(text).items(), key=lambda item: -item[1][0]):
+        text = text[:start] + Path(snippets, f"{name}.md").read_text(encoding="utf-8") + text[end:]
+    return text
+
+
+def _number(cell: str) -> float | None:
+    match = re.search(r"[-−]?\d[\d,]*\.?\d*(?:e[-+]?\d+)?", cell)
+    return float(match.group().replace(",", "").replace("−", "-")) if match else None
+
+
+def _timed_cells_agree(old: str, new: str) -> bool:
+    a, b = _number(old), _number(new)
+    if a is None or b is None:
+        return old == new
+    if a == b:
+        return True
+    return a > 0 and b > 0 and math.exp(abs(math.log(a / b))) <= TIMING_RANGE
+
+
+def differences(readme_block: str, fresh: str) -> list[str]:
+    """Where a README block disagrees with the pipeline's: exact, but timed cells within TIMING_RANGE."""
+    old, new = readme_block.splitlines(), fresh.splitlines()
+    if len(old) != len(new):
+        return [f"{len(old)} lines in the README, {len(new)} written by the pipeline"]
+    found, headers = [], []
+    for i, (a, b) in enumerate(zip(old, new), 1):
+        if not a.startswith("|"):
+            headers = []  # a table's first row is its header
+        elif not headers:
+            headers = [c.strip() for c in a.strip("|").split("|")]
+        if a == b:
+            continue
+        if not (a.startswith("| ") and b.startswith("| ")):
+            found.append(f"line {i}: README {a!r} but the pipeline wrote {b!r}")
+            continue
+        cells_a, cells_b = a.strip("|").split("|"), b.strip("|").split("|")
+        if len(cells_a) != len(cells_b):
+            found.append(f"line {i}: README {a!r} but the pipeline wrote {b!r}")
+            continue
+        for header, x, y in zip(headers or [""] * len(cells_a), cells_a, cells_b):
+            x, y = x.strip(), y.strip()
+            if x != y and not (header in TIMED and _timed_cells_agree(x, y)):
+                what = f"timed beyond a factor {TIMING_RANGE:g}" if header in TIMED else "differs"
+                found.append(f"line {i}, column {header!r}: README {x!r}, pipeline {y!r} ({what})")
+    return found
+
+
+def check(readme: str, snippets: str) -> list[str]:
+    """Every disagreement between the README's blocks and ``snippets/<name>.md``; empty when they agree."""
+    text = Path(readme).read_text(encoding="utf-8")
+    spans = blocks(text)
+    problems = [f"README has no generated block {name!r}" for name in BLOCKS if name not in spans]
+    for name, (start, end) in spans.items():
+        fresh = Path(snippets, f"{name}.md")
+        if not fresh.is_file():
+            problems.append(f"{fresh} is missing: run `snakemake --cores 2` first")
+            continue
+        problems += [f"{name}: {d}" for d in differences(text[start:end], fresh.read_text(encoding="utf-8"))]
+    return problems
+
+
+def main(argv=None) -> int:
+    """``python -m sphereimpact.study.readme (--check | --update) README.md results/readme``."""
+    parser = argparse.ArgumentParser(prog="python -m sphereimpact.study.readme", allow_abbrev=False,
+                                     description="Check or update the README's generated blocks.")
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--check", action="store_true", help="exit 1 when a block disagrees with the pipeline's")
+    mode.add_argument("--update", action="store_true", help="copy the pipeline's blocks into the README")
+    parser.add_argument("readme", nargs="?", default="README.md")
+    parser.add_argument("snippets", nargs="?", default="results/readme")
+    args = parser.parse_args(argv)
+    try:
+        if args.update:
+            Path(args.readme).write_text(update(args.readme, args.snippets), encoding="utf-8")
+            return 0
+        problems = check(args.readme, args.snippets)
+    except (OSError, ValueError) as err:
+        parser.exit(2, f"readme: error: {err}\n")
+    for problem in problems:
+        print(f"readme: {problem}", file=sys.stderr)
+    if problems:
+        print("readme: the README disagrees with the results; `python -m sphereimpact.study.readme --update` "
+              "copies the pipeline's blocks in", file=sys.stderr)
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

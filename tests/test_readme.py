@@ -1,0 +1,83 @@
+"""The README's generated blocks: the replication block is exactly what the pipeline writes, and the check
+that CI runs after the pipeline tells agreement, run-to-run timing noise and real disagreement apart."""
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from sphereimpact.study.readme import TIMING_RANGE, blocks, check, differences, replication_block, update
+from sphereimpact.study.replication import write_report
+from sphereimpact.study.runs import run_case
+
+ROOT = Path(__file__).resolve().parents[1]
+CONFIG = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+
+TABLE = """Intro line.
+
+| scene | simulate [ms] | error, simulate |
+|---|---|---|
+| normal | 5.16 | 2.1e-10 |
+"""
+
+
+def test_readme_replication_block_is_what_the_pipeline_writes(tmp_path):
+    """Recomputed from the config exactly as the rules `simulate` and `replicate` do: no number in the
+    README's replication table or findings can drift from the results."""
+    jsons = []
+    for case in CONFIG["cases"]:
+        for model in CONFIG["models"]:
+            jsons.append(tmp_path / f"{case}_{model}.json")
+            run_case(CONFIG, case, model, str(tmp_path / f"{case}_{model}.csv"), str(jsons[-1]))
+    write_report(CONFIG, str(ROOT / "config/published.yaml"), jsons, str(tmp_path / "replication.csv"),
+                 str(tmp_path / "replication.md"), str(tmp_path / "findings.md"))
+    fresh = replication_block(CONFIG, str(tmp_path / "replication.csv"), str(tmp_path / "findings.md"))
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    start, end = blocks(text)["replication"]
+    assert text[start:end] == fresh, "README is stale: run the pipeline, then python -m sphereimpact.study.readme --update"
+
+
+def test_readme_opens_with_the_two_commands():
+    head = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()[:12]
+    assert any("pip install -r environment.txt && snakemake --cores 2" in line for line in head)
+    assert any("pip install -r environment.txt && pytest" in line for line in head)
+
+
+def test_identical_blocks_agree():
+    assert differences(TABLE, TABLE) == []
+
+
+@pytest.mark.parametrize("timed, agrees", [("5.16", True), (f"{5.16 * TIMING_RANGE * 0.99:.3g}", True),
+                                          (f"{5.16 / TIMING_RANGE * 1.01:.3g}", True),
+                                          (f"{5.16 * TIMING_RANGE * 1.05:.3g}", False), ("0.5", False)])
+def test_timed_cells_agree_within_the_stated_range(timed, agrees):
+    fresh = TABLE.replace("| 5.16 |", f"| {timed} |")
+    assert (differences(TABLE, fresh) == []) is agrees
+
+
+def test_a_changed_untimed_cell_or_line_disagrees():
+    assert differences(TABLE, TABLE.replace("2.1e-10", "2.2e-10"))  # an error is not a timing
+    assert differences(TABLE, TABLE.replace("Intro line.", "Other line."))
+    assert differences(TABLE, TABLE + "| extra | 1 | 1 |\n")
+
+
+def test_check_and_update_round_trip(tmp_path):
+    readme = tmp_path / "README.md"
+    readme.write_text("# T\n<!-- BEGIN GENERATED speed: x -->\nold\n<!-- END GENERATED speed -->\n"
+                      "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n")
+    snippets = tmp_path / "snippets"
+    snippets.mkdir()
+    (snippets / "speed.md").write_text(TABLE)
+    (snippets / "replication.md").write_text("fresh\n")
+    assert check(str(readme), str(snippets))
+    readme.write_text(update(str(readme), str(snippets)))
+    assert check(str(readme), str(snippets)) == []
+    assert "fresh\n<!-- END GENERATED replication -->" in readme.read_text()
+
+
+def test_check_reports_a_missing_block_or_snippet(tmp_path):
+    readme = tmp_path / "README.md"
+    readme.write_text("<!-- BEGIN GENERATED speed -->\nx\n<!-- END GENERATED speed -->\n")
+    problems = check(str(readme), str(tmp_path))
+    assert "README has no generated block 'replication'" in problems
+    assert any("speed.md is missing" in p for p in problems)
