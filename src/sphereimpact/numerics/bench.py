@@ -36,12 +36,12 @@ def per_call_seconds(call, repeats: int) -> float:
     return statistics.median(runs)
 
 
-def bench_scenes(chapter: dict[str, Scene]) -> dict[str, Scene]:
-    """The chapter's cases plus scenes across the domain (30° at 3 m/s, 45° at 20 m/s), under both laws,
-    force criterion, no gravity."""
+def bench_scenes(chapter: dict[str, Scene], domain: bool = True) -> dict[str, Scene]:
+    """The chapter's cases and, with ``domain``, scenes across the domain (30° at 3 m/s, 45° at 20 m/s)
+    under both laws; force criterion, no gravity."""
     base = next(iter(chapter.values()))
     scenes = dict(chapter)
-    for model in ("modified", "kelvin-voigt"):
+    for model in ("modified", "kelvin-voigt") if domain else ():
         scenes[f"30deg-3ms/{model}"] = base.with_(angle=30.0, speed=3.0, model=model)
         scenes[f"45deg-20ms/{model}"] = base.with_(angle=45.0, speed=20.0, model=model)
     return {name: s.with_(separation="force", gravity=0.0) for name, s in scenes.items()}

@@ -27,7 +27,8 @@ def write_work_precision(config: dict, csv_path: str) -> None:
 
 def write_bench(config: dict, csv_path: str) -> None:
     """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain."""
-    frame = simulate_vs_handwritten(bench_scenes(chapter_cases(config)), config["bench"]["repeats"])
+    bench = config["bench"]
+    frame = simulate_vs_handwritten(bench_scenes(chapter_cases(config), bench["domain"]), bench["repeats"])
     frame.to_csv(csv_path, **CSV)
 
 
