@@ -1,80 +1,201 @@
-"""Command line: ``sphereimpact simulate [...] --json``, a thin layer over :func:`sphereimpact.simulate`.
+"""Command line: ``sphereimpact simulate`` and ``sphereimpact sweep``, a thin layer over the API.
 
-Bad input prints one line naming the parameter and its allowed range and exits
-with status 2 (argparse's convention), never a traceback.
+Every input is answered with a result or one line: ``sphereimpact: error: <what> <allowed range>``,
+exit status 2 for bad input (argparse's convention) and 1 for a failure that a change of input does not
+fix (a full disk, say).  Never a traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 
+from . import __version__
 from .events import ImpactError
 from .forces import FORCE_MODELS
-from .scene import METHODS, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, SolverOptions
+from .outcome import OUTPUT_KEYS
+from .parsing import parse_number, range_count
+from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene,
+                    SolverOptions, check_columns)
 from .solve import MODELS, simulate
 
 _D = Scene()
 _O = SolverOptions()
 
+#: Output units for the readable (non-JSON) output of ``simulate``.
+UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
+         "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N", "wall_time": "s"}
+#: Sweep parameters that take ranges, with their units.
+RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "k": "N/m", "b": "N s/m", "mass": "kg", "diameter": "m",
+          "inertia_factor": "-", "ramp": "-", "gravity": "m/s^2"}
+
+
+class UsageError(Exception):
+    """A bad command line (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors, no abbreviated options, and negative numbers as values."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, allow_abbrev=False, **kwargs)
+
+    def error(self, message):
+        raise UsageError(f"{message} (see `{self.prog} --help`)")
+
+
+class _Help(argparse.ArgumentDefaultsHelpFormatter):
+    """Defaults in the help, except for required options and options without one."""
+
+    def _get_help_string(self, action):
+        if action.required or action.default in (None, argparse.SUPPRESS) or action.const is not None \
+                or isinstance(action, argparse._StoreTrueAction):
+            return action.help
+        return super()._get_help_string(action)
+
+
+def _number(text: str) -> float:
+    try:
+        return parse_number(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
+
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="sphereimpact",
-        description="Impact of a rigid-body sphere on a rigid inclined flat (spring-damper contact, Coulomb friction).")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = _Parser(prog="sphereimpact",
+                     description="Impact of a rigid-body sphere on a rigid inclined flat (spring-damper contact, "
+                                 "Coulomb friction).")
+    parser.add_argument("--version", action="version", version=f"sphereimpact {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     sim = sub.add_parser(
-        "simulate", help="simulate one impact and print its outputs",
-        description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        "simulate", help="simulate one impact and print its outputs", formatter_class=_Help,
+        description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
+                    "Numbers may be fractions (2/3).")
     add = sim.add_argument
-    add("--angle", type=float, default=_D.angle, metavar="DEG",
+    add("--angle", type=_number, default=_D.angle, metavar="DEG",
         help="inclination of the flat to the horizontal [deg], in [0, 90)")
-    add("--speed", type=float, default=_D.speed, metavar="M_S",
+    add("--speed", type=_number, default=_D.speed, metavar="M_S",
         help="vertical approach speed of the centre [m/s], > 0")
     add("--model", default=_D.model, metavar="NAME",
         help="normal force law: " + "; ".join(f"{k}: {m.doc}" for k, m in FORCE_MODELS.items()))
-    add("--mu", type=float, default=_D.mu, help="kinetic friction coefficient [-], >= 0")
-    add("--k", type=float, default=_D.k, help="contact stiffness [N/m], > 0")
-    add("--b", type=float, default=_D.b, help="contact damping [N s/m], >= 0")
-    add("--ramp", type=float, default=_D.ramp,
+    add("--mu", type=_number, default=_D.mu, help="kinetic friction coefficient [-], >= 0")
+    add("--k", type=_number, default=_D.k, help="contact stiffness [N/m], > 0")
+    add("--b", type=_number, default=_D.b, help="contact damping [N s/m], >= 0")
+    add("--ramp", type=_number, default=_D.ramp,
         help="constant c of the modified model's ramp 1 - exp(-c delta/R) [-], > 0")
-    add("--mass", type=float, default=_D.mass, help="ball mass [kg], > 0")
-    add("--diameter", type=float, default=_D.diameter, help="ball diameter [m], > 0")
-    add("--inertia-factor", type=float, default=_D.inertia_factor,
+    add("--mass", type=_number, default=_D.mass, help="ball mass [kg], > 0")
+    add("--diameter", type=_number, default=_D.diameter, help="ball diameter [m], > 0")
+    add("--inertia-factor", type=_number, default=_D.inertia_factor,
         help="alpha in I = alpha m R^2 [-], in (0, 2/3]: 0.4 solid sphere, 2/3 thin shell")
     add("--separation", default=_D.separation, metavar="|".join(SEPARATION_CRITERIA),
         help="contact ends when the force P (first of P = 0 and delta = 0) or the penetration delta returns to 0")
-    add("--gravity", type=float, nargs="?", const=STANDARD_GRAVITY, default=_D.gravity, metavar="G",
-        help=f"gravitational acceleration [m/s^2], >= 0; the bare flag means {STANDARD_GRAVITY}")
+    add("--gravity", type=_number, nargs="?", const=STANDARD_GRAVITY, default=_D.gravity, metavar="G",
+        help=f"gravitational acceleration [m/s^2], >= 0; the bare flag means {STANDARD_GRAVITY} "
+             f"(default: {_D.gravity})")
     add("--method", default=_O.method, metavar="NAME",
         help="integrator: " + ", ".join(METHODS) + " ('closed' is the exact solution, kelvin-voigt only)")
-    add("--rtol", type=float, default=_O.rtol, help="relative tolerance, in [1e-13, 1)")
-    add("--atol", type=float, default=_O.atol,
-        help="absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), > 0")
+    add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
+    add("--atol", type=_number, default=_O.atol,
+        help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
     add("--body", choices=MODELS, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
-    add("--json", action="store_true", help="print one JSON object (the only output format)")
+    add("--json", action="store_true", help="print one JSON object instead of the readable table")
 
     swp = sub.add_parser(
-        "sweep", help="simulate a grid of impacts and write one row per scene",
+        "sweep", help="simulate a grid of impacts and write one row per scene", formatter_class=_Help,
         description="Simulate every combination of the given values (START:STOP:STEP ranges, stop included, or "
-                    "single numbers) and write one row per scene: its parameters and the outputs of "
-                    "`simulate` (t_m, delta_m, t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime), SI units.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    ranged = {"angle": ("deg", _D.angle), "speed": ("m/s", _D.speed), "mu": ("-", _D.mu), "k": ("N/m", _D.k),
-              "b": ("N s/m", _D.b), "mass": ("kg", _D.mass), "diameter": ("m", _D.diameter),
-              "inertia_factor": ("-", _D.inertia_factor), "ramp": ("-", _D.ramp), "gravity": ("m/s^2", _D.gravity)}
-    for name, (unit, default) in ranged.items():
-        swp.add_argument("--" + name.replace("_", "-"), default=repr(default), metavar="RANGE",
-                         help=f"{name} [{unit}]: a value or START:STOP:STEP")
+                    "single numbers; a negative value is read as a value, so --angle -10:10:1 reaches the range "
+                    "check) and write one row per scene: its parameters and the outputs of `simulate` (t_m, delta_m, "
+                    "t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime), SI units. The size and memory of the "
+                    "sweep and the output file are checked before any work.")
+    for name, unit in RANGED.items():
+        default = getattr(_D, name)
+        allowed = RULES[name][0].removeprefix("a finite number ")
+        kwargs = {"nargs": "?", "const": repr(STANDARD_GRAVITY)} if name == "gravity" else {}
+        swp.add_argument("--" + name.replace("_", "-"), default=repr(default), metavar="RANGE", **kwargs,
+                         help=f"{name} [{unit}], {allowed}: a value or START:STOP:STEP"
+                              + (f"; the bare flag means {STANDARD_GRAVITY}" if name == "gravity" else ""))
     swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(FORCE_MODELS))
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
-    swp.add_argument("--target", type=float, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
-    swp.add_argument("--chunk-size", type=int, default=100_000, help="scenes integrated at once (memory bound)")
-    swp.add_argument("--out", required=True, metavar="FILE", help="output table: .csv or .parquet")
+    swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
+    swp.add_argument("--chunk-size", type=int, default=100_000,
+                     help="scenes integrated at once, >= 1 (bounds the integration's working memory)")
+    swp.add_argument("--out", required=True, metavar="FILE",
+                     help="output table, .csv or .parquet (its folder must exist)")
+    swp.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
     return parser
+
+
+def _values_as_one_token(argv: list[str], parser: argparse.ArgumentParser) -> list[str]:
+    """Join ``--opt VALUE`` into ``--opt=VALUE`` where VALUE starts with '-' (``--angle -10:10:1``,
+    ``--gravity -inf``), so that argparse reads it as a value (it would take it for an option) and the
+    value reaches the range check."""
+    takes_value = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                takes_value |= {o for a in sub._actions if a.nargs != 0 for o in a.option_strings}
+    out, i = [], 0
+    while i < len(argv):
+        token = argv[i]
+        if token in takes_value and i + 1 < len(argv) and argv[i + 1].startswith("-") \
+                and not argv[i + 1].startswith("--") and argv[i + 1] != "-":
+            out.append(f"{token}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(token)
+        i += 1
+    return out
+
+
+def check_out(path: str, force: bool) -> None:
+    """Refuse an output path that cannot be written, before any work (ValueError naming it)."""
+    from .sweep.io import EXTENSIONS
+
+    if os.path.isdir(path):
+        raise ValueError(f"out is a folder, not a file: {path!r}")
+    if not path.endswith(EXTENSIONS):
+        raise ValueError(f"out must end in {' or '.join(EXTENSIONS)}; got {path!r}")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise ValueError(f"out: folder {folder!r} does not exist")
+    if not os.access(folder, os.W_OK):
+        raise ValueError(f"out: folder {folder!r} is not writable")
+    if os.path.exists(path) and not force:
+        raise ValueError(f"out: {path!r} exists; pass --force to overwrite it")
+
+
+def _sweep(args) -> None:
+    from .parsing import parse_range
+    from .memory import check_size
+    from .sweep.engine import grid, sweep
+    from .sweep.io import write_table
+
+    if args.chunk_size < 1:
+        raise ValueError(f"chunk_size must be an integer >= 1; got {args.chunk_size}")
+    check_out(args.out, args.force)
+    counts = {}
+    for name in RANGED:
+        try:
+            counts[name] = range_count(getattr(args, name))
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    scenes = check_size(counts, "split it into shards (the pipeline's sweep.shards) or use coarser ranges "
+                                f"(--chunk-size, now {args.chunk_size}, bounds only the integration's working memory)")
+    ranges = {}
+    for name in RANGED:
+        try:
+            ranges[name] = parse_range(getattr(args, name))
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+        check_columns({name: ranges[name]})  # each range against the scene's bounds, before any work
+    check_columns({"model": [args.model], "separation": [args.separation]})
+    table = grid(**ranges).assign(model=args.model, separation=args.separation)
+    big = scenes >= 100_000 and sys.stderr.isatty()
+    result = sweep(table, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
+    write_table(result, args.out)
 
 
 def _progress(done: int, total: int) -> None:
@@ -83,44 +204,52 @@ def _progress(done: int, total: int) -> None:
         sys.stderr.write("\n")
 
 
-def _sweep(args) -> None:
-    from .sweep.engine import grid, parse_range, sweep
-    from .sweep.io import write_table
+def _readable(outputs: dict) -> str:
+    """The outputs as aligned ``name  value  unit`` lines."""
+    lines = []
+    for key in OUTPUT_KEYS:
+        value = outputs[key]
+        shown = f"{value:.10g}" if isinstance(value, float) else "—" if value is None else str(value)
+        unit = UNITS.get(key, "") if isinstance(value, (int, float)) else ""
+        lines.append(f"{key:<10} {shown:>18} {unit}".rstrip())
+    return "\n".join(lines)
 
-    names = ("angle", "speed", "mu", "k", "b", "mass", "diameter", "inertia_factor", "ramp", "gravity")
-    ranges = {}
-    for name in names:
-        try:
-            ranges[name] = parse_range(getattr(args, name))
-        except ValueError as err:
-            raise ValueError(f"{name}: {err}") from None
-    scenes = grid(**ranges).assign(model=args.model, separation=args.separation)
-    big = len(scenes) >= 100_000 and sys.stderr.isatty()
-    table = sweep(scenes, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
-    write_table(table, args.out)
+
+def _simulate(args) -> None:
+    scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
+                  speed=args.speed, mu=args.mu, model=args.model, k=args.k, b=args.b, ramp=args.ramp,
+                  gravity=args.gravity, separation=args.separation)
+    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
+    outputs = simulate(scene, options, model=args.body).to_dict()
+    if args.json:
+        json.dump(outputs, sys.stdout, indent=2)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(_readable(outputs) + "\n")
 
 
 def run(argv=None) -> int:
-    """Parse ``argv``, run the command; return the exit status."""
+    """Parse ``argv`` and run the command; return the exit status (0 done, 1 failed, 2 bad input).
+
+    Every error is one line on standard error: ``sphereimpact: error: ...``.
+    """
     parser = _parser()
-    args = parser.parse_args(argv)
-    if args.command == "sweep":
-        try:
-            _sweep(args)
-        except (ValueError, ImpactError) as err:
-            parser.exit(2, f"sphereimpact: error: {err}\n")
-        return 0
+    argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor,
-                      angle=args.angle, speed=args.speed, mu=args.mu, model=args.model, k=args.k, b=args.b,
-                      ramp=args.ramp, gravity=args.gravity, separation=args.separation)
-        options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
-        outcome = simulate(scene, options, model=args.body)
-    except (ValueError, ImpactError) as err:
-        parser.exit(2, f"sphereimpact: error: {err}\n")
-    json.dump(outcome.to_dict(), sys.stdout, indent=2)
-    sys.stdout.write("\n")
+        args = parser.parse_args(_values_as_one_token(argv, parser))
+        _sweep(args) if args.command == "sweep" else _simulate(args)
+    except (UsageError, ValueError, TypeError, ImpactError) as err:
+        return _fail(2, err)
+    except MemoryError:
+        return _fail(1, "out of memory: use coarser ranges or split the sweep into shards")
+    except OSError as err:
+        return _fail(1, f"{err.strerror or err}: {err.filename or ''}".rstrip(": "))
     return 0
+
+
+def _fail(status: int, message) -> int:
+    sys.stderr.write(f"sphereimpact: error: {message}\n")
+    return status
 
 
 def main() -> None:
@@ -129,8 +258,9 @@ def main() -> None:
         status = run()
         sys.stdout.flush()
     except BrokenPipeError:  # e.g. `sphereimpact simulate --json | head`
-        import os
-
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         status = 0
+    except KeyboardInterrupt:
+        sys.stderr.write("sphereimpact: interrupted\n")
+        status = 130
     sys.exit(status)

@@ -107,7 +107,15 @@ class Outcome:
         return out
 
     def history(self, n: int = 401) -> dict:
-        """Time histories on n uniform instants over [0, t_f], keyed by :data:`HISTORY_COLUMNS`."""
+        """Time histories on ``n`` uniform instants over [0, t_f], keyed by :data:`HISTORY_COLUMNS`.
+
+        Raises
+        ------
+        ValueError
+            ``n`` is not an integer >= 2 (the two ends of the contact at least).
+        """
+        if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 2:
+            raise ValueError(f"n must be an integer >= 2 (instants from 0 to t_f); got {n!r}")
         s = self.scene
         t = np.linspace(0.0, self.t_f, n)
         k = self.motion.kinematics(t)

@@ -9,7 +9,10 @@ parameter and its allowed range, so a bad input can never reach the solver.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, replace
+
+import numpy as np
 
 from .forces import FORCE_MODELS
 
@@ -30,7 +33,7 @@ METHODS = ("closed", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 RULES = {
     "mass": ("a finite number > 0 kg", lambda x: x > 0),
     "diameter": ("a finite number > 0 m", lambda x: x > 0),
-    "inertia_factor": ("a finite number in (0, 2/3]", lambda x: (x > 0) & (x <= 2 / 3 + 1e-15)),
+    "inertia_factor": ("a finite number in (0, 2/3] (2/3 = 0.6666666666666666)", lambda x: (x > 0) & (x <= 2 / 3)),
     "angle": ("a finite number in [0, 90) degrees", lambda x: (x >= 0) & (x < 90)),
     "speed": ("a finite number > 0 m/s", lambda x: x > 0),
     "mu": ("a finite number >= 0", lambda x: x >= 0),
@@ -41,11 +44,25 @@ RULES = {
 }
 
 
-def _check(name: str, value, allowed: str, ok) -> None:
-    """Raise ``ValueError`` unless ``value`` is a finite number satisfying ``ok``."""
-    bad = isinstance(value, bool) or not isinstance(value, (int, float))
-    if bad or not math.isfinite(value) or not ok(value):
+def as_number(name: str, value) -> float:
+    """``value`` as a Python float when it is a real number: int, float, a numpy scalar or a 0-d array.
+
+    Booleans are refused (``True`` is not a number a user means), and so is anything else, with a
+    ``TypeError`` naming the parameter and the type found.
+    """
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number; got {type(value).__name__} {value!r}")
+    return float(value)
+
+
+def _check(name: str, value, allowed: str, ok) -> float:
+    """``value`` as a float; ``ValueError`` unless it is finite and satisfies ``ok``."""
+    number = as_number(name, value)
+    if not math.isfinite(number) or not ok(number):
         raise ValueError(f"{name} must be {allowed}; got {value!r}")
+    return number
 
 
 def _check_choice(name: str, value, choices) -> None:
@@ -67,11 +84,12 @@ def check_columns(columns: dict) -> None:
     ValueError
         ``"<name> must be <range>; got <value> (row <i>)"``.
     """
-    import numpy as np
-
     for name, values in columns.items():
         if name in RULES:
             allowed, ok = RULES[name]
+            raw = np.asarray(values)
+            if raw.dtype == bool or (raw.dtype == object and any(isinstance(v, (bool, np.bool_)) for v in raw.flat)):
+                raise TypeError(f"{name} must be real numbers; got a boolean")
             try:
                 arr = np.asarray(values, dtype=float)
             except (TypeError, ValueError):
@@ -103,7 +121,8 @@ class Scene:
         Ball diameter D [m], > 0.  Chapter: 0.063.
     inertia_factor : float
         alpha in I = alpha m R^2 [-], in (0, 2/3]: 2/5 solid, 2/3 thin shell
-        (2/3 is the largest any mass distribution inside a sphere can give).
+        (2/3 is the largest any mass distribution inside a sphere can give; the command line and the
+        config also accept the fraction ``2/3``).
     angle : float
         Inclination beta of the flat to the horizontal [deg], in [0, 90).
     speed : float
@@ -121,7 +140,8 @@ class Scene:
         Constant c in the modified damping ramp 1 - exp(-c delta / R) [-], > 0.
         Chapter: 100.  Ignored by models without a ramp.
     gravity : float
-        Gravitational acceleration g [m/s^2], >= 0; 0 (off) by default.
+        Gravitational acceleration g [m/s^2], >= 0; 0 (off) by default.  The weight alone must not
+        compress the contact beyond the radius (m g cos(beta) / k <= R).
     separation : str
         ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
     """
@@ -141,9 +161,14 @@ class Scene:
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
-            _check(name, getattr(self, name), allowed, ok)
+            object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
         _check_choice("model", self.model, tuple(FORCE_MODELS))
         _check_choice("separation", self.separation, SEPARATION_CRITERIA)
+        static = self.mass * self.g_normal / self.k  # the spring's compression under the ball's weight alone
+        if static > self.radius:
+            raise ValueError(f"gravity: the ball's weight alone compresses the contact by m g cos(beta) / k = "
+                             f"{static:.3g} m, more than its radius R = {self.radius:.3g} m: outside the model "
+                             "(lower gravity or mass, or raise k)")
 
     # Derived quantities (SI) -------------------------------------------------
     @property
@@ -209,6 +234,14 @@ class Scene:
         return replace(self, **changes)
 
 
+#: Allowed tolerances.  Looser than 1e-2 the outputs are meaningless (rtol 0.5 moves the COR by 2e-3 and
+#: can report a rebound faster than the approach); below 1e-16 atol is beneath double precision on the
+#: O(1) dimensionless state, and rtol below 1e-13 beneath what the integrators honour.
+RTOL_RANGE = "a finite number in [1e-13, 1e-2] (looser tolerances make the outputs meaningless)"
+ATOL_RANGE = ("a finite number in [1e-16, 1e-2] (on the O(1) dimensionless state: looser is meaningless, "
+              "tighter is below double precision)")
+
+
 @dataclass(frozen=True)
 class SolverOptions:
     """How to integrate the normal motion.
@@ -218,7 +251,8 @@ class SolverOptions:
     method : str
         One of :data:`METHODS`.  ``closed`` is exact and only for kelvin-voigt.
     rtol, atol : float
-        Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`.
+        Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`, rtol in [1e-13, 1e-2] and
+        atol in [1e-16, 1e-2].
         ``atol`` applies to the dimensionless state (delta scaled by v_n/omega_n,
         delta_dot by v_n), so one value suits every ball and speed; the state
         is O(1), so atol = rtol.  The default (DOP853, 1e-10) is the cheapest
@@ -235,7 +269,9 @@ class SolverOptions:
 
     def __post_init__(self):
         _check_choice("method", self.method, METHODS)
-        _check("rtol", self.rtol, "a finite number in [1e-13, 1)", lambda x: 1e-13 <= x < 1)
-        _check("atol", self.atol, "a finite number > 0", lambda x: x > 0)
-        if not (isinstance(self.max_step, (int, float)) and self.max_step > 0) or math.isnan(self.max_step):
+        object.__setattr__(self, "rtol", _check("rtol", self.rtol, RTOL_RANGE, lambda x: 1e-13 <= x <= 1e-2))
+        object.__setattr__(self, "atol", _check("atol", self.atol, ATOL_RANGE, lambda x: 1e-16 <= x <= 1e-2))
+        step = as_number("max_step", self.max_step)
+        if not step > 0:  # also refuses nan
             raise ValueError(f"max_step must be a number > 0 s (inf allowed); got {self.max_step!r}")
+        object.__setattr__(self, "max_step", step)

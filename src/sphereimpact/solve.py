@@ -74,12 +74,19 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
 
     Raises
     ------
+    TypeError
+        ``scene`` is not a Scene or ``options`` not a SolverOptions.
     ValueError
         Unknown model, or ``closed`` with a nonlinear force law.
     ImpactError
         The ball never separates, or an event was missed.
     """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
     options = SolverOptions() if options is None else options
+    if not isinstance(options, SolverOptions):
+        raise TypeError("options must be a sphereimpact.SolverOptions, e.g. SolverOptions(rtol=1e-10), or None; "
+                        f"got {type(options).__name__}")
     if model not in MODELS:
         raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
     start = time.perf_counter()

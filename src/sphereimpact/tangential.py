@@ -139,7 +139,7 @@ class TangentialMotion:
         dj = self.jp(t) - j0
         dk = self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt
         v = p.v0 + s.g_tangent * dt - s.mu * dj / s.mass
-        omega = p.omega0 + s.mu * s.radius * dj / s.inertia
+        omega = p.omega0 + s.mu * dj / (s.inertia_factor * s.mass * s.radius)  # mu R dJ / I, no R^2 to underflow
         x = p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt - s.mu * dk / s.mass
         return v, omega, x
 

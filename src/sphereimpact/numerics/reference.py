@@ -67,7 +67,7 @@ def outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, ra
         omega = vc_t / scene.radius
     else:
         vc_t = vt0 - scene.mu * impulse / m
-        omega = scene.mu * scene.radius * impulse / scene.inertia
+        omega = scene.mu * impulse / (alpha * m * scene.radius)  # mu R J / I
     return {"t_m": t_m, "delta_m": delta_m, "t_f": t_f, "cor": vc_n / scene.v_normal, "omega_f": omega,
             "ve_t": vc_t - omega * scene.radius, "vc_t": vc_t, "vc_n": vc_n, "ve_n": vc_n}
 

@@ -37,8 +37,8 @@ RULE_KEYS = {
     "sweep_shard": (*_SCENE, "primary", "sweep.angle", "sweep.speed", "sweep.target"),
     "speed_table": (*_SCENE, *_SOLVER, "models", "primary", "sweep.cor_speed", "sweep.target"),
     "sweep_map": ("speed", "cases", "sweep.map_speed"),
-    "bench": (*_SCENE, "cases", "primary", "bench.repeats"),
-    "bench_sweep": ("bench",),
+    "bench": (*_SCENE, "cases", "primary", "bench.repeats", "bench.domain"),
+    "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million"),
     "readme": ("primary",),
 }
 
@@ -82,7 +82,8 @@ def _module_file(name: str) -> Path | None:
     return None
 
 
-def _imports(path: Path) -> set[str]:
+@cache
+def _imports(path: Path) -> frozenset[str]:
     """Absolute names of the modules ``path`` imports (relative imports resolved inside the package)."""
     inside = _PACKAGE in path.parents
     # the package a relative import starts from: the folder of the file (an __init__.py's own package)
@@ -98,7 +99,7 @@ def _imports(path: Path) -> set[str]:
                 base = ".".join([*anchor, base] if base else anchor)
             names.add(base)
             names.update(f"{base}.{a.name}" for a in node.names)  # `from . import batch` names a module
-    return names
+    return frozenset(names)
 
 
 @cache

@@ -21,6 +21,8 @@ from dataclasses import fields
 import numpy as np
 import pandas as pd
 
+from ..events import ImpactError
+from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import SEPARATION_CRITERIA, Scene, SolverOptions, check_columns
 from ..solve import simulate
 from . import batch, closed
@@ -38,6 +40,11 @@ SIMILARITY_MIN = 2000
 
 def scene_table(scenes) -> pd.DataFrame:
     """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row)."""
+    if isinstance(scenes, dict):
+        lengths = {name: np.size(values) for name, values in scenes.items()}
+        if len(set(lengths.values())) > 1:
+            listed = ", ".join(f"{name} ({length})" for name, length in lengths.items())
+            raise ValueError(f"scene columns must have the same length; got {listed}")
     given = pd.DataFrame(scenes)
     unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
     if unknown:
@@ -99,6 +106,11 @@ def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progres
             todo &= ~linear
         for (z, criterion), interpolant in interpolants.items():
             group = np.flatnonzero((criterion == separation) & sep & modified & (gamma == 0) & (zeta == z))
+            outside = group[(lam[group] < interpolant.lo) | (lam[group] > interpolant.hi)]
+            if outside.size:  # a span that does not cover its shard: interpolation would extrapolate
+                raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} has lam = "
+                                 f"{lam[outside[0]]:.6g} outside the span's [{interpolant.lo:.6g}, "
+                                 f"{interpolant.hi:.6g}]; pass the whole sweep as span")
             for start in range(0, group.size, chunk_size):  # evaluated in chunks: memory stays bounded
                 i = group[start:start + chunk_size]
                 _put(out, i, interpolant(lam[i]))
@@ -148,9 +160,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     ImpactError
         A scene that never separates.
     """
-    if not (isinstance(target, float) and 1e-12 <= target <= 1e-3):
+    if isinstance(target, (bool, np.bool_)) or not isinstance(target, (float, np.floating)) \
+            or not 1e-12 <= target <= 1e-3:
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
-    if not (isinstance(chunk_size, int) and chunk_size >= 1):
+    if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
     frame = scene_table(scenes)
     n = len(frame)
@@ -183,15 +196,19 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         impulse = m * v_n * (1.0 - dim["y_p"])
         slides = mu * (1.0 + 1.0 / alpha) * impulse / m < v_t
         vc_t = np.where(slides, v_t - mu * impulse / m, v_t / (1.0 + alpha))
-        omega = np.where(slides, mu * radius * impulse / (alpha * m * radius**2), vc_t / radius)
+        omega = np.where(slides, mu * impulse / (alpha * m * radius), vc_t / radius)  # mu R J / I, no R^2 to underflow
         values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
                   "vc_t": vc_t, "vc_n": -dim["y_f"] * v_n, "ve_t": np.where(slides, vc_t - omega * radius, 0.0),
                   "ve_n": -dim["y_f"] * v_n, "omega_f": omega, "cor": -dim["y_f"]}
         for key, value in values.items():
             result[key][rest] = value
         regime[rest] = np.where(v_t == 0, "none", np.where(slides, "sliding", "rolling"))
-    if not all(np.isfinite(values).all() for values in result.values()):
-        raise RuntimeError("sweep produced a non-finite output")  # never a NaN in a table
+    finite = np.logical_and.reduce([np.isfinite(values) for values in result.values()])
+    if not finite.all():  # never a NaN in a table
+        i = int(np.flatnonzero(~finite)[0])
+        scene = ", ".join(f"{k}={v}" for k, v in frame.iloc[i].to_dict().items())
+        raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
+                          "sweep resolves: try `sphereimpact simulate` on that scene")
     return pd.concat([frame, pd.DataFrame(result | {"regime": regime})[list(SWEEP_OUTPUTS)]], axis=1)
 
 
@@ -200,19 +217,3 @@ def grid(**ranges) -> pd.DataFrame:
     names = list(ranges)
     mesh = np.meshgrid(*[np.atleast_1d(ranges[n]) for n in names], indexing="ij")
     return pd.DataFrame({n: m.ravel() for n, m in zip(names, mesh)})
-
-
-def parse_range(text: str) -> np.ndarray:
-    """``START:STOP:STEP`` (STOP included when on the grid) or a single value, as an array."""
-    parts = text.split(":")
-    try:
-        numbers = [float(p) for p in parts]
-    except ValueError:
-        raise ValueError(f"range must be START:STOP:STEP or a number; got {text!r}") from None
-    if len(numbers) == 1:
-        return np.array(numbers)
-    if len(numbers) != 3 or not all(math.isfinite(x) for x in numbers) or numbers[2] <= 0 or numbers[1] < numbers[0]:
-        raise ValueError(f"range must be START:STOP:STEP with STEP > 0 and STOP >= START; got {text!r}")
-    start, stop, step = numbers
-    count = int(math.floor((stop - start) / step + 1e-9)) + 1
-    return start + step * np.arange(count)

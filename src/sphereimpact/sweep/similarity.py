@@ -172,6 +172,8 @@ class LambdaInterpolant:
 
     Attributes
     ----------
+    lo, hi : float
+        The lam range covered (a call outside it would extrapolate).
     cuts : ndarray
         u* where tension sets in, when it lies inside the range.
     nodes : int
@@ -184,6 +186,7 @@ class LambdaInterpolant:
     """
 
     def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: str, target: float):
+        self.lo, self.hi = float(lam_min), float(lam_max)
         u_lo, u_hi = np.log(lam_min), np.log(lam_max)
         if u_hi - u_lo < 1e-12:
             u_hi = u_lo + 1e-6

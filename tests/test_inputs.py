@@ -1,0 +1,195 @@
+"""Every input answered: a right number, or one clear line naming the parameter (CLI exit 2 for bad input),
+on the command line, in the config and in the Python API.
+
+The tables below are the inputs tried as a new user would; add a row for every new one.
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import sphereimpact.sweep.engine as engine
+from sphereimpact import Scene, SolverOptions, simulate
+from sphereimpact.cli import run
+from sphereimpact.scene import STANDARD_GRAVITY
+from sphereimpact.study.config import config_errors
+from sphereimpact.sweep.engine import grid, sweep
+
+SCHEMA = "config/schema.yaml"
+
+#: argv (OUT, FOLDER and EXISTING stand for paths in a temporary folder), exit status, message fragment.
+CLI = [
+    (["simulate", "--ang", "60"], 2, "unrecognized arguments: --ang 60"),
+    (["simulate", "--angle", "-10"], 2, "angle must be a finite number in [0, 90) degrees; got -10.0"),
+    (["simulate", "--gravity", "-inf"], 2, "gravity must be a finite number >= 0 m/s^2; got -inf"),
+    (["simulate", "--gravity", "1e300"], 2, "gravity: the ball's weight alone compresses the contact"),
+    (["simulate", "--k", "1e-6", "--gravity"], 2, "gravity: the ball's weight alone compresses the contact"),
+    (["simulate", "--rtol", "0.5", "--atol", "0.5"], 2, "rtol must be a finite number in [1e-13, 1e-2]"),
+    (["simulate", "--atol", "1"], 2, "atol must be a finite number in [1e-16, 1e-2]"),
+    (["simulate", "--atol", "1e10"], 2, "atol must be a finite number in [1e-16, 1e-2]"),
+    (["simulate", "--atol", "1e-300"], 2, "atol must be a finite number in [1e-16, 1e-2]"),
+    (["simulate", "--inertia-factor", "0.66666666666667"], 2, "(2/3 = 0.6666666666666666); got 0.66666666666667"),
+    (["simulate", "--mu"], 2, "argument --mu: expected one argument"),
+    (["simulate", "--speed", "1/0"], 2, "expected a number"),
+    (["simulate", "--speed", "fast"], 2, "argument --speed: expected a number"),
+    (["simulate", "--separation", "sometimes"], 2, "separation must be one of force, penetration"),
+    (["fly"], 2, "invalid choice: 'fly'"),
+    ([], 2, "the following arguments are required: command"),
+    (["sweep", "--angle", "-10:10:1", "--out", "OUT"], 2,
+     "angle must be a finite number in [0, 90) degrees; got -10.0 (row 0)"),
+    (["sweep", "--model", "hertz", "--out", "OUT"], 2, "model must be one of kelvin-voigt, modified"),
+    (["sweep", "--gravity", "-inf", "--out", "OUT"], 2, "gravity must be a finite number >= 0 m/s^2; got -inf"),
+    (["sweep", "--ang", "60", "--out", "OUT"], 2, "unrecognized arguments: --ang 60"),
+    (["sweep", "--angle", "0:89:1e-9", "--out", "OUT"], 2, "sweep too large: 8.9e+10 scenes"),
+    (["sweep", "--angle", "5:1:1", "--out", "OUT"], 2, "angle: range must be START:STOP:STEP"),
+    (["sweep", "--angle", "0:89:0", "--out", "OUT"], 2, "STEP > 0"),
+    (["sweep", "--chunk-size", "0", "--out", "OUT"], 2, "chunk_size must be an integer >= 1"),
+    (["sweep", "--target", "1"], 2, "the following arguments are required: --out"),
+    (["sweep", "--out", "/nonexistent/dir/a.csv"], 2, "out: folder '/nonexistent/dir' does not exist"),
+    (["sweep", "--out", "FOLDER"], 2, "out is a folder, not a file"),
+    (["sweep", "--out", "OUT.xlsx"], 2, "out must end in .csv or .parquet"),
+    (["sweep", "--out", "EXISTING"], 2, "exists; pass --force to overwrite it"),
+]
+
+
+@pytest.fixture
+def paths(tmp_path):
+    existing = tmp_path / "existing.csv"
+    existing.write_text("keep me\n")
+    (tmp_path / "folder").mkdir()
+    return {"OUT": str(tmp_path / "out.csv"), "FOLDER": str(tmp_path / "folder"), "EXISTING": str(existing)}
+
+
+@pytest.fixture
+def no_sweep(monkeypatch):
+    """Fail if a sweep starts: bad input must be refused before any work."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("the sweep started before the input was checked")
+
+    monkeypatch.setattr(engine, "sweep", refuse)
+
+
+@pytest.mark.parametrize("argv, status, message", CLI, ids=[" ".join(a) or "(nothing)" for a, _, _ in CLI])
+def test_cli_input_gets_one_line(argv, status, message, paths, no_sweep, capsys):
+    argv = [paths[a] if a in paths else a.replace("OUT", paths["OUT"][:-4]) if a == "OUT.xlsx" else a for a in argv]
+    assert run(argv) == status
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert len(err.strip().splitlines()) == 1 and err.startswith("sphereimpact: error: "), err
+    assert message in err and "Traceback" not in err
+    assert open(paths["EXISTING"]).read() == "keep me\n"
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as exc:
+        run(["--version"])
+    assert exc.value.code == 0 and capsys.readouterr().out.startswith("sphereimpact ")
+
+
+def test_fraction_and_negative_values_are_read(capsys):
+    assert run(["simulate", "--inertia-factor", "2/3", "--json"]) == 0
+    assert '"cor"' in capsys.readouterr().out
+    assert Scene(inertia_factor=2 / 3).inertia_factor == 2 / 3
+
+
+def test_bare_gravity_means_the_same_in_simulate_and_sweep(tmp_path, capsys):
+    out = tmp_path / "g.csv"
+    assert run(["sweep", "--angle", "30", "--gravity", "--out", str(out)]) == 0
+    row = pd.read_csv(out).iloc[0]
+    assert row["gravity"] == STANDARD_GRAVITY
+    assert row["t_f"] == pytest.approx(simulate(Scene(angle=30.0, gravity=STANDARD_GRAVITY)).t_f, rel=1e-8)
+
+
+def test_force_overwrites(paths):
+    assert run(["sweep", "--angle", "0", "--out", paths["EXISTING"], "--force"]) == 0
+    assert len(pd.read_csv(paths["EXISTING"])) == 1
+
+
+def test_a_tiny_ball_is_answered_by_both_paths(tmp_path):
+    """D = 1e-300 m: R^2 underflows, so the spin is computed as mu J / (alpha m R), never through I."""
+    one = simulate(Scene(diameter=1e-300, angle=60.0))
+    out = tmp_path / "tiny.csv"
+    assert run(["sweep", "--diameter", "1e-300", "--angle", "60", "--out", str(out)]) == 0
+    row = pd.read_csv(out).iloc[0]
+    assert math.isfinite(one.omega_f) and row["omega_f"] == pytest.approx(one.omega_f, rel=1e-8)
+    assert row["ve_t"] == pytest.approx(one.ve_t, rel=1e-8)
+
+
+#: Config (merged over config/config.yaml's values where it matters), expected message fragment.
+CONFIGS = [
+    ({"mass": math.nan}, "config key mass: nan is not a finite number"),
+    ({"stiffness": math.inf}, "config key stiffness: inf is not a finite number"),
+    ({"cases": {"normal": {"angle": math.nan}}}, "config key cases.normal.angle: nan is not a finite number"),
+    ({"stiffness": "1e4"}, "YAML 1.1 reads 1e4 as text: write it with a decimal point and a signed exponent, "
+                           "e.g. 1.0e+4"),
+    ({"sweep": {"angle": "5:1:1"}}, "config key sweep.angle: range must be START:STOP:STEP"),
+    ({"sweep": {"angle": "0:89:0"}}, "config key sweep.angle: range must be START:STOP:STEP with finite numbers, STEP > 0"),
+    ({"sweep": {"angle": "0:95:5"}}, "config key sweep.angle: angle must be a finite number in [0, 90) degrees; "
+                                     "the range holds 90"),
+    ({"sweep": {"cor_speed": "0:30:1"}}, "config key sweep.cor_speed: speed must be a finite number > 0 m/s; "
+                                         "the range holds 0"),
+    ({"sweep": {"angle": "0:89:1e-9"}}, "config key sweep.angle: sweep too large"),
+    ({"sweep": {"angle": "0:89:0.001", "speed": "0.5:30:0.001"}}, "config key sweep: sweep too large"),
+    ({"sweep": {"map_speed": 3.1}}, "config key sweep.map_speed: 3.1 is not on the speed grid '0.5:30:0.5'"),
+]
+
+
+@pytest.mark.parametrize("change, message", CONFIGS, ids=[str(c) for c, _ in CONFIGS])
+def test_config_input_is_refused_naming_the_key(change, message):
+    import yaml
+
+    config = yaml.safe_load(open("config/config.yaml")) | change
+    errors = config_errors(config, SCHEMA)
+    assert any(message in e for e in errors), errors
+
+
+def test_the_shipped_configs_are_valid():
+    import yaml
+
+    base = yaml.safe_load(open("config/config.yaml"))
+    assert config_errors(base, SCHEMA) == []
+    assert config_errors(base | yaml.safe_load(open("config/test.yaml")), SCHEMA) == []
+
+
+@pytest.mark.parametrize("value", [np.float32(0.25), np.float64(0.25), np.array(0.25), np.int64(3)])
+def test_numpy_scalars_are_numbers(value):
+    scene = Scene(mu=value)
+    assert isinstance(scene.mu, float) and scene.mu == float(value)
+    assert simulate(scene).omega_f == simulate(Scene(mu=float(value))).omega_f
+    assert SolverOptions(rtol=np.float32(1e-8)).rtol == float(np.float32(1e-8))
+
+
+@pytest.mark.parametrize("make, error, message", [
+    (lambda: Scene(angle=True), TypeError, "angle must be a real number; got bool True"),
+    (lambda: Scene(mass="0.1"), TypeError, "mass must be a real number; got str '0.1'"),
+    (lambda: SolverOptions(max_step=True), TypeError, "max_step must be a real number"),
+    (lambda: SolverOptions(rtol=0.5), ValueError, "rtol must be a finite number in [1e-13, 1e-2]"),
+    (lambda: sweep({"angle": [True]}), TypeError, "angle must be real numbers; got a boolean"),
+    (lambda: sweep({"angle": [30.0]}, chunk_size=True), ValueError, "chunk_size must be an integer >= 1"),
+    (lambda: sweep({"angle": [30.0]}, target=True), ValueError, "target must be a number in [1e-12, 1e-3]"),
+    (lambda: sweep({"angle": [1.0, 2.0], "speed": [1.0, 2.0, 3.0]}), ValueError,
+     "scene columns must have the same length; got angle (2), speed (3)"),
+    (lambda: simulate(None), TypeError, "scene must be a sphereimpact.Scene"),
+    (lambda: simulate({"angle": 60.0}), TypeError, "scene must be a sphereimpact.Scene"),
+    (lambda: simulate(Scene(), "DOP853"), TypeError, "options must be a sphereimpact.SolverOptions"),
+])
+def test_api_input_is_refused_with_what_was_expected(make, error, message):
+    with pytest.raises(error) as exc:
+        make()
+    assert message in str(exc.value)
+
+
+@pytest.mark.parametrize("n", [0, -1, 1, 2.5, True, "10"])
+def test_history_says_what_n_must_be(n):
+    with pytest.raises(ValueError, match=r"n must be an integer >= 2"):
+        simulate(Scene()).history(n)
+
+
+def test_a_span_that_does_not_cover_the_scenes_is_refused():
+    whole = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
+    span = whole[whole.speed <= 15]  # 2700 scenes of one ball: an interpolant is built on them
+    fast = whole[(whole.angle == 0) & (whole.speed >= 20)]  # lam = c v cos(beta) / (omega_n R) beyond the span
+    with pytest.raises(ValueError, match="span does not cover the scenes"):
+        sweep(fast, span=span)
