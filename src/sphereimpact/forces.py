@@ -50,6 +50,10 @@ class ForceModel:
         interpolant, and with it the rebound velocity (measured: COR error
         8.9e-11 at rtol 1e-12 with the kink, 8.4e-13 without).  Separation
         events use ``force``.
+    ramp_rate : callable or None
+        ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
+        u = (c / R) delta (the modified law's 1 - exp(-u)); None for a law without one.  Integrators
+        bound their steps where the ramp switches off (see :class:`sphereimpact.normal.IntegratedNormal`).
     """
 
     name: str
@@ -57,6 +61,7 @@ class ForceModel:
     linear: bool
     doc: str
     continued: Callable
+    ramp_rate: Callable | None = None
 
 
 def kelvin_voigt(delta, delta_dot, p):
@@ -124,5 +129,5 @@ FORCE_MODELS: dict[str, ForceModel] = {
     "modified": ForceModel(
         "modified", modified, linear=False,
         doc="eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
-        continued=modified_continued),
+        continued=modified_continued, ramp_rate=lambda p: p.ramp / p.radius),
 }

@@ -1,0 +1,80 @@
+"""The default path meets its accuracy contract (1e-9 relative on every output) across the input domain,
+not only at the chapter's two scenes: a grid over the two dimensionless numbers that fix the modified law's
+normal motion, lam = c v_n / (omega_n R) and zeta = b / (2 sqrt(k m)) (k, m, D and speed enter only through
+them), both separation criteria, gravity on and off.
+
+Reference: DOP853 at rtol 1e-13 with steps capped at 1/2000 of the undamped half period, so the ramp band
+is resolved whatever the error estimate says (tests/test_numerics.py holds this solver to the 32-digit
+Taylor reference; that reference costs about 12 s per scene at these speeds, too slow for a grid here).
+
+Known misses are strict xfails with their measured errors: a fix turns them into failures to remove.
+"""
+
+import math
+
+import pytest
+
+from sphereimpact import Scene, SolverOptions, simulate
+from sphereimpact.numerics.reference import relative_errors
+
+TARGET = 1e-9
+BASE = Scene()
+
+
+def scene_for(lam, zeta, **changes):
+    """A modified-law normal impact of the chapter's ball with the given lam and zeta (speed and b set)."""
+    speed = lam * BASE.omega_n * BASE.radius / BASE.ramp
+    return BASE.with_(speed=speed, b=zeta * 2 * math.sqrt(BASE.k * BASE.mass), **changes)
+
+
+def capped(scene):
+    return simulate(scene, SolverOptions(rtol=1e-13, atol=1e-13, max_step=math.pi / scene.omega_n / 2000))
+
+
+#: (lam, zeta, separation) -> why the default path still misses 1e-9 there (measured).
+KNOWN = {
+    (20.0, 0.01, "force"): "COR off by 2.2e-9: not the restitution band (moving its edge does not help)",
+    (20.0, 0.01, "penetration"): "COR off by 2.2e-9: not the restitution band (moving its edge does not help)",
+    **{(lam, 3.0, "force"): "over-damped: P = k delta + b delta_dot is a difference of two large terms near "
+                            "P = 0, so t_f carries about zeta^2 x the state error (2e-9 to 7e-9)"
+       for lam in (3.0, 20.0, 75.0)},
+}
+
+
+def _case(lam, zeta, separation, gravity):
+    why = KNOWN.get((lam, zeta, separation))
+    marks = [pytest.mark.xfail(strict=True, reason=why)] if why and gravity == 0 else []
+    return pytest.param(lam, zeta, separation, gravity, marks=marks)
+
+
+GRID = [_case(lam, zeta, separation, gravity)
+        for lam in (3.0, 20.0, 75.0, 150.0)
+        for zeta in (0.01, 0.5, 3.0)
+        for separation in ("force", "penetration") if not (separation == "penetration" and zeta >= 1)
+        for gravity in (0.0,)] + [_case(75.0, 0.056, separation, 9.80665) for separation in ("force", "penetration")]
+
+
+@pytest.mark.parametrize("lam, zeta, separation, gravity", GRID)
+def test_default_meets_the_contract_across_lam_and_zeta(lam, zeta, separation, gravity):
+    scene = scene_for(lam, zeta, separation=separation, gravity=gravity)
+    ref = capped(scene)
+    got = simulate(scene)
+    errors = relative_errors(got.to_dict(), ref.to_dict(), scene)
+    assert max(errors.values()) <= TARGET, errors
+
+
+@pytest.mark.parametrize("angle, speed", [(45.0, 20.0), (0.0, 15.0), (60.0, 30.0)])
+def test_scenes_that_missed_before_the_ramp_band_restart(angle, speed):
+    """These missed 1e-9 by up to 21x at the default tolerance (the ramp switched off inside one step)."""
+    scene = Scene(angle=angle, speed=speed)
+    errors = relative_errors(simulate(scene).to_dict(), capped(scene).to_dict(), scene)
+    assert max(errors.values()) <= TARGET, errors
+
+
+def test_error_falls_with_the_tolerance():
+    """Convergence is monotone again (before: 6.4e-10 at rtol 1e-9, 2.1e-8 at 1e-10, 2e-12 at 1e-11)."""
+    scene = Scene(angle=45.0, speed=20.0)
+    ref = capped(scene).to_dict()
+    worst = [max(relative_errors(simulate(scene, SolverOptions(rtol=r, atol=r)).to_dict(), ref, scene).values())
+             for r in (1e-9, 1e-10, 1e-11)]
+    assert worst[0] > worst[1] > worst[2]
