@@ -30,6 +30,7 @@ import yaml
 from IPython.display import Image, Markdown, display
 
 from sphereimpact.figures.catalog import FIGURES
+from sphereimpact.study.replication import RESOLUTION, pulls
 
 config = yaml.safe_load(open("results/config.yaml"))  # the configuration the pipeline ran
 summary = pd.read_csv("results/summary.csv")
@@ -55,13 +56,14 @@ summary[columns]
 
 # %% [markdown]
 # Where the two separation criteria differ, the force would pull before δ returns to 0. A force counts as
-# pulling only beyond the solver's resolution (below −1e-9 of the peak force, see `results/replication.md`);
-# a smaller negative minimum is round-off at the event.
+# pulling only beyond the solver's resolution relative to the peak force (`RESOLUTION` in
+# `sphereimpact.study.replication`, printed below); a smaller negative minimum is round-off at the event.
 
 # %%
 held = summary[summary.separation == "penetration"].assign(
-    pulls=lambda f: f.force_min < -1e-9 * f.force_max)[["case", "model", "force_min", "force_max", "vc_n", "pulls"]]
-display(held)
+    pulls=lambda f: [pulls(a, b) for a, b in zip(f.force_min, f.force_max)])
+display(Markdown(f"Resolution: {RESOLUTION:g} of the peak force."))
+display(held[["case", "model", "force_min", "force_max", "vc_n", "pulls"]])
 cors = summary[summary.separation == config["primary"]["separation"]].pivot_table(
     index="case", columns="model", values="cor")
 v_n = {name: config["speed"] * math.cos(math.radians(case["angle"])) for name, case in config["cases"].items()}

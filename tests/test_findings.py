@@ -6,7 +6,7 @@ import yaml
 from sphereimpact.scene import STANDARD_GRAVITY
 from sphereimpact.solve import simulate
 from sphereimpact.study.config import options_for, scene_for
-from sphereimpact.study.replication import PULL_RESOLUTION, compare, findings, load_published, pulls
+from sphereimpact.study.replication import RESOLUTION, compare, findings, load_published, pulls
 from sphereimpact.study.runs import outcome_record
 
 CONFIG = yaml.safe_load(open("config/config.yaml"))
@@ -30,7 +30,7 @@ def bullets():
 def test_pulling_is_judged_against_the_peak_force():
     assert pulls(-1.3, 130.0)
     assert not pulls(-6e-15, 130.0)  # round-off at the separation event, not tension
-    assert not pulls(-0.5 * PULL_RESOLUTION * 130.0, 130.0)
+    assert not pulls(-0.5 * RESOLUTION * 130.0, 130.0)
 
 
 def test_tension_findings_agree_with_the_rebound_threshold(bullets):

@@ -167,31 +167,31 @@ def check_out(path: str, force: bool) -> None:
         raise ValueError(f"out: {path!r} exists; pass --force to overwrite it")
 
 
+def _each_range(args, read) -> dict:
+    """``read(text)`` of every ranged parameter, a ValueError naming the parameter that fails."""
+    out = {}
+    for name in RANGED:
+        try:
+            out[name] = read(getattr(args, name))
+        except ValueError as err:
+            raise ValueError(f"{name}: {err}") from None
+    return out
+
+
 def _sweep(args) -> None:
-    from .parsing import parse_range
     from .memory import check_size
+    from .parsing import parse_range
     from .sweep.engine import grid, sweep
     from .sweep.io import write_table
 
     if args.chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {args.chunk_size}")
     check_out(args.out, args.force)
-    counts = {}
-    for name in RANGED:
-        try:
-            counts[name] = range_count(getattr(args, name))
-        except ValueError as err:
-            raise ValueError(f"{name}: {err}") from None
-    scenes = check_size(counts, "split it into shards (the pipeline's sweep.shards) or use coarser ranges "
-                                f"(--chunk-size, now {args.chunk_size}, bounds only the integration's working memory)")
-    ranges = {}
-    for name in RANGED:
-        try:
-            ranges[name] = parse_range(getattr(args, name))
-        except ValueError as err:
-            raise ValueError(f"{name}: {err}") from None
-        check_columns({name: ranges[name]})  # each range against the scene's bounds, before any work
-    check_columns({"model": [args.model], "separation": [args.separation]})
+    scenes = check_size(_each_range(args, range_count),  # counted before any range is made
+                        "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
+                        f"now {args.chunk_size}, bounds only the integration's working memory)")
+    ranges = _each_range(args, parse_range)
+    check_columns(ranges | {"model": [args.model], "separation": [args.separation]})  # before any work
     table = grid(**ranges).assign(model=args.model, separation=args.separation)
     big = scenes >= 100_000 and sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)

@@ -21,6 +21,7 @@ import pandas as pd
 import yaml
 
 from ..events import extremum
+from ..numerics.workprecision import TARGET
 from ..scene import STANDARD_GRAVITY
 from ..solve import simulate
 from .config import options_for, scene_for
@@ -143,15 +144,15 @@ def compare(config: dict, published: list[dict], runs: list[dict]) -> tuple[pd.D
     return pd.DataFrame(rows), pd.DataFrame(tests)
 
 
-#: A force counts as pulling only when P_min < -PULL_RESOLUTION * P_max: the accuracy every output of the
-#: default solver is held to (work-precision target), far above round-off.  A smaller negative P_min is
-#: the event location's round-off, not tension.
-PULL_RESOLUTION = 1e-9
+#: What the default solver resolves, relative to an output's scale: the accuracy every output is held to
+#: (the work-precision target).  A force counts as pulling only when P_min < -RESOLUTION * P_max (a smaller
+#: negative P_min is the event location's round-off, not tension), and two CORs differ only beyond it.
+RESOLUTION = TARGET
 
 
 def pulls(force_min: float, force_max: float) -> bool:
-    """True when the force pulls beyond the solver's resolution (see :data:`PULL_RESOLUTION`)."""
-    return force_min < -PULL_RESOLUTION * force_max
+    """True when the force pulls beyond the solver's resolution (see :data:`RESOLUTION`)."""
+    return force_min < -RESOLUTION * force_max
 
 
 #: Display of an output in the findings: (label, scale, unit).
@@ -167,8 +168,8 @@ def _tension(config: dict, case: str) -> str:
     predicted = res.vc_n > limit  # near delta = 0, P ~ delta (k + c b delta_dot / R)
     found = pulls(res.force_min, res.force_max)
     verdict = (f"pulls: P_min = {res.force_min:.4g} N" if found else
-               f"does not pull: P_min = {res.force_min:.3g} N is round-off (above −{PULL_RESOLUTION:g} × P_max "
-               f"= {-PULL_RESOLUTION * res.force_max:.3g} N)")
+               f"does not pull: P_min = {res.force_min:.3g} N is round-off (above −{RESOLUTION:g} × P_max "
+               f"= {-RESOLUTION * res.force_max:.3g} N)")
     agree = "as" if predicted == found else "**unlike** what"
     return (f"**Tension, modified law, {case}** ({scene.angle:g}°): with contact held until δ = 0 the force "
             f"{verdict}. Near δ = 0, P ≈ δ (k + c b δ̇ / R), negative once the rebound speed exceeds kR/(c b) "
@@ -188,8 +189,8 @@ def _cor(config: dict, published: list[dict]) -> str:
             parts.append(f"{model}, {case} (v_n = {scene.v_normal:.3g} m/s): {cor:.4f}")
         spread[model] = max(values) - min(values)
     printed = ", ".join(f"{e['value']:g} ({e['case']})" for e in published if e["quantity"] == "cor")
-    linear_same = spread["kelvin-voigt"] < PULL_RESOLUTION
-    if linear_same and spread["modified"] > PULL_RESOLUTION:
+    linear_same = spread["kelvin-voigt"] < RESOLUTION
+    if linear_same and spread["modified"] > RESOLUTION:
         why = (f"so the chapter's two printed CORs ({printed}) differ because the modified law's COR depends on "
                "v_n, and its cases approach at different v_n")
     else:

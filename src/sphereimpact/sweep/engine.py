@@ -15,7 +15,6 @@ integrated independently and interpolants are built on the whole sweep.
 
 from __future__ import annotations
 
-import math
 from dataclasses import fields
 
 import numpy as np
