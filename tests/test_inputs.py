@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 import sphereimpact.sweep.engine as engine
-from sphereimpact import Scene, SolverOptions, simulate
+from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.scene import STANDARD_GRAVITY
 from sphereimpact.study.config import config_errors
@@ -35,6 +35,7 @@ CLI = [
     (["simulate", "--speed", "1/0"], 2, "expected a number"),
     (["simulate", "--speed", "fast"], 2, "argument --speed: expected a number"),
     (["simulate", "--separation", "sometimes"], 2, "separation must be one of force, penetration"),
+    (["simulate", "--speed", "1e4", "--strict"], 2, "maximum compression delta_m = 14.3 m exceeds the radius"),
     (["fly"], 2, "invalid choice: 'fly'"),
     ([], 2, "the following arguments are required: command"),
     (["sweep", "--angle", "-10:10:1", "--out", "OUT"], 2,
@@ -109,7 +110,9 @@ def test_force_overwrites(paths):
 
 def test_a_tiny_ball_is_answered_by_both_paths(tmp_path):
     """D = 1e-300 m: R^2 underflows, so the spin is computed as mu J / (alpha m R), never through I."""
-    one = simulate(Scene(diameter=1e-300, angle=60.0))
+    with pytest.warns(BeyondRadiusWarning):
+        one = simulate(Scene(diameter=1e-300, angle=60.0))
+    assert one.beyond_radius
     out = tmp_path / "tiny.csv"
     assert run(["sweep", "--diameter", "1e-300", "--angle", "60", "--out", str(out)]) == 0
     row = pd.read_csv(out).iloc[0]
@@ -193,3 +196,37 @@ def test_a_span_that_does_not_cover_the_scenes_is_refused():
     fast = whole[(whole.angle == 0) & (whole.speed >= 20)]  # lam = c v cos(beta) / (omega_n R) beyond the span
     with pytest.raises(ValueError, match="span does not cover the scenes"):
         sweep(fast, span=span)
+
+
+def test_a_compression_beyond_the_radius_is_flagged_warned_or_refused(capsys):
+    """--speed 1e4 compresses the chapter's ball by 14 m (R = 31.5 mm): outside the model, never silent."""
+    with pytest.warns(BeyondRadiusWarning, match="exceeds the radius"):
+        out = simulate(Scene(speed=1e4))
+    assert out.beyond_radius and out.delta_m > 400 * out.scene.radius
+    with pytest.raises(ImpactError, match="exceeds the radius"):
+        simulate(Scene(speed=1e4), strict=True)
+    assert run(["simulate", "--speed", "1e4", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert '"beyond_radius": true' in captured.out
+    assert captured.err.startswith("sphereimpact: warning: maximum compression") and captured.err.count("\n") == 1
+
+
+def test_a_scene_inside_the_model_is_not_flagged():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert not simulate(Scene(angle=60.0)).beyond_radius
+
+
+def test_the_sweep_flags_a_compression_beyond_the_radius_on_every_path():
+    """The same flag as simulate's, without a warning per scene: one column of the table."""
+    import warnings
+
+    scenes = {"speed": [3.0, 400.0, 400.0, 400.0], "angle": [0.0, 0.0, 30.0, 30.0],
+              "model": ["modified", "modified", "kelvin-voigt", "modified"], "gravity": [0.0, 0.0, 0.0, 9.81]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        table = sweep(scenes)
+    assert table["beyond_radius"].tolist() == [False, True, True, True]
+    assert (table["delta_m"] > table["diameter"] / 2).tolist() == table["beyond_radius"].tolist()

@@ -11,8 +11,8 @@ from .events import ImpactError
 from .forces import FORCE_MODELS, ForceModel
 from .outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .scene import Scene, SolverOptions
-from .solve import simulate
+from .solve import BeyondRadiusWarning, simulate
 
-__all__ = ["FORCE_MODELS", "ForceModel", "HISTORY_COLUMNS", "ImpactError", "OUTPUT_KEYS", "Outcome",
+__all__ = ["BeyondRadiusWarning", "FORCE_MODELS", "ForceModel", "HISTORY_COLUMNS", "ImpactError", "OUTPUT_KEYS", "Outcome",
            "Scene", "SolverOptions", "simulate"]
 __version__ = "0.1.0"

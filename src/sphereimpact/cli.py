@@ -11,6 +11,7 @@ import argparse
 import json
 import os
 import sys
+import warnings
 
 from . import __version__
 from .events import ImpactError
@@ -19,7 +20,7 @@ from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
 from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene,
                     SolverOptions, check_columns)
-from .solve import MODELS, simulate
+from .solve import MODELS, BeyondRadiusWarning, simulate
 
 _D = Scene()
 _O = SolverOptions()
@@ -101,6 +102,8 @@ def _parser() -> argparse.ArgumentParser:
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
     add("--body", choices=MODELS, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
+    add("--strict", action="store_true",
+        help="refuse a result outside the model (maximum compression beyond the radius) instead of flagging it")
     add("--json", action="store_true", help="print one JSON object instead of the readable table")
 
     swp = sub.add_parser(
@@ -108,7 +111,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Simulate every combination of the given values (START:STOP:STEP ranges, stop included, or "
                     "single numbers; a negative value is read as a value, so --angle -10:10:1 reaches the range "
                     "check) and write one row per scene: its parameters and the outputs of `simulate` (t_m, delta_m, "
-                    "t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime), SI units. The size and memory of the "
+                    "t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime, beyond_radius), SI units. The size and memory of the "
                     "sweep and the output file are checked before any work.")
     for name, unit in RANGED.items():
         default = getattr(_D, name)
@@ -210,7 +213,7 @@ def _readable(outputs: dict) -> str:
     for key in OUTPUT_KEYS:
         value = outputs[key]
         shown = f"{value:.10g}" if isinstance(value, float) else "—" if value is None else str(value)
-        unit = UNITS.get(key, "") if isinstance(value, (int, float)) else ""
+        unit = UNITS.get(key, "") if isinstance(value, (int, float)) and not isinstance(value, bool) else ""
         lines.append(f"{key:<10} {shown:>18} {unit}".rstrip())
     return "\n".join(lines)
 
@@ -220,7 +223,11 @@ def _simulate(args) -> None:
                   speed=args.speed, mu=args.mu, model=args.model, k=args.k, b=args.b, ramp=args.ramp,
                   gravity=args.gravity, separation=args.separation)
     options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
-    outputs = simulate(scene, options, model=args.body).to_dict()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", BeyondRadiusWarning)
+        outputs = simulate(scene, options, model=args.body, strict=args.strict).to_dict()
+    for warning in caught:  # one line each, like the errors
+        sys.stderr.write(f"sphereimpact: warning: {warning.message} (--strict refuses it)\n")
     if args.json:
         json.dump(outputs, sys.stdout, indent=2)
         sys.stdout.write("\n")

@@ -18,7 +18,7 @@ from .scene import Scene
 
 #: The outputs of one impact, in the order of the JSON object and tables.
 OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
-               "regime", "t_roll", "force_min", "force_max",
+               "regime", "t_roll", "force_min", "force_max", "beyond_radius",
                "method", "rtol", "atol", "nfev", "wall_time")
 
 #: Columns of :meth:`Outcome.history`, with units.
@@ -55,6 +55,9 @@ class Outcome:
         First instant the contact point stops slipping [s]; None if it never does.
     force_min, force_max : float
         Extremes of the normal force during contact [N] (negative = pulling).
+    beyond_radius : bool
+        True when delta_m exceeds the radius R: the centre passed the flat's plane, outside what a contact
+        law of a ball's surface can describe (:func:`sphereimpact.simulate` warns, or refuses when strict).
     method, rtol, atol, nfev, wall_time
         Solver statistics; ``wall_time`` [s] covers the whole call.
     """
@@ -72,6 +75,7 @@ class Outcome:
     t_roll: float | None
     force_min: float
     force_max: float
+    beyond_radius: bool
     method: str
     rtol: float
     atol: float
@@ -88,15 +92,16 @@ class Outcome:
         ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
         """
         s = motion.scene
+        delta_m = float(motion.kinematics(motion.t_m)["delta"][0])
         end = motion.kinematics(motion.t_f)
         vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
         return cls(
-            t_m=motion.t_m, delta_m=float(motion.kinematics(motion.t_m)["delta"][0]), t_f=motion.t_f,
+            t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
             vc_t=vc_t, vc_n=vc_n, ve_t=vc_t - omega * s.radius, ve_n=vc_n, omega_f=omega,
             cor=vc_n / s.v_normal, regime=motion.regime, t_roll=motion.t_roll,
             force_min=extremum(motion.force, motion.grid, "min")[1],
             force_max=extremum(motion.force, motion.grid, "max")[1],
-            wall_time=wall_time, scene=s, motion=motion, **motion.stats)
+            beyond_radius=bool(delta_m > s.radius), wall_time=wall_time, scene=s, motion=motion, **motion.stats)
 
     def to_dict(self) -> dict:
         """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS`."""

@@ -10,16 +10,22 @@ velocity and spin with event-driven sliding/rolling, as the cross-check.
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
 from .closed import ClosedFormNormal
+from .events import ImpactError
 from .normal import IntegratedNormal, NormalMotion
 from .outcome import Outcome
 from .scene import Scene, SolverOptions
 from .tangential import TangentialMotion
 
 MODELS = ("reduced", "planar")
+
+
+class BeyondRadiusWarning(UserWarning):
+    """The maximum compression exceeds the ball's radius: the result lies outside the model."""
 
 
 class ReducedMotion:
@@ -56,7 +62,8 @@ def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
     return IntegratedNormal(scene, options)
 
 
-def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "reduced") -> Outcome:
+def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "reduced",
+             strict: bool = False) -> Outcome:
     """Simulate one impact.
 
     Parameters
@@ -67,6 +74,9 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
         Method and tolerances; defaults to :class:`SolverOptions()`.
     model : {'reduced', 'planar'}
         ``reduced`` (exact and cheapest) or the full planar rigid-body model.
+    strict : bool
+        Refuse (``ImpactError``) a result whose maximum compression exceeds the radius, instead of
+        returning it flagged (``Outcome.beyond_radius``) with a :class:`BeyondRadiusWarning`.
 
     Returns
     -------
@@ -79,7 +89,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
     ValueError
         Unknown model, or ``closed`` with a nonlinear force law.
     ImpactError
-        The ball never separates, or an event was missed.
+        The ball never separates, an event was missed, or (strict) delta_m exceeds the radius.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
@@ -96,4 +106,12 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
         from .planar import PlanarMotion
 
         motion = PlanarMotion(scene, options)
-    return Outcome.from_motion(motion, time.perf_counter() - start)
+    outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    if outcome.beyond_radius:
+        message = (f"maximum compression delta_m = {outcome.delta_m:.3g} m exceeds the radius R = "
+                   f"{scene.radius:.3g} m: the centre passed the flat's plane, outside the model (lower the speed "
+                   "or raise k)")
+        if strict:
+            raise ImpactError(message)
+        warnings.warn(message, BeyondRadiusWarning, stacklevel=2)
+    return outcome
