@@ -9,9 +9,6 @@ whose error (against :func:`sphereimpact.numerics.reference.reference`) is no la
 
 from __future__ import annotations
 
-import statistics
-import time
-
 import pandas as pd
 
 from ..scene import Scene, SolverOptions
@@ -19,6 +16,7 @@ from ..solve import simulate
 from .handwritten import handwritten
 from .reference import reference, worst_error
 from .workprecision import TARGET
+from ..sweep.bench import median_seconds
 
 TOLERANCES = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
 #: Calls per timed run: one impact takes milliseconds, so each run times a batch.
@@ -26,14 +24,9 @@ BATCH = 10
 
 
 def per_call_seconds(call, repeats: int) -> float:
-    """Median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call]."""
-    runs = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        for _ in range(BATCH):
-            call()
-        runs.append((time.perf_counter() - start) / BATCH)
-    return statistics.median(runs)
+    """Median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call]
+    (the sweep benchmark's protocol: garbage collector off while timed)."""
+    return median_seconds(lambda: [call() for _ in range(BATCH)], repeats) / BATCH
 
 
 def bench_scenes(chapter: dict[str, Scene], domain: bool = True) -> dict[str, Scene]:
