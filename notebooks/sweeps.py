@@ -80,6 +80,13 @@ display(Markdown(f"Linear law: closed form {linear:.6f} (ζ = {zeta:.4f}); the s
                  f"{kv.min():.6f} to {kv.max():.6f}. Modified law: COR from "
                  f"{speed[speed.model == 'modified'].cor.min():.4f} to {speed[speed.model == 'modified'].cor.max():.4f} "
                  f"over {speed.speed.min():g} to {speed.speed.max():g} m/s."))
+beyond = speed[speed.beyond_radius.astype(bool)]
+display(Markdown(
+    "Within the model everywhere on this speed range: the maximum compression stays below the radius."
+    if beyond.empty else
+    f"**Outside the model** above {beyond.speed.min():g} m/s ({', '.join(sorted(set(beyond.model)))}): the maximum "
+    f"compression exceeds the radius R = {config['diameter'] / 2 * 1e3:g} mm, the centre would pass the flat's "
+    "plane. Those points are drawn, and flagged in the table's `beyond_radius` column."))
 pivot = speed.pivot_table(index="speed", columns="model", values="cor")
 pivot.iloc[np.unique(np.linspace(0, len(pivot) - 1, 6).round().astype(int))]
 
