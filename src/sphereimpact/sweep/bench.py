@@ -17,48 +17,26 @@ Gravity-free scenes under the force criterion only (the baseline's impulse algeb
 
 from __future__ import annotations
 
-import gc
-import statistics
-import time
 import tracemalloc
 import warnings
 
 import numpy as np
 import pandas as pd
 
+from ..numerics.bench import TOLERANCES
 from ..numerics.handwritten import handwritten
 from ..numerics.reference import relative_errors
+from ..numerics.timing import median_seconds
 from ..scene import Scene, SolverOptions
 from ..solve import BeyondRadiusWarning, simulate
 from .engine import SCENE_COLUMNS, grid, sweep
 
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
-TOLERANCES = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
-
 #: Per-scene contenders: name -> solve(scene, rtol) -> outputs.
 CONTENDERS = {
     "handwritten": lambda scene, rtol: handwritten(scene, rtol),
     "simulate": lambda scene, rtol: simulate(scene, SolverOptions(rtol=rtol, atol=rtol)).to_dict(),
 }
-
-
-def median_seconds(call, repeats: int) -> float:
-    """Median wall time [s] of ``repeats`` complete calls (the one protocol of every contender).
-
-    The cyclic garbage collector is off while a call is timed, as :mod:`timeit` does: its passes land at
-    random in one contender or another and moved per-scene timings by up to 1.8x between runs.
-    """
-    times = []
-    for _ in range(repeats):
-        gc.collect()
-        gc.disable()
-        try:
-            start = time.perf_counter()
-            call()
-            times.append(time.perf_counter() - start)
-        finally:
-            gc.enable()
-    return statistics.median(times)
 
 
 def _scene(row) -> Scene:
