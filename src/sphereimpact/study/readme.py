@@ -23,6 +23,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from .tables import markdown_table
+
 #: Blocks of the README, in order.
 BLOCKS = ("replication", "speed")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on
@@ -37,12 +39,10 @@ _UNITS = {"delta_m": (1e3, "mm"), "t_m": (1e3, "ms"), "t_f": (1e3, "ms"), "ve_t"
           "ve_n": (1.0, "m/s"), "cor": (1.0, ""), "omega_f": (1.0, "rad/s")}
 
 
-def _row(cells) -> str:
-    return "| " + " | ".join(str(c) for c in cells) + " |"
-
-
 def _table(headers, rows) -> str:
-    return "\n".join([_row(headers), "|" + "|".join("---" for _ in headers) + "|", *(_row(r) for r in rows)])
+    """Rows of cells already written as text, as the project's Markdown table (no trailing newline)."""
+    frame = pd.DataFrame(rows, columns=headers)
+    return markdown_table(frame, {h: (h, None) for h in headers}).rstrip("\n")
 
 
 def _shown(quantity: str, value: float, digits: int) -> str:
