@@ -49,13 +49,17 @@ def _bounds(text: str) -> tuple[float, float, float] | float:
     return start, stop, step
 
 
-def range_count(text: str) -> int:
-    """How many values ``text`` holds, without making them (a range of 10^12 values costs nothing here)."""
-    bounds = _bounds(text)
+def _count(bounds) -> int:
+    """Values of parsed bounds: 1 for a number, else those of START:STOP:STEP with STOP included."""
     if isinstance(bounds, float):
         return 1
     start, stop, step = bounds
     return int(math.floor((stop - start) / step + 1e-9)) + 1
+
+
+def range_count(text: str) -> int:
+    """How many values ``text`` holds, without making them (a range of 10^12 values costs nothing here)."""
+    return _count(_bounds(text))
 
 
 def parse_range(text: str) -> np.ndarray:
@@ -69,7 +73,7 @@ def parse_range(text: str) -> np.ndarray:
     bounds = _bounds(text)
     if isinstance(bounds, float):
         return np.array([bounds])
-    count = range_count(text)
+    count = _count(bounds)
     if count > MAX_RANGE:
         raise ValueError(f"range {text!r} holds {count:.3g} values, more than {MAX_RANGE:.0e}: use a larger STEP")
     start, _, step = bounds
