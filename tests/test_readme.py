@@ -81,3 +81,11 @@ def test_check_reports_a_missing_block_or_snippet(tmp_path):
     problems = check(str(readme), str(tmp_path))
     assert "README has no generated block 'replication'" in problems
     assert any("speed.md is missing" in p for p in problems)
+
+
+def test_timed_cells_are_compared_in_their_units():
+    """The time column switches from ms to s at one second: 1.48 s against 933 ms is a ratio of 1.6, not 630
+    (CI failed on exactly that)."""
+    block = "| sweep | time |\n|---|---|\n| big | 1.48 s |\n"
+    assert differences(block, block.replace("1.48 s", "933 ms")) == []
+    assert differences(block, block.replace("1.48 s", "93.3 ms"))  # 16x: beyond the range

@@ -144,9 +144,16 @@ def update(readme: str, snippets: str) -> str:
     return text
 
 
+#: Units a timed cell may carry, as factors to one base unit (a time column switches from ms to s).
+_CELL_UNITS = {"ms": 1e-3, "s": 1.0}
+
+
 def _number(cell: str) -> float | None:
-    match = re.search(r"[-−]?\d[\d,]*\.?\d*(?:e[-+]?\d+)?", cell)
-    return float(match.group().replace(",", "").replace("−", "-")) if match else None
+    """The first number in ``cell``, in base units when a unit of :data:`_CELL_UNITS` follows it."""
+    match = re.search(r"([-−]?\d[\d,]*\.?\d*(?:e[-+]?\d+)?)\s*(ms|s)?\b", cell)
+    if not match:
+        return None
+    return float(match.group(1).replace(",", "").replace("−", "-")) * _CELL_UNITS.get(match.group(2), 1.0)
 
 
 def _timed_cells_agree(old: str, new: str) -> bool:
