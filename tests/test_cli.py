@@ -41,7 +41,7 @@ BAD = [
     (["--speed", "0"], "speed", "> 0 m/s"),
     (["--angle", "90"], "angle", "[0, 90)"),
     (["--angle", "-1"], "angle", "[0, 90)"),
-    (["--model", "hertz"], "model", "kelvin-voigt, modified"),
+    (["--model", "hooke"], "model", "kelvin-voigt, modified, linear-hunt-crossley, hertz, hunt-crossley"),
     (["--method", "Euler"], "method", "DOP853"),
     (["--separation", "sometimes"], "separation", "force, penetration"),
     (["--inertia-factor", "0.9"], "inertia_factor", "(0, 2/3]"),
@@ -92,7 +92,8 @@ def test_readable_output_has_every_output_with_its_unit(capsys):
 
 def test_help_documents_every_option_with_units():
     out = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--help"], capture_output=True, text=True)
-    for text in ("[deg]", "[m/s]", "[N/m]", "[N s/m]", "[kg]", "[m]", "(default: 0.145)", "(default: 60000.0)"):
+    for text in ("[deg]", "[m/s]", "[N/m]", "[N s/m]", "[kg]", "[m]", "(default: 0.145)", "(default 60000)",
+                 "[N/m^n]", "[s/m]", "[Pa]"):
         assert text in out.stdout, text
     sweep = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--help"], capture_output=True, text=True)
     assert "in [0, 90) degrees" in sweep.stdout and "> 0 kg" in sweep.stdout

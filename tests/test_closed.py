@@ -83,7 +83,7 @@ def test_overdamped_penetration_never_separates(factor, method, body):
     """delta -> 0 only asymptotically: no separation, never a spurious one at the tolerance level."""
     scene = Scene(model="kelvin-voigt", b=factor * CRITICAL_B, separation="penetration", angle=30.0)
     with pytest.raises(ImpactError, match="no separation"):
-        simulate(scene, SolverOptions(method=method), model=body)
+        simulate(scene, SolverOptions(method=method), body=body)
 
 
 def test_ball_held_by_gravity_never_separates():

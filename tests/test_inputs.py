@@ -40,7 +40,7 @@ CLI = [
     ([], 2, "the following arguments are required: command"),
     (["sweep", "--angle", "-10:10:1", "--out", "OUT"], 2,
      "angle must be a finite number in [0, 90) degrees; got -10.0 (row 0)"),
-    (["sweep", "--model", "hertz", "--out", "OUT"], 2, "model must be one of kelvin-voigt, modified"),
+    (["sweep", "--model", "hooke", "--out", "OUT"], 2, "model must be one of kelvin-voigt, modified, linear-hunt-crossley"),
     (["sweep", "--gravity", "-inf", "--out", "OUT"], 2, "gravity must be a finite number >= 0 m/s^2; got -inf"),
     (["sweep", "--ang", "60", "--out", "OUT"], 2, "unrecognized arguments: --ang 60"),
     (["sweep", "--angle", "0:89:1e-9", "--out", "OUT"], 2, "sweep too large: 8.9e+10 scenes"),

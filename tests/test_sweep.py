@@ -8,7 +8,7 @@ from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
-from sphereimpact.sweep.engine import (
+from sphereimpact.sweep.engine import (scene_of, 
     SCENE_COLUMNS,
     SIMILARITY_MIN,
     SWEEP_OUTPUTS,
@@ -32,7 +32,7 @@ def assert_contract(table: pd.DataFrame, sample: int, seed: int = 0, target: flo
     rtol = 1e-12 if target >= 1e-9 else 1e-13
     rows = np.random.default_rng(seed).choice(len(table), size=min(sample, len(table)), replace=False)
     for row in table.iloc[np.sort(rows)].to_dict("records"):
-        scene = Scene(**{k: row[k] for k in SCENE_COLUMNS})
+        scene = scene_of({k: row[k] for k in SCENE_COLUMNS})
         ref = simulate(scene, SolverOptions(rtol=rtol, atol=rtol))
         assert row["regime"] == ref.regime and row["beyond_radius"] == ref.beyond_radius, row
         errors = relative_errors(row, ref.to_dict(), scene, KEYS)
@@ -112,7 +112,7 @@ def test_table_layout():
 @pytest.mark.parametrize("scenes, message", [
     ({"angle": [10.0, 95.0]}, r"angle must be a finite number in \[0, 90\) degrees; got 95.0 \(row 1\)"),
     ({"mass": [0.1, np.nan]}, r"mass must be a finite number > 0 kg; got nan \(row 1\)"),
-    ({"model": ["hertz"]}, "model must be one of kelvin-voigt, modified"),
+    ({"model": ["hooke"]}, "model must be one of kelvin-voigt, modified, linear-hunt-crossley"),
     ({"colour": ["red"]}, "unknown scene parameter 'colour'"),
 ])
 def test_bad_scene_tables_name_the_parameter(scenes, message):

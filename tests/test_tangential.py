@@ -81,7 +81,7 @@ PLANAR_SCENES = {
 def test_reduced_matches_planar(name):
     """The reduced model (normal ODE + impulse algebra) agrees with the full planar model to 1e-9."""
     scene = Scene(**PLANAR_SCENES[name])
-    assert_outputs_close(simulate(scene, TIGHT), simulate(scene, TIGHT, model="planar"), rtol=1e-9)
+    assert_outputs_close(simulate(scene, TIGHT), simulate(scene, TIGHT, body="planar"), rtol=1e-9)
 
 
 def test_gravity_regrip_sequence():
@@ -116,5 +116,5 @@ def test_tight_tolerance_keeps_converging_through_separation(body):
     Against the closed form, the error now falls with the tolerance."""
     scene = Scene(angle=60.0, model="kelvin-voigt", separation="penetration")
     exact = simulate(scene, SolverOptions(method="closed"))
-    errors = [abs(simulate(scene, SolverOptions(rtol=r, atol=r), model=body).cor - exact.cor) for r in (1e-10, 1e-12)]
+    errors = [abs(simulate(scene, SolverOptions(rtol=r, atol=r), body=body).cor - exact.cor) for r in (1e-10, 1e-12)]
     assert errors[1] < 1e-11 and errors[1] < errors[0]

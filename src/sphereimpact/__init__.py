@@ -8,11 +8,11 @@ Quick use::
 """
 
 from .events import ImpactError
-from .forces import FORCE_MODELS, ForceModel
+from .laws import LAWS, ContactLaw, Parameter
 from .outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .scene import Scene, SolverOptions
 from .solve import BeyondRadiusWarning, simulate
 
-__all__ = ["BeyondRadiusWarning", "FORCE_MODELS", "ForceModel", "HISTORY_COLUMNS", "ImpactError", "OUTPUT_KEYS", "Outcome",
-           "Scene", "SolverOptions", "simulate"]
+__all__ = ["BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "OUTPUT_KEYS", "Outcome",
+           "Parameter", "Scene", "SolverOptions", "simulate"]
 __version__ = "0.1.0"

@@ -14,13 +14,14 @@ import sys
 import warnings
 
 from . import __version__
+from .calibrate import RELATIONS, calibrate
 from .events import ImpactError
-from .forces import FORCE_MODELS
+from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
 from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene,
                     SolverOptions, check_columns)
-from .solve import MODELS, BeyondRadiusWarning, simulate
+from .solve import BODIES, BeyondRadiusWarning, simulate
 
 _D = Scene()
 _O = SolverOptions()
@@ -28,9 +29,33 @@ _O = SolverOptions()
 #: Output units for the readable (non-JSON) output of ``simulate``.
 UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
          "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N", "wall_time": "s"}
-#: Sweep parameters that take ranges, with their units.
-RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "k": "N/m", "b": "N s/m", "mass": "kg", "diameter": "m",
-          "inertia_factor": "-", "ramp": "-", "gravity": "m/s^2"}
+#: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
+RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
+          "gravity": "m/s^2"}
+
+
+def _law_flags() -> dict:
+    """Law parameter -> help text: what it is, its units and range per law, which laws use it, defaults.
+
+    Built from the registered laws, so a new law's parameters are documented without touching the CLI.
+    """
+    texts = {}
+    for name in PARAMETER_NAMES:
+        users = [law for law in LAWS.values() if name in law.parameter_names]
+        if not users:
+            continue
+        if name == "modulus":
+            texts[name] = ("effective modulus E* [Pa], > 0, instead of k for "
+                           + ", ".join(law.name for law in users) + ": k = (4/3) E* sqrt(R)")
+            continue
+        described = {}
+        for law in users:
+            p = law.parameter(name)
+            default = "required" if p.default is None else f"default {p.default:g}"
+            described.setdefault(f"{p.doc} [{p.unit}], {p.allowed.removeprefix('a finite number ')}", []).append(
+                f"{law.name} ({default})")
+        texts[name] = "; ".join(f"{what}: {', '.join(laws)}" for what, laws in described.items())
+    return texts
 
 
 class UsageError(Exception):
@@ -80,12 +105,16 @@ def _parser() -> argparse.ArgumentParser:
     add("--speed", type=_number, default=_D.speed, metavar="M_S",
         help="vertical approach speed of the centre [m/s], > 0")
     add("--model", default=_D.model, metavar="NAME",
-        help="normal force law: " + "; ".join(f"{k}: {m.doc}" for k, m in FORCE_MODELS.items()))
+        help="normal force law: " + "; ".join(f"{k}: {m.doc}" for k, m in LAWS.items()))
     add("--mu", type=_number, default=_D.mu, help="kinetic friction coefficient [-], >= 0")
-    add("--k", type=_number, default=_D.k, help="contact stiffness [N/m], > 0")
-    add("--b", type=_number, default=_D.b, help="contact damping [N s/m], >= 0")
-    add("--ramp", type=_number, default=_D.ramp,
-        help="constant c of the modified model's ramp 1 - exp(-c delta/R) [-], > 0")
+    for name, text in _law_flags().items():
+        add("--" + name, type=_number, default=None, help=text + ". A parameter the law does not use is refused")
+    add("--cor", type=_number, default=None, metavar="E",
+        help="set the law's damping so that the normal COR is E, in (0, 1) (replaces its damping parameter)")
+    add("--cor-relation", default="exact", metavar="|".join(RELATIONS),
+        help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
+    add("--contact-time", type=_number, default=None, metavar="S",
+        help="with --cor: fit the stiffness k too, so that the contact time t_f is S [s]")
     add("--mass", type=_number, default=_D.mass, help="ball mass [kg], > 0")
     add("--diameter", type=_number, default=_D.diameter, help="ball diameter [m], > 0")
     add("--inertia-factor", type=_number, default=_D.inertia_factor,
@@ -100,7 +129,7 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
-    add("--body", choices=MODELS, default="reduced",
+    add("--body", choices=BODIES, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
         help="refuse a result outside the model (maximum compression beyond the radius) instead of flagging it")
@@ -120,7 +149,10 @@ def _parser() -> argparse.ArgumentParser:
         swp.add_argument("--" + name.replace("_", "-"), default=repr(default), metavar="RANGE", **kwargs,
                          help=f"{name} [{unit}], {allowed}: a value or START:STOP:STEP"
                               + (f"; the bare flag means {STANDARD_GRAVITY}" if name == "gravity" else ""))
-    swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(FORCE_MODELS))
+    for name, text in _law_flags().items():
+        swp.add_argument("--" + name, default=None, metavar="RANGE",
+                         help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
+    swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(LAWS))
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
     swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
     swp.add_argument("--chunk-size", type=int, default=100_000,
@@ -171,9 +203,11 @@ def check_out(path: str, force: bool) -> None:
 
 
 def _each_range(args, read) -> dict:
-    """``read(text)`` of every ranged parameter, a ValueError naming the parameter that fails."""
+    """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
-    for name in RANGED:
+    for name in [*RANGED, *_law_flags()]:
+        if getattr(args, name) is None:  # a law parameter not given: the law's default
+            continue
         try:
             out[name] = read(getattr(args, name))
         except ValueError as err:
@@ -194,8 +228,10 @@ def _sweep(args) -> None:
                         "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
                         f"now {args.chunk_size}, bounds only the integration's working memory)")
     ranges = _each_range(args, parse_range)
-    check_columns(ranges | {"model": [args.model], "separation": [args.separation]})  # before any work
-    table = grid(**ranges).assign(model=args.model, separation=args.separation)
+    laws = _law_flags()
+    check_columns({name: values for name, values in ranges.items() if name not in laws}
+                  | {"model": [args.model], "separation": [args.separation]})  # before any work
+    table = grid(**ranges).assign(model=args.model, separation=args.separation)  # law parameters: checked by sweep
     big = scenes >= 100_000 and sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
     write_table(result, args.out)
@@ -207,32 +243,50 @@ def _progress(done: int, total: int) -> None:
         sys.stderr.write("\n")
 
 
-def _readable(outputs: dict) -> str:
-    """The outputs as aligned ``name  value  unit`` lines."""
-    lines = []
-    for key in OUTPUT_KEYS:
+def _readable(outputs: dict, units: dict) -> str:
+    """The outputs as aligned ``name  value  unit`` lines (the outputs first, then any fitted values)."""
+    lines, width = [], max(10, *map(len, outputs))
+    for key in [*OUTPUT_KEYS, *(key for key in outputs if key not in OUTPUT_KEYS)]:
         value = outputs[key]
         shown = f"{value:.10g}" if isinstance(value, float) else "—" if value is None else str(value)
-        unit = UNITS.get(key, "") if isinstance(value, (int, float)) and not isinstance(value, bool) else ""
-        lines.append(f"{key:<10} {shown:>18} {unit}".rstrip())
+        unit = units.get(key, "") if isinstance(value, (int, float)) and not isinstance(value, bool) else ""
+        lines.append(f"{key:<{width}} {shown:>18} {unit}".rstrip())
     return "\n".join(lines)
 
 
 def _simulate(args) -> None:
+    law = {name: getattr(args, name) for name in _law_flags()}
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
-                  speed=args.speed, mu=args.mu, model=args.model, k=args.k, b=args.b, ramp=args.ramp,
-                  gravity=args.gravity, separation=args.separation)
+                  speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
+                  **law)
     options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
+    fitted, units = {}, UNITS
+    if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None):
+        raise ValueError("--cor-relation and --contact-time need --cor")
+    if args.cor is not None:
+        damping = scene.law.damping
+        if damping is not None and law.get(damping) is not None:
+            raise ValueError(f"give --{damping} or --cor, not both (--cor sets {damping})")
+        if args.contact_time is not None and law.get("k") is not None:
+            raise ValueError("give --k or --contact-time, not both (--contact-time fits k)")
+        calibration = calibrate(scene, args.cor, args.cor_relation, args.contact_time)
+        scene = calibration.scene
+        unit = scene.law.parameter(calibration.parameter).unit
+        units = UNITS | {f"fitted_{calibration.parameter}": unit, "fitted_k": scene.law.parameter("k").unit}
+        units |= {f"{damping}_{name}": unit for name in calibration.relations}
+        fitted = {f"fitted_{calibration.parameter}": calibration.value,
+                  **({"fitted_k": scene.k} if args.contact_time is not None else {}),
+                  **{f"{damping}_{name}": value for name, value in calibration.relations.items()}}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BeyondRadiusWarning)
-        outputs = simulate(scene, options, model=args.body, strict=args.strict).to_dict()
+        outputs = simulate(scene, options, body=args.body, strict=args.strict).to_dict() | fitted
     for warning in caught:  # one line each, like the errors
         sys.stderr.write(f"sphereimpact: warning: {warning.message} (--strict refuses it)\n")
     if args.json:
         json.dump(outputs, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
-        sys.stdout.write(_readable(outputs) + "\n")
+        sys.stdout.write(_readable(outputs, units) + "\n")
 
 
 def run(argv=None) -> int:

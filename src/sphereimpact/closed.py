@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from .events import ImpactError, first_root
-from .forces import FORCE_MODELS
+from .laws import LAWS
 from .normal import NormalMotion, no_separation_message, separation_function
 from .scene import Scene
 
@@ -57,8 +57,9 @@ class ClosedFormNormal(NormalMotion):
     """
 
     def __init__(self, scene: Scene):
-        if not FORCE_MODELS[scene.model].linear:
-            raise ValueError(f"method 'closed' needs a linear force model (kelvin-voigt); got model {scene.model!r}")
+        if scene.law.closed_form != "kelvin-voigt":
+            closed = ", ".join(name for name, law in LAWS.items() if law.closed_form == "kelvin-voigt")
+            raise ValueError(f"method 'closed' needs a law with a closed form ({closed}); got model {scene.model!r}")
         self.scene = scene
         w, zeta = scene.omega_n, scene.zeta
         self._w2, self._sigma = w * w, zeta * w
@@ -99,3 +100,7 @@ class ClosedFormNormal(NormalMotion):
         x = e * (x0 * c + (v0 + self._sigma * x0) * s)
         xd = e * (v0 * c - (self._w2 * x0 + self._sigma * v0) * s)
         return x + self._offset, xd
+
+
+#: Exact normal motions by the ODE they solve; a law names its own in ``ContactLaw.closed_form``.
+CLOSED_FORMS = {"kelvin-voigt": ClosedFormNormal}

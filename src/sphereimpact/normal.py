@@ -6,8 +6,9 @@ model integrates:
 
     m delta'' = -P(delta, delta') + m g cos(beta),  delta(0) = 0,  delta'(0) = v cos(beta).
 
-It is solved in dimensionless form, tau = omega_n t, x = delta omega_n / v_n,
-y = delta' / v_n, so one absolute tolerance suits every ball and speed.
+It is solved in dimensionless form, tau = t / T, x = delta / (v_n T), y = delta' / v_n with T the law's
+natural contact time (1 / omega_n for a linear spring, see :class:`sphereimpact.laws.ContactLaw`), so one
+absolute tolerance suits every law, ball and speed.
 Maximum compression and separation are located by :func:`scipy.integrate.solve_ivp`'s
 event root finding on the dense output (Brent's method, a few ulp).
 """
@@ -20,7 +21,6 @@ import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
 from .events import ImpactError
-from .forces import FORCE_MODELS
 from .scene import Scene, SolverOptions
 
 #: Samples per solver step used when scanning event functions on the dense output.
@@ -101,7 +101,12 @@ def no_separation_message(scene: Scene, t_end: float) -> str:
     what = "delta never returns to 0" if scene.separation == "penetration" else "P never returns to 0"
     hint = " (try --separation force)" if scene.separation == "penetration" else ""
     return (f"no separation: {what} within {t_end:.3g} s under the '{scene.separation}' criterion "
-            f"(damping ratio zeta = {scene.zeta:.3g}, gravity {scene.gravity:g} m/s^2){hint}")
+            f"({describe_family(scene)}gravity {scene.gravity:g} m/s^2){hint}")
+
+
+def describe_family(scene: Scene) -> str:
+    """The scene's dimensionless numbers as ``"zeta = 0.0567, lam = 16.3, "`` for messages."""
+    return "".join(f"{name} = {value:.3g}, " for name, value in scene.family.items())
 
 
 def check_rebound(scene: Scene, options: SolverOptions, rate: float) -> None:
@@ -124,17 +129,16 @@ def check_rebound(scene: Scene, options: SolverOptions, rate: float) -> None:
             f"no separation: the rebound found ({-rate / scene.v_normal:.2g} of the approach speed) is below "
             f"what the tolerances resolve ({noise:.2g}): either the ball comes to rest in contact under the "
             f"'{scene.separation}' criterion, or that criterion is ill-conditioned at this damping "
-            f"(zeta = {scene.zeta:.3g}); tighten rtol and atol to tell")
+            f"({describe_family(scene).rstrip(', ')}); tighten rtol and atol to tell")
 
 
 def horizon(scene: Scene) -> float:
-    """Longest contact [s] searched for a separation before giving up.
+    """Longest contact [s] searched for a separation before giving up: the law's dimensionless horizon times T.
 
-    Far beyond any contact that ends: 100 undamped half-periods, stretched by
-    the damping ratio for over-damped scenes (their slow mode decays at about
-    omega_n / (2 zeta)).
+    Far beyond any contact that ends: for a linear spring 100 undamped half-periods, stretched by the
+    damping ratio for over-damped scenes (their slow mode decays at about omega_n / (2 zeta)).
     """
-    return 100.0 * math.pi * (1.0 + 2.0 * scene.zeta) / scene.omega_n
+    return float(scene.law.horizon(scene)) / scene.frequency
 
 
 class IntegratedNormal(NormalMotion):
@@ -156,7 +160,7 @@ class IntegratedNormal(NormalMotion):
         if options.method == "closed":
             raise ValueError("method 'closed' is not a solve_ivp method")
         self.scene = scene
-        w, v = scene.omega_n, scene.v_normal
+        w, v = scene.frequency, scene.v_normal
         d_scale, gamma = v / w, scene.g_normal / (w * v)
         p_scale = scene.mass * w * v
         law = scene.stage_force  # smooth past separation: the crossing step stays accurate
@@ -175,7 +179,7 @@ class IntegratedNormal(NormalMotion):
         separation.direction = -1
         separation.terminal = True
 
-        ramp_rate = FORCE_MODELS[scene.model].ramp_rate
+        ramp_rate = scene.law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale  # u = lam x in the ramp band
         events = [max_compression, separation]
         if lam is not None:

@@ -43,7 +43,7 @@ class PlanarMotion:
         beta = scene.beta
         self._n = np.array([math.sin(beta), math.cos(beta)])
         self._t = np.array([math.cos(beta), -math.sin(beta)])
-        radius, length = scene.radius, scene.speed / scene.omega_n
+        radius, length = scene.radius, scene.speed / scene.frequency
         scale = np.array([length, length, scene.speed, scene.speed, scene.speed / radius])
         self._options = dict(method=options.method, rtol=options.rtol, atol=options.atol * scale,
                              max_step=options.max_step, dense_output=True)

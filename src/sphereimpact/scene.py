@@ -14,7 +14,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .forces import FORCE_MODELS
+from .laws import LAWS, PARAMETER_NAMES, hertz_constant
+from .laws.base import MODULUS
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
@@ -28,8 +29,10 @@ SEPARATION_CRITERIA = ("force", "penetration")
 METHODS = ("closed", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
-#: Numeric Scene fields: (allowed range as stated in messages, vectorised test).  One table for the
-#: scalar checks of :class:`Scene` and the array checks of sweeps, so both say the same thing.
+#: Numeric Scene fields other than the law's parameters: (allowed range as stated in messages, vectorised
+#: test).  One table for the scalar checks of :class:`Scene` and the array checks of sweeps, so both say the
+#: same thing.  The law's own parameters (k, b, ramp, chi, exponent, modulus) are declared by the law
+#: (:mod:`sphereimpact.laws`) and checked by :func:`law_parameters`.
 RULES = {
     "mass": ("a finite number > 0 kg", lambda x: x > 0),
     "diameter": ("a finite number > 0 m", lambda x: x > 0),
@@ -37,9 +40,6 @@ RULES = {
     "angle": ("a finite number in [0, 90) degrees", lambda x: (x >= 0) & (x < 90)),
     "speed": ("a finite number > 0 m/s", lambda x: x > 0),
     "mu": ("a finite number >= 0", lambda x: x >= 0),
-    "k": ("a finite number > 0 N/m", lambda x: x > 0),
-    "b": ("a finite number >= 0 N s/m", lambda x: x >= 0),
-    "ramp": ("a finite number > 0", lambda x: x > 0),
     "gravity": ("a finite number >= 0 m/s^2", lambda x: x >= 0),
 }
 
@@ -70,14 +70,88 @@ def _check_choice(name: str, value, choices) -> None:
         raise ValueError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
 
 
-def check_columns(columns: dict) -> None:
+def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
+    """The law parameters of scenes of one law: checked, defaults filled, ``modulus`` turned into ``k``.
+
+    Parameters
+    ----------
+    model : str
+        The law's name.
+    given : dict of str -> array or None
+        Parameter name (of :data:`sphereimpact.laws.PARAMETER_NAMES`) -> values for each scene, or None
+        when not given.  NaN in a given column means "not given" only for a law that does not use it.
+    radius : float or array
+        Ball radius R [m] of each scene (for ``modulus``).
+    rows : array of int, optional
+        The scenes' rows in a table, for messages.
+
+    Returns
+    -------
+    dict of str -> float array
+        Every name of PARAMETER_NAMES; NaN for the parameters the law does not use.
+
+    Raises
+    ------
+    ValueError
+        A parameter the law does not use, a required one missing, or a value out of its range, in one line
+        naming the parameter, the law and (for tables) the row.
+    """
+    law = LAWS.law(model)
+    shape = np.shape(radius)
+    where = (lambda i: "") if rows is None else (lambda i: f" (row {int(rows[i])})")
+    values, present = {}, {}
+    for name in PARAMETER_NAMES:
+        value = given.get(name)
+        present[name] = value is not None
+        values[name] = np.broadcast_to(np.asarray(value if present[name] else np.nan, dtype=float), shape).copy()
+    uses = law.parameter_names
+    for name in PARAMETER_NAMES:
+        if name not in uses and present[name]:
+            extra = np.flatnonzero(~np.isnan(values[name]).ravel()) if rows is not None else [0]
+            if len(extra):
+                raise ValueError(f"{name} is not a parameter of model {model!r} (its parameters: {', '.join(uses)})"
+                                 f"{where(extra[0])}")
+    if law.spring == "hertz" and present["modulus"]:
+        _check_array(MODULUS, values["modulus"], where)
+        from_modulus = hertz_constant(values["modulus"], radius)
+        if present["k"] and np.any(values["k"] != from_modulus):  # equal: a scene copied with both
+            raise ValueError(f"give k or modulus for model {model!r}, not both (k = (4/3) modulus sqrt(R))")
+        values["k"] = from_modulus
+        present["k"] = True
+    for parameter in law.parameters:
+        name = parameter.name
+        if not present[name]:
+            if parameter.default is None:
+                alternative = " (or modulus, the effective modulus E* [Pa])" if law.spring == "hertz" and name == "k" else ""
+                raise ValueError(f"{name} is required by model {model!r}: {parameter.doc} [{parameter.unit}]"
+                                 f"{alternative}")
+            values[name][...] = parameter.default
+        _check_array(parameter, values[name], where)
+    return values
+
+
+def _check_array(parameter, values: np.ndarray, where) -> None:
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.isfinite(values) & parameter.ok(values))
+    if np.any(bad):
+        i = int(np.flatnonzero(np.ravel(bad))[0])
+        raise ValueError(f"{parameter.name} must be {parameter.range_text}; got {float(np.ravel(values)[i])!r}"
+                         f"{where(i)}")
+
+
+def check_columns(columns: dict) -> dict:
     """Validate arrays of scene parameters (as :class:`Scene` does one value), naming the first bad row.
 
     Parameters
     ----------
     columns : dict of str -> array_like
-        Scene field -> values; numeric fields must be numbers, ``model`` and
-        ``separation`` strings.
+        Scene field -> values; numeric fields must be numbers, ``model`` and ``separation`` strings.  Law
+        parameters (k, b, ...) are checked against each row's law (missing ones take the law's default).
+
+    Returns
+    -------
+    dict of str -> float array
+        The law parameters of every row (:func:`law_parameters`), when ``model`` and ``diameter`` are given.
 
     Raises
     ------
@@ -100,13 +174,34 @@ def check_columns(columns: dict) -> None:
                 i = int(np.flatnonzero(bad)[0])
                 raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in ("model", "separation"):
-            choices = tuple(FORCE_MODELS) if name == "model" else SEPARATION_CRITERIA
+            choices = tuple(LAWS) if name == "model" else SEPARATION_CRITERIA
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
+        elif name in PARAMETER_NAMES:
+            raw = np.asarray(values)
+            if raw.dtype == bool:
+                raise TypeError(f"{name} must be real numbers; got a boolean")
+            try:
+                np.asarray(values, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be a number; got a non-numeric value") from None
         else:
             raise ValueError(f"unknown scene parameter {name!r}; expected one of "
-                             f"{', '.join([*RULES, 'model', 'separation'])}")
+                             f"{', '.join([*RULES, 'model', 'separation', *PARAMETER_NAMES])}")
+    if "model" not in columns or "diameter" not in columns:
+        return {}
+    models = np.asarray(columns["model"], dtype=object).ravel()
+    radius = 0.5 * np.broadcast_to(np.asarray(columns["diameter"], dtype=float), models.shape)
+    out = {name: np.full(models.shape, np.nan) for name in PARAMETER_NAMES}
+    for model in dict.fromkeys(models.tolist()):
+        rows = np.flatnonzero(models == model)
+        given = {name: np.broadcast_to(np.asarray(columns[name], dtype=float), models.shape)[rows]
+                 for name in PARAMETER_NAMES if name in columns}
+        resolved = law_parameters(model, given, radius[rows], rows=rows)
+        for name in PARAMETER_NAMES:
+            out[name][rows] = resolved[name]
+    return out
 
 
 @dataclass(frozen=True)
@@ -131,14 +226,15 @@ class Scene:
     mu : float
         Kinetic (Coulomb) friction coefficient [-], >= 0.  Chapter: 0.2.
     model : str
-        Normal force law, a key of :data:`sphereimpact.forces.FORCE_MODELS`.
-    k : float
-        Contact stiffness [N/m], > 0.  Chapter: 60000.
-    b : float
-        Contact damping [N s/m], >= 0.  Chapter: 10.5.
-    ramp : float
-        Constant c in the modified damping ramp 1 - exp(-c delta / R) [-], > 0.
-        Chapter: 100.  Ignored by models without a ramp.
+        Normal force law, a key of :data:`sphereimpact.laws.LAWS` (``kelvin-voigt``, ``modified``,
+        ``linear-hunt-crossley``, ``hertz``, ``hunt-crossley`` or a registered one).
+    k, b, ramp, chi, exponent, modulus : float or None
+        The law's parameters; each law declares which it uses, their units, ranges and defaults, and a
+        parameter the law does not use is refused.  None takes the law's default (an error where it has
+        none).  ``k``: stiffness constant of the spring term [N/m for linear laws, N/m^n for Hertz laws;
+        chapter 60000 N/m]; ``b``: damping [N s/m], chapter 10.5; ``ramp``: c in 1 - exp(-c delta / R),
+        chapter 100; ``chi``: Hunt-Crossley damping factor [s/m]; ``exponent``: n of k delta^n;
+        ``modulus``: effective modulus E* [Pa] of a Hertz law, instead of k.
     gravity : float
         Gravitational acceleration g [m/s^2], >= 0; 0 (off) by default.  The weight alone must not
         compress the contact beyond the radius (m g cos(beta) / k <= R).
@@ -153,22 +249,32 @@ class Scene:
     speed: float = 3.0
     mu: float = 0.2
     model: str = "modified"
-    k: float = 60000.0
-    b: float = 10.5
-    ramp: float = 100.0
+    k: float | None = None
+    b: float | None = None
+    ramp: float | None = None
+    chi: float | None = None
+    exponent: float | None = None
+    modulus: float | None = None
     gravity: float = 0.0
     separation: str = "force"
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
             object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
-        _check_choice("model", self.model, tuple(FORCE_MODELS))
+        _check_choice("model", self.model, tuple(LAWS))
         _check_choice("separation", self.separation, SEPARATION_CRITERIA)
-        static = self.mass * self.g_normal / self.k  # the spring's compression under the ball's weight alone
-        if static > self.radius:
-            raise ValueError(f"gravity: the ball's weight alone compresses the contact by m g cos(beta) / k = "
-                             f"{static:.3g} m, more than its radius R = {self.radius:.3g} m: outside the model "
-                             "(lower gravity or mass, or raise k)")
+        given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
+                 for name in PARAMETER_NAMES}
+        values = law_parameters(self.model, given, self.radius)
+        for name in PARAMETER_NAMES:
+            value = float(values[name])
+            object.__setattr__(self, name, None if math.isnan(value) else value)
+        weight = self.mass * self.g_normal  # pressing the ball into the flat [N]
+        if weight > 0 and float(self.force(self.radius, 0.0)) < weight:  # the spring alone cannot hold it at R
+            raise ValueError(f"gravity: the ball's weight alone compresses the contact beyond its radius "
+                             f"R = {self.radius:.3g} m (m g cos(beta) = {weight:.3g} N, more than the "
+                             f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
+                             "outside the model (lower gravity or mass, or raise k)")
 
     # Derived quantities (SI) -------------------------------------------------
     @property
@@ -207,14 +313,43 @@ class Scene:
         return 0.0 if self.angle == 0 else self.gravity * math.sin(self.beta)
 
     @property
+    def law(self):
+        """The contact law (:class:`sphereimpact.laws.ContactLaw`)."""
+        return LAWS[self.model]
+
+    @property
+    def frequency(self) -> float:
+        """1 / T [1/s], T the law's natural contact time (omega_n for a linear spring)."""
+        return float(self.law.frequency(self))
+
+    @property
+    def time_scale(self) -> float:
+        """The law's natural contact time T [s] (1 / omega_n for a linear spring)."""
+        return 1.0 / self.frequency
+
+    @property
+    def family(self) -> dict:
+        """The law's dimensionless numbers fixing the weightless normal motion (e.g. zeta and lam)."""
+        return {name: float(value) for name, value in self.law.family(self).items()}
+
+    @property
     def omega_n(self) -> float:
-        """Undamped natural frequency sqrt(k/m) [rad/s]."""
+        """Undamped natural frequency sqrt(k/m) [rad/s] of a linear spring (ValueError for a Hertz law)."""
+        self._linear_spring("omega_n")
         return math.sqrt(self.k / self.mass)
 
     @property
     def zeta(self) -> float:
-        """Damping ratio b / (2 sqrt(k m)) [-]."""
+        """Damping ratio b / (2 sqrt(k m)) [-] of a linear spring-damper law (ValueError otherwise)."""
+        self._linear_spring("zeta")
+        if self.b is None:
+            raise ValueError(f"zeta: model {self.model!r} has no damping coefficient b")
         return self.b / (2.0 * math.sqrt(self.k * self.mass))
+
+    def _linear_spring(self, what: str) -> None:
+        if self.law.spring != "linear":
+            raise ValueError(f"{what} is defined for a linear spring; model {self.model!r} has a Hertz spring "
+                             "(use frequency)")
 
     @property
     def has_tangential_motion(self) -> bool:
@@ -223,14 +358,25 @@ class Scene:
 
     def force(self, delta, delta_dot):
         """Normal contact force P [N] of this scene's law at (delta [m], delta_dot [m/s])."""
-        return FORCE_MODELS[self.model].force(delta, delta_dot, self)
+        return self.law.force(delta, delta_dot, self)
 
     def stage_force(self, delta, delta_dot):
-        """The law continued smoothly past delta = 0 [N], for integrator stages only (see ForceModel.continued)."""
-        return FORCE_MODELS[self.model].continued(delta, delta_dot, self)
+        """The law continued smoothly past delta = 0 [N], for integrator stages only (see ContactLaw.continued)."""
+        return self.law.continued(delta, delta_dot, self)
 
     def with_(self, **changes) -> "Scene":
-        """A validated copy with some fields changed."""
+        """A validated copy with some fields changed.
+
+        Changing ``model`` drops the old law's parameters that the new law does not use (and ``modulus``
+        when ``k`` changes); the others carry over.
+        """
+        if "model" in changes:
+            uses = LAWS.law(changes["model"]).parameter_names
+            changes = {name: None for name in PARAMETER_NAMES if name not in uses} | changes
+        if "k" in changes and "modulus" not in changes:
+            changes["modulus"] = None
+        if "diameter" in changes and self.modulus is not None and "k" not in changes:
+            changes["k"] = None  # k follows the modulus at the new radius
         return replace(self, **changes)
 
 

@@ -14,14 +14,16 @@ import warnings
 
 import numpy as np
 
-from .closed import ClosedFormNormal
+from .closed import CLOSED_FORMS
 from .events import ImpactError
+from .laws import LAWS
 from .normal import IntegratedNormal, NormalMotion
 from .outcome import Outcome
 from .scene import Scene, SolverOptions
 from .tangential import TangentialMotion
 
-MODELS = ("reduced", "planar")
+#: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
+BODIES = ("reduced", "planar")
 
 
 class BeyondRadiusWarning(UserWarning):
@@ -56,13 +58,16 @@ class ReducedMotion:
 
 
 def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
-    """The normal motion of ``scene``: closed form for ``method='closed'``, else integrated."""
+    """The normal motion of ``scene``: its law's closed form for ``method='closed'``, else integrated."""
     if options.method == "closed":
-        return ClosedFormNormal(scene)
+        if scene.law.closed_form is None:
+            closed = ", ".join(name for name, law in LAWS.items() if law.closed_form is not None)
+            raise ValueError(f"method 'closed' needs a law with a closed form ({closed}); got model {scene.model!r}")
+        return CLOSED_FORMS[scene.law.closed_form](scene)
     return IntegratedNormal(scene, options)
 
 
-def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "reduced",
+def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "reduced",
              strict: bool = False) -> Outcome:
     """Simulate one impact.
 
@@ -72,8 +77,9 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
         Ball, flat, contact law and approach.
     options : SolverOptions, optional
         Method and tolerances; defaults to :class:`SolverOptions()`.
-    model : {'reduced', 'planar'}
-        ``reduced`` (exact and cheapest) or the full planar rigid-body model.
+    body : {'reduced', 'planar'}
+        ``reduced`` (exact and cheapest) or the full planar rigid-body model.  (The force law is
+        ``scene.model``.)
     strict : bool
         Refuse (``ImpactError``) a result whose maximum compression exceeds the radius, instead of
         returning it flagged (``Outcome.beyond_radius``) with a :class:`BeyondRadiusWarning`.
@@ -87,7 +93,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
     TypeError
         ``scene`` is not a Scene or ``options`` not a SolverOptions.
     ValueError
-        Unknown model, or ``closed`` with a nonlinear force law.
+        Unknown body, or ``closed`` with a law without a closed form.
     ImpactError
         The ball never separates, an event was missed, or (strict) delta_m exceeds the radius.
     """
@@ -97,10 +103,10 @@ def simulate(scene: Scene, options: SolverOptions | None = None, model: str = "r
     if not isinstance(options, SolverOptions):
         raise TypeError("options must be a sphereimpact.SolverOptions, e.g. SolverOptions(rtol=1e-10), or None; "
                         f"got {type(options).__name__}")
-    if model not in MODELS:
-        raise ValueError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if body not in BODIES:
+        raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
     start = time.perf_counter()
-    if model == "reduced":
+    if body == "reduced":
         motion = ReducedMotion(normal_motion(scene, options))
     else:
         from .planar import PlanarMotion

@@ -40,7 +40,7 @@ def ablation(cases: dict[str, Scene], published: list[dict]) -> pd.DataFrame:
         scales = output_scales(scene, base["t_f"], base["delta_m"])
         printed = {e["quantity"]: e["resolution"] for e in published if e["case"] == case}
         for name, (what, changes, body) in VARIANTS.items():
-            got = simulate(scene.with_(**changes), TIGHT, model=body).to_dict()
+            got = simulate(scene.with_(**changes), TIGHT, body=body).to_dict()
             for key in KEYS:
                 delta = got[key] - base[key]
                 visible = "" if key not in printed else str(abs(delta) > 0.5 * printed[key])

@@ -59,7 +59,7 @@ def handwritten(scene: Scene, rtol: float, atol: float | None = None, method: st
     if scene.model not in LAWS or scene.gravity != 0:
         raise ValueError(f"the hand-written baseline covers {', '.join(LAWS)} without gravity")
     w, v = scene.omega_n, scene.v_normal
-    two_zeta, lam = 2.0 * scene.zeta, scene.ramp * v / (w * scene.radius)
+    two_zeta, lam = 2.0 * scene.zeta, scene.family.get("lam", 0.0)
     expm1 = math.expm1
 
     if scene.model == "kelvin-voigt":

@@ -27,7 +27,7 @@ def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "redu
     """One point: error, median time and nfev (``status`` says why a point failed)."""
     options = SolverOptions(method=method, rtol=rtol, atol=rtol)
     try:
-        seconds, out = median_time(lambda: simulate(scene, options, model=body))
+        seconds, out = median_time(lambda: simulate(scene, options, body=body))
     except ImpactError as err:
         return {"method": method, "body": body, "rtol": rtol, "error": None, "time": None, "nfev": None,
                 "status": f"failed: {err}"}

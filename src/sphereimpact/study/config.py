@@ -6,17 +6,29 @@ import math
 
 import numpy as np
 
+from ..laws import LAWS, PARAMETER_NAMES
 from ..scene import Scene, SolverOptions
 
 #: Config key -> Scene field, for the parameters shared by every case.  k and b are spelled out in the
 #: config because snakemake's --config accepts only keys of two or more characters.
 SCENE_KEYS = {"mass": "mass", "diameter": "diameter", "inertia_factor": "inertia_factor", "mu": "mu",
-              "stiffness": "k", "damping": "b", "ramp": "ramp", "speed": "speed", "gravity": "gravity"}
+              "stiffness": "k", "damping": "b", "ramp": "ramp", "chi": "chi", "exponent": "exponent",
+              "modulus": "modulus", "speed": "speed", "gravity": "gravity"}
+
+#: Config keys without a schema default: law parameters that only some laws have (the chapter's laws use
+#: none of them).
+OPTIONAL_KEYS = ("chi", "exponent", "modulus")
 
 
-def shared_fields(config: dict) -> dict:
-    """The Scene fields every case shares (ball, surface, contact, approach), from the config's keys."""
-    return {field: config[key] for key, field in SCENE_KEYS.items()}
+def shared_fields(config: dict, model: str | None = None) -> dict:
+    """The Scene fields every case shares (ball, surface, contact, approach), from the config's keys.
+
+    With ``model``, only the law parameters that law uses (the config's contact keys serve every law in
+    ``models``; :func:`config_errors` refuses a key that none of them uses).
+    """
+    uses = () if model is None else LAWS.law(model).parameter_names
+    return {field: config[key] for key, field in SCENE_KEYS.items()
+            if key in config and (model is None or field not in PARAMETER_NAMES or field in uses)}
 
 
 def scene_for(config: dict, case: str, model: str, separation: str, **changes) -> Scene:
@@ -33,7 +45,7 @@ def scene_for(config: dict, case: str, model: str, separation: str, **changes) -
     **changes
         Further Scene fields to override (used by the replication's hypotheses).
     """
-    fields = shared_fields(config)
+    fields = shared_fields(config, model)
     fields.update(config["cases"][case])
     fields.update(model=model, separation=separation, **changes)
     return Scene(**fields)
@@ -45,9 +57,9 @@ def solver_options(config: dict) -> SolverOptions:
 
 
 def options_for(config: dict, scene: Scene) -> SolverOptions:
-    """The configured options, except that ``closed`` is used only where it exists (kelvin-voigt)."""
+    """The configured options, except that ``closed`` is used only where the law has a closed form."""
     options = solver_options(config)
-    if options.method == "closed" and scene.model != "kelvin-voigt":
+    if options.method == "closed" and scene.law.closed_form is None:
         return SolverOptions(method="DOP853", rtol=options.rtol, atol=options.atol)
     return options
 

@@ -21,7 +21,7 @@ import traceback
 from functools import cache
 from pathlib import Path
 
-from .config import SCENE_KEYS
+from .config import OPTIONAL_KEYS, SCENE_KEYS
 
 _SCENE = tuple(SCENE_KEYS)
 _SOLVER = ("method", "rtol", "atol")
@@ -60,7 +60,7 @@ def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
         section, _, entry = key.partition(".")
         if entry:
             out.setdefault(section, {})[entry] = config[section][entry]
-        else:
+        elif key in config or key not in OPTIONAL_KEYS:  # an optional law parameter may be absent
             out[key] = config[key]
     if case is not None:
         out["cases"] = {case: config["cases"][case]}

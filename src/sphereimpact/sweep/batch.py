@@ -5,7 +5,7 @@ Per lane (tau = omega_n t, x = delta omega_n / v_n, y = x'):
     x' = y,   y' = -P_hat(x, y) + gamma,   P_hat = x + 2 zeta y r(lam x),   x(0) = 0, y(0) = 1,
 
 with r = 1 (kelvin-voigt) or the modified ramp continued past x = 0
-(:func:`sphereimpact.forces.ramp_continued`), lam = c v_n / (omega_n R) and
+(:func:`sphereimpact.laws.ramp_continued`), lam = c v_n / (omega_n R) and
 gamma = g cos(beta) / (omega_n v_n).  Each lane takes fixed steps of the
 8th-order Dormand-Prince method (the tableau of :class:`scipy.integrate.DOP853`),
 its step chosen from the accuracy target and the lane's fastest scale at its current state.  Events
@@ -22,7 +22,10 @@ from scipy.integrate import DOP853
 from scipy.special import wrightomega
 
 from ..events import ImpactError
-from ..forces import ramp_continued
+from ..laws import ramp_continued
+
+#: The laws' kernels these lanes integrate (``ContactLaw.kernel``): P_hat = x + 2 zeta y r(lam x).
+KERNELS = ("kelvin-voigt", "modified")
 
 _A = DOP853.A
 _B = DOP853.B  # the right-hand side is autonomous: the stage times DOP853.C are not needed

@@ -29,7 +29,7 @@ from ..numerics.reference import relative_errors
 from ..numerics.timing import median_seconds
 from ..scene import Scene, SolverOptions
 from ..solve import BeyondRadiusWarning, simulate
-from .engine import SCENE_COLUMNS, grid, sweep
+from .engine import SCENE_COLUMNS, grid, scene_of, sweep
 
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
 #: Per-scene contenders: name -> solve(scene, rtol) -> outputs.
@@ -40,7 +40,7 @@ CONTENDERS = {
 
 
 def _scene(row) -> Scene:
-    return Scene(**{k: (row[k] if k in ("model", "separation") else float(row[k])) for k in SCENE_COLUMNS})
+    return scene_of({k: row[k] for k in SCENE_COLUMNS})
 
 
 def _worst(outputs, refs, scenes) -> float:

@@ -1,12 +1,19 @@
 """The sweep engine: a table of scenes in, a table of outcomes out.
 
-Each scene takes the cheapest path that is exact for it:
+Each scene takes the cheapest path that its law declares and that is exact for it
+(:class:`sphereimpact.laws.ContactLaw`):
 
-1. kelvin-voigt without gravity: the explicit closed form, vectorised (:mod:`.closed`);
-2. modified law without gravity, many scenes sharing zeta and criterion (one ball): Chebyshev
-   interpolation in lam over the whole sweep's range, checked against the integrator (:mod:`.similarity`);
-3. everything else without tangential gravity: the batched integrator (:mod:`.batch`), in chunks;
-4. gravity on an inclined flat (stick-slip with re-slip as P falls): the single-impact model, scene by scene.
+1. a law with the kelvin-voigt closed form, without gravity: the explicit closed form, vectorised
+   (:mod:`.closed`);
+2. a law on the ``modified`` kernel without gravity, many scenes sharing zeta and criterion (one ball):
+   Chebyshev interpolation in lam over the whole sweep's range, checked against the integrator
+   (:mod:`.similarity`);
+3. other scenes of a law with a batched kernel, without tangential gravity: the batched integrator
+   (:mod:`.batch`), in chunks;
+4. a law without a kernel, without tangential gravity: its similarity family (``ContactLaw.family``)
+   fixes the dimensionless normal motion, so the single-impact integrator solves one scene per distinct
+   family (and gamma and criterion) and the others are scaled from it;
+5. gravity on an inclined flat (stick-slip with re-slip as P falls): the single-impact model, scene by scene.
 
 Tangential velocity, spin and regime follow from the normal impulse as in the
 single-impact core.  Results do not depend on the chunk size: every lane is
@@ -17,14 +24,18 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import fields
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
 
 from ..events import ImpactError
+from ..laws import LAWS, PARAMETER_NAMES
+from ..normal import IntegratedNormal
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import SEPARATION_CRITERIA, Scene, SolverOptions, check_columns
 from ..solve import BeyondRadiusWarning, simulate
+from ..tangential import PositiveImpulse
 from . import batch, closed
 from .similarity import InterpolationError, LambdaInterpolant
 
@@ -51,10 +62,22 @@ def scene_table(scenes) -> pd.DataFrame:
     if unknown:
         raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
     n = len(given)
-    columns = {name: given[name].to_numpy() if name in given else np.full(n, DEFAULTS[name]) for name in SCENE_COLUMNS}
-    check_columns(columns)
-    return pd.DataFrame({name: values if name in ("model", "separation") else np.asarray(values, dtype=float)
-                         for name, values in columns.items()})
+    columns = {name: given[name].to_numpy() if name in given else np.full(n, DEFAULTS[name])
+               for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
+    laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
+    columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
+    columns.setdefault("modulus", np.full(n, np.nan))
+    return pd.DataFrame({name: columns[name] if name in ("model", "separation")
+                         else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+
+
+def scene_of(row: dict) -> Scene:
+    """The Scene of one row of a :func:`scene_table` (its NaN law parameters are the ones its law lacks)."""
+    values = {name: (value if name in ("model", "separation") else float(value)) for name, value in row.items()}
+    for name in PARAMETER_NAMES:
+        if name == "modulus" or np.isnan(values[name]):  # k is already resolved from the modulus
+            values[name] = None
+    return Scene(**values)
 
 
 def _tilted_gravity(frame: pd.DataFrame) -> np.ndarray:
@@ -62,16 +85,37 @@ def _tilted_gravity(frame: pd.DataFrame) -> np.ndarray:
     return ((frame["gravity"] > 0) & (frame["angle"] > 0)).to_numpy()
 
 
+def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+    """The columns a law's vectorised functions read: mass, radius, v_normal and its parameters."""
+    return SimpleNamespace(mass=frame["mass"].to_numpy(), radius=0.5 * frame["diameter"].to_numpy(), v_normal=v_n,
+                           **{name: frame[name].to_numpy() for name in PARAMETER_NAMES})
+
+
 def _dimensionless(frame: pd.DataFrame) -> dict:
-    """zeta, lam, gamma, omega_n, v_n and the law of each scene."""
-    m, k, b = (frame[c].to_numpy() for c in ("mass", "k", "b"))
+    """Per scene: w = 1 / T (the law's frequency), v_n, gamma, the kernel's zeta and lam, the law's
+    closed form and kernel, its similarity family (as a hashable key), and the criterion."""
     beta = np.radians(frame["angle"].to_numpy())
-    w = np.sqrt(k / m)
     v_n = frame["speed"].to_numpy() * np.cos(beta)
-    return {"zeta": b / (2.0 * np.sqrt(k * m)), "w": w, "v_n": v_n,
-            "lam": frame["ramp"].to_numpy() * v_n / (w * 0.5 * frame["diameter"].to_numpy()),
+    n = len(frame)
+    w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
+    closed_form, kernel, family = (np.full(n, None, dtype=object) for _ in range(3))
+    models = frame["model"].to_numpy()
+    for model in dict.fromkeys(models.tolist()):
+        rows = np.flatnonzero(models == model)
+        law = LAWS[model]
+        view = _law_view(frame.iloc[rows], v_n[rows])
+        w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
+        numbers = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
+                   for name, value in law.family(view).items()}
+        closed_form[rows], kernel[rows] = law.closed_form, law.kernel
+        if law.kernel is not None:  # the batched kernels read zeta and (modified) lam
+            zeta[rows] = numbers["zeta"]
+            lam[rows] = numbers.get("lam", 0.0)
+        family[rows] = [(model, *values) for values in zip(*numbers.values())] if numbers else [(model,)] * rows.size
+    return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
             "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),
-            "modified": (frame["model"] == "modified").to_numpy(), "separation": frame["separation"].to_numpy()}
+            "modified": kernel == "modified", "closed": closed_form == "kelvin-voigt", "kernel": kernel,
+            "family": family, "separation": frame["separation"].to_numpy()}
 
 
 def _interpolants(d: dict, target: float) -> dict:
@@ -92,16 +136,21 @@ def _interpolants(d: dict, target: float) -> dict:
     return interpolants
 
 
-def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progress) -> dict:
-    """Dimensionless normal outputs of scenes ``d``, interpolants built on the scenes ``span`` (both as
-    :func:`_dimensionless` gives them)."""
+def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progress, frame: pd.DataFrame) -> dict:
+    """Dimensionless normal outputs of the scenes ``frame`` (``d`` as :func:`_dimensionless` gives them),
+    interpolants built on the scenes ``span``."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(zeta.size, bool)
+    by_family = np.flatnonzero(d["kernel"] == None)  # noqa: E711  (elementwise on an object array)
+    if by_family.size:
+        _put(out, by_family, _family_outputs(frame.iloc[by_family], d["family"][by_family],
+                                             d["gamma"][by_family], target))
+        todo[by_family] = False
     for separation in ("force", "penetration"):
         sep = d["separation"] == separation
-        linear = sep & ~modified & (gamma == 0)
+        linear = sep & d["closed"] & (gamma == 0)
         if linear.any():
             _put(out, linear, closed.events(zeta[linear], separation))
             todo &= ~linear
@@ -123,6 +172,28 @@ def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progres
             if progress:
                 progress(min(start + chunk_size, rest.size), rest.size)
     return out
+
+
+def _family_outputs(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float) -> dict:
+    """Dimensionless normal outputs of scenes whose law has no batched kernel: the single-impact integrator
+    (exact for every law) solves the first scene of each distinct (family, gamma, criterion), and the
+    others, which share its dimensionless motion, take its values."""
+    options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
+    keys = [(*f, float(g), sep) for f, g, sep in zip(family, gamma, frame["separation"].to_numpy())]
+    first: dict = {}
+    for i, key in enumerate(keys):
+        first.setdefault(key, i)
+    solved = {key: _dimensionless_motion(scene_of(frame.iloc[i].to_dict()), options) for key, i in first.items()}
+    return {name: np.array([solved[key][name] for key in keys]) for name in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+
+
+def _dimensionless_motion(scene: Scene, options: SolverOptions) -> dict:
+    """tau_m, x_m, tau_f, y_f and y_p (1 - J+ / (m v_n), J+ the impulse of max(P, 0)) of one scene."""
+    normal = IntegratedNormal(scene, options)
+    w, v = scene.frequency, scene.v_normal
+    positive = float(PositiveImpulse(normal)(normal.t_f))
+    return {"tau_m": normal.t_m * w, "x_m": normal.delta_m * w / v, "tau_f": normal.t_f * w,
+            "y_f": float(normal.state(normal.t_f)[1]) / v, "y_p": 1.0 - positive / (scene.mass * v)}
 
 
 def _put(out: dict, where, values: dict) -> None:
@@ -174,7 +245,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     for i in np.flatnonzero(tilted_gravity):  # stick-slip with re-slip: the exact single-impact path
         with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
             warnings.simplefilter("ignore", BeyondRadiusWarning)
-            out = simulate(Scene(**frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
+            out = simulate(scene_of(frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
                                                                            atol=min(1e-10, target / 100)))
         for key in result:
             result[key][i] = getattr(out, key)
@@ -188,7 +259,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         else:
             whole = scene_table(span)
             d_span = _dimensionless(whole[~_tilted_gravity(whole)])
-        dim = _normal_outputs(d, d_span, target, chunk_size, progress)
+        dim = _normal_outputs(d, d_span, target, chunk_size, progress, part)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
         alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()

@@ -1,0 +1,202 @@
+"""Set a law's damping from a measured coefficient of restitution, and stiffness from a contact time.
+
+A user measures the COR of their ball at one speed, not a damping coefficient.  :func:`calibrate` finds
+the value of the law's own damping parameter (``ContactLaw.damping``: b, chi, ...) for which this
+impact's normal COR is the one asked for, by a one-dimensional root find on the law itself (Brent's
+method in log(damping), each evaluation an impact solved at rtol 1e-12), not by an approximate formula.
+The published formulas (``ContactLaw.cor_relations``) are reported beside it and can be chosen instead.
+With a contact time as well, the stiffness is fitted too (an outer root find on log k, the COR held by
+the inner one).
+
+The normal COR is -delta_dot(t_f) / v_n of the normal motion; it depends on the approach speed's normal
+component, not on the angle or friction.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from scipy.optimize import brentq
+
+from .events import ImpactError
+from .normal import IntegratedNormal
+from .scene import Scene, SolverOptions, as_number
+
+#: ``exact`` (root find) and the published relations a law may declare.
+RELATIONS = ("exact", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier")
+#: Calibrated COR and contact time are met to this relative accuracy.
+ACCURACY = 1e-9
+#: The impacts solved inside the root finds: tight, so the calibrated outputs hold ACCURACY.
+TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-12)
+#: Bracket expansion: factor per try and most tries (4^40 ~ 1e24 either side of the start).
+GROWTH, TRIES = 4.0, 40
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """The calibrated scene and what was fitted.
+
+    Attributes
+    ----------
+    scene : Scene
+        The input scene with its law's damping (and, with a contact time, ``k``) set.
+    parameter : str
+        The damping parameter set (``b``, ``chi``, ...).
+    value : float
+        Its value, in the law's units.
+    cor : float
+        The normal COR the calibrated scene gives (solved at rtol 1e-12).
+    relation : str
+        ``exact`` or the published relation used.
+    relations : dict
+        Every published relation the law declares -> the damping value it gives for this COR.
+    contact_time : float or None
+        The contact time t_f [s] of the calibrated scene when the stiffness was fitted too.
+    """
+
+    scene: Scene
+    parameter: str
+    value: float
+    cor: float
+    relation: str
+    relations: dict = field(default_factory=dict)
+    contact_time: float | None = None
+
+
+def normal_cor(scene: Scene, options: SolverOptions = TIGHT) -> float:
+    """The normal coefficient of restitution -delta_dot(t_f) / v_n of ``scene``."""
+    normal = IntegratedNormal(scene, options)
+    return -float(normal.state(normal.t_f)[1]) / scene.v_normal
+
+
+def contact_time(scene: Scene, options: SolverOptions = TIGHT) -> float:
+    """The contact time t_f [s] of ``scene``."""
+    return IntegratedNormal(scene, options).t_f
+
+
+def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> Calibration:
+    """Set ``scene``'s damping so that its normal COR is ``cor`` (and, with ``contact_time``, its k too).
+
+    Parameters
+    ----------
+    scene : Scene
+        Ball, law and approach; its damping (and k, if ``contact_time`` is given) is replaced.
+    cor : float
+        The normal COR to reach, in (0, 1) for a law with damping; 1 for an elastic law with
+        ``contact_time``.
+    relation : str
+        ``exact`` (root find, to 1e-9) or one of the law's ``cor_relations`` (the published formula as is).
+    contact_time : float, optional
+        The contact time t_f [s] to reach as well, by fitting the stiffness k.
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    ValueError
+        A COR outside (0, 1), a law without damping, a relation the law lacks, or a COR or contact time
+        that the law cannot reach at this speed, naming the parameter.
+    """
+    law = scene.law
+    cor = as_number("cor", cor)
+    if relation not in RELATIONS:
+        raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {relation!r}")
+    if law.damping is None:
+        if contact_time is not None and cor == 1.0:
+            return _fit_stiffness(scene, None, relation, as_number("contact_time", contact_time))
+        raise ValueError(f"cor: model {scene.model!r} has no damping parameter to calibrate (it is elastic, "
+                         "COR 1); choose a damped law" + (", or give cor 1 with contact_time" if contact_time
+                                                          is None else ""))
+    if not (math.isfinite(cor) and 0.0 < cor < 1.0):
+        raise ValueError(f"cor must be a finite number in (0, 1) for the damped model {scene.model!r} "
+                         f"(1 is the elastic limit, damping 0); got {cor!r}")
+    if relation != "exact" and relation not in law.cor_relations:
+        available = ", ".join(["exact", *law.cor_relations])
+        raise ValueError(f"cor_relation {relation!r} is not available for model {scene.model!r} "
+                         f"(its relations: {available})")
+    if contact_time is not None:
+        return _fit_stiffness(scene, cor, relation, as_number("contact_time", contact_time))
+    return _calibrate_damping(scene, cor, relation)
+
+
+def _relations(scene: Scene, cor: float) -> dict:
+    return {name: float(relation(cor, scene)) for name, relation in scene.law.cor_relations.items()}
+
+
+def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
+    law = scene.law
+    name = law.damping
+    relations = _relations(scene, cor)
+    if relation != "exact":
+        calibrated = scene.with_(**{name: relations[relation]})
+        return Calibration(calibrated, name, relations[relation], normal_cor(calibrated), relation, relations)
+
+    def excess(log_value: float) -> float:  # COR(damping) - cor, decreasing in the damping
+        return normal_cor(scene.with_(**{name: math.exp(log_value)})) - cor
+
+    start = relations.get("hunt-crossley") or getattr(scene, name) or 1.0
+    low, high = _bracket(excess, math.log(start), f"cor {cor!r} with model {scene.model!r} at v_n = "
+                                                  f"{scene.v_normal:.6g} m/s (damping parameter {name})")
+    value = math.exp(brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200))
+    calibrated = scene.with_(**{name: value})
+    reached = normal_cor(calibrated)
+    if abs(reached - cor) > ACCURACY * cor:
+        raise ImpactError(f"cor: calibration reached {reached!r}, not {cor!r} to {ACCURACY:g} (model {scene.model!r})")
+    return Calibration(calibrated, name, value, reached, "exact", relations)
+
+
+def _bracket(excess, start: float, what: str) -> tuple[float, float]:
+    """(low, high) in log(damping) with excess(low) > 0 > excess(high), expanding from ``start``."""
+    low = high = start
+    value_high = _safe(excess, high)
+    tries = 0
+    while not value_high < 0:
+        low, high = high, high + math.log(GROWTH)
+        value_high = _safe(excess, high)
+        tries += 1
+        if tries > TRIES or value_high is None:
+            raise ValueError(f"cannot reach {what}: the COR does not fall that low however large the damping "
+                             "(lowest reachable COR is above it); choose a higher cor or another law")
+    tries = 0
+    while not excess(low) > 0:
+        low -= math.log(GROWTH)
+        tries += 1
+        if tries > TRIES:
+            raise ValueError(f"cannot reach {what}: the COR stays below it however small the damping")
+    return low, high
+
+
+def _safe(excess, log_value: float):
+    """excess(log_value), or None where the impact does not end (a damping too large to separate)."""
+    try:
+        return excess(log_value)
+    except ImpactError:
+        return None
+
+
+def _fit_stiffness(scene: Scene, cor: float | None, relation: str, target_time: float) -> Calibration:
+    """k (and the damping, for a COR) such that t_f = ``target_time`` and the COR holds."""
+    if not (math.isfinite(target_time) and target_time > 0):
+        raise ValueError(f"contact_time must be a finite number > 0 s; got {target_time!r}")
+
+    def at(log_k: float):
+        trial = scene.with_(k=math.exp(log_k))
+        return trial if cor is None else _calibrate_damping(trial, cor, relation).scene
+
+    def excess(log_k: float) -> float:  # t_f(k) - target, decreasing in k
+        return contact_time(at(log_k)) - target_time
+
+    what = f"contact_time {target_time!r} s with model {scene.model!r} (stiffness k)"
+    low, high = _bracket(excess, math.log(scene.k), what)
+    log_k = brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200)
+    fitted = at(log_k)
+    reached = contact_time(fitted)
+    if abs(reached - target_time) > ACCURACY * target_time:
+        raise ImpactError(f"contact_time: fit reached {reached!r} s, not {target_time!r} s to {ACCURACY:g}")
+    name = scene.law.damping
+    value = getattr(fitted, name) if name else math.nan
+    return Calibration(fitted, name or "k", value if name else fitted.k, normal_cor(fitted), relation,
+                       _relations(fitted, cor) if cor is not None else {}, reached)

@@ -1,0 +1,184 @@
+"""What a normal contact law is: one object that declares its parameters, force and capabilities.
+
+Every layer (scene validation, the single-impact integrator, the closed form, the sweep engine, the
+calibration, the command line and the config) asks the law, never its name.  A layer that cannot serve
+a law says so, or takes a path that is exact for any law (the single-impact integrator), never a
+different law's.  The shape follows LAMMPS's granular sub-models: one definition per law, chosen by name.
+
+Conventions: delta >= 0 is compression [m], delta_dot its rate [m/s] (> 0 while compressing), and P [N]
+is the force the flat pushes on the ball along the outward normal.  A force function takes
+``(delta, delta_dot, p)`` where ``p`` is anything with the attributes ``mass`` [kg], ``radius`` [m],
+``v_normal`` [m/s] and the law's parameters (a :class:`sphereimpact.Scene`, or a namespace of arrays in
+sweeps), and is numpy-vectorised.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+import numpy as np
+
+#: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
+PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a contact law.
+
+    Attributes
+    ----------
+    name : str
+        Scene field (one of :data:`PARAMETER_NAMES`) and command-line flag ``--name``.
+    unit : str
+        SI unit, as printed in help texts.
+    doc : str
+        What it is, one phrase.
+    allowed : str
+        The allowed range, as messages state it ("a finite number > 0").
+    ok : callable
+        Vectorised test of the allowed range (finite values only reach it).
+    default : float or None
+        Used when the parameter is not given; None makes it required.
+    """
+
+    name: str
+    unit: str
+    doc: str
+    allowed: str
+    ok: Callable
+    default: float | None = None
+
+    @property
+    def range_text(self) -> str:
+        """The allowed range with its unit, as messages state it: ``a finite number > 0 N/m``."""
+        return self.allowed if self.unit == "-" else f"{self.allowed} {self.unit}"
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """A normal contact force law and what it can do.
+
+    Attributes
+    ----------
+    name : str
+        Registry key (``--model``, ``Scene.model``).
+    doc : str
+        One line for help texts and reports.
+    parameters : tuple of Parameter
+        The law's parameters; a Scene refuses any other law parameter.
+    force : callable
+        ``force(delta, delta_dot, p) -> P`` [N]: the law, 0 outside contact (delta <= 0), never
+        evaluating anything that can overflow there.
+    continued : callable
+        ``continued(delta, delta_dot, p)``: the in-contact formula continued smoothly a little past
+        delta = 0.  Integrators use it for their stages and the force during contact is evaluated with
+        it, so the ends of [0, t_f] are one-sided limits whatever side of zero round-off puts delta (a
+        kink or jump at separation spoils the crossing step's interpolant: COR error 8.9e-11 with it,
+        8.4e-13 without, at rtol 1e-12 for eq. 4.1).  Separation events use ``force``.
+    frequency : callable
+        ``frequency(p) -> 1 / T`` [1/s], numpy-vectorised: the inverse of the contact's natural time T.
+        The normal motion is solved in tau = t / T, x = delta / (v_n T), y = delta_dot / v_n, so one
+        tolerance and one horizon suit every ball and speed (omega_n = sqrt(k / m) for a linear spring; a
+        Hertz contact has no omega_n and uses its elastic compression time).
+    family : callable
+        ``family(p) -> dict`` of the dimensionless numbers that fix the weightless normal motion in
+        (tau, x, y) (its similarity family): scenes with equal numbers share tau_m, x_m, tau_f and the
+        COR.  Vectorised.
+    horizon : callable
+        ``horizon(p)``: the longest dimensionless contact (in tau) searched for a separation before
+        giving up; far beyond any contact that ends.
+    spring : str
+        ``linear`` (P ~ k delta; k in N/m, omega_n and zeta defined) or ``hertz`` (P ~ k delta^n; k may be
+        given as an effective modulus E*, k = (4/3) E* sqrt(R)).
+    damping : str or None
+        The parameter that ``cor`` calibration sets (None: the law is elastic and cannot be calibrated).
+    cor_relations : mapping of str -> callable
+        Published approximate COR-to-damping relations: name -> ``relation(e, p) -> damping value``.
+    closed_form : str or None
+        The exact solution that solves this law's normal motion: a key of
+        :data:`sphereimpact.closed.CLOSED_FORMS` (``kelvin-voigt``: the linear ODE with the family's
+        ``zeta``), or None.
+    kernel : str or None
+        The batched-lanes kernel of :mod:`sphereimpact.sweep.batch` that integrates this law (one of its
+        ``KERNELS``, reading the family's ``zeta`` and, for ``modified``, ``lam``), or None: then sweeps
+        solve one scene per similarity family with the single-impact integrator, which is exact for
+        every law.
+    ramp_rate : callable or None
+        ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
+        u = (c / R) delta; integrators bound their steps where it switches off.
+    """
+
+    name: str
+    doc: str
+    parameters: tuple
+    force: Callable
+    continued: Callable
+    frequency: Callable
+    family: Callable
+    horizon: Callable
+    spring: str = "linear"
+    damping: str | None = None
+    cor_relations: Mapping[str, Callable] = field(default_factory=dict)
+    closed_form: str | None = None
+    kernel: str | None = None
+    ramp_rate: Callable | None = None
+
+    def __post_init__(self):
+        names = [p.name for p in self.parameters]
+        unknown = [n for n in names if n not in PARAMETER_NAMES]
+        if unknown:
+            raise ValueError(f"law {self.name!r}: parameter {unknown[0]!r} is not a Scene parameter; "
+                             f"expected some of {', '.join(PARAMETER_NAMES)}")
+        if self.spring not in ("linear", "hertz"):
+            raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
+        if self.damping is not None and self.damping not in names:
+            raise ValueError(f"law {self.name!r}: damping {self.damping!r} is not one of its parameters")
+
+    @property
+    def parameter_names(self) -> tuple:
+        """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
+        names = tuple(p.name for p in self.parameters)
+        return (*names, "modulus") if self.spring == "hertz" else names
+
+    def parameter(self, name: str) -> Parameter:
+        """The declared parameter ``name`` (``KeyError`` if the law has none)."""
+        for p in self.parameters:
+            if p.name == name:
+                return p
+        raise KeyError(name)
+
+
+#: Effective modulus E* [Pa] -> Hertz stiffness constant k = (4/3) E* sqrt(R) [N/m^1.5].
+def hertz_constant(modulus, radius):
+    """k = (4/3) E* sqrt(R) [N/m^1.5] for an effective modulus E* [Pa] and radius R [m]."""
+    return 4.0 / 3.0 * modulus * np.sqrt(radius)
+
+
+MODULUS = Parameter("modulus", "Pa", "effective modulus E* of ball and flat (instead of k: k = (4/3) E* sqrt(R))",
+                    "a finite number > 0", lambda x: x > 0)
+
+
+class Registry(dict):
+    """Name -> ContactLaw.  :meth:`register` adds a law; nothing else needs to change."""
+
+    def register(self, law: ContactLaw) -> ContactLaw:
+        """Add ``law`` under its name (``ValueError`` if the name is taken by another law)."""
+        if not isinstance(law, ContactLaw):
+            raise TypeError(f"law must be a ContactLaw; got {type(law).__name__}")
+        if law.name in self and self[law.name] is not law:
+            raise ValueError(f"a law named {law.name!r} is already registered")
+        self[law.name] = law
+        return law
+
+    def law(self, name: str) -> ContactLaw:
+        """The law ``name``; ``ValueError`` listing the registered laws otherwise."""
+        try:
+            return self[name]
+        except (KeyError, TypeError):
+            raise ValueError(f"model must be one of {', '.join(self)}; got {name!r}") from None
+
+
+#: The registered laws (filled by :mod:`sphereimpact.laws`).
+LAWS = Registry()

@@ -1,0 +1,70 @@
+"""Laws with a Hertz spring k delta^n: elastic Hertz, and Hunt-Crossley damping on it.
+
+k is the constant of the spring term in N/m^n (n = 3/2 for Hertz: k = (4/3) E* sqrt(R), which
+``modulus`` = E* [Pa] gives instead).  There is no omega_n: the time scale is the elastic contact's,
+T = delta_s / v_n with delta_s = ((n + 1) m v_n^2 / (2 k))^(1/(n+1)) the elastic maximum compression,
+and in tau = t / T, x = delta / (v_n T), y = delta_dot / v_n the weightless motion is y' = -P_hat,
+
+    P_hat = (n + 1) / 2 x^n (1 + chi v_n y)      (family: n and chi v_n).
+
+Elastic Hertz (chi = 0) has the closed form t_f = (2 / (n + 1)) B(1 / (n + 1), 1/2) T, delta_m = v_n T.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .base import LAWS, ContactLaw, Parameter
+from .linear import CHI, hunt_crossley_relations
+
+K = Parameter("k", "N/m^n", "constant of the spring term k delta^n (Hertz: (4/3) E* sqrt(R))",
+              "a finite number > 0", lambda x: x > 0)
+EXPONENT = Parameter("exponent", "-", "exponent n of the spring term k delta^n (3/2 for Hertz)",
+                     "a finite number in [1, 3]", lambda x: (x >= 1) & (x <= 3), 1.5)
+HERTZ = 1.5
+
+
+def hertz_frequency(p, n=HERTZ):
+    """1 / T = v_n / delta_s [1/s], delta_s = ((n + 1) m v_n^2 / (2 k))^(1/(n+1)) (elastic maximum compression)."""
+    return p.v_normal / ((n + 1.0) * p.mass * p.v_normal ** 2 / (2.0 * p.k)) ** (1.0 / (n + 1.0))
+
+
+def _power(delta, n):
+    """sign(delta) |delta|^n: k delta^n continued as an odd function (C^1 at 0 for n >= 1)."""
+    return np.sign(delta) * np.abs(delta) ** n
+
+
+def hertz_force(delta, delta_dot, p):
+    """P = k delta^(3/2) [N] for delta > 0 (elastic Hertz)."""
+    delta = np.asarray(delta, dtype=float)
+    return np.where(delta > 0, p.k * np.maximum(delta, 0.0) ** HERTZ, 0.0)
+
+
+def hertz_continued(delta, delta_dot, p):
+    """k sign(delta) |delta|^(3/2)."""
+    return p.k * _power(np.asarray(delta, dtype=float), HERTZ)
+
+
+def hunt_crossley_force(delta, delta_dot, p):
+    """P = k delta^n (1 + chi delta_dot) [N] for delta > 0 (Hunt & Crossley 1975)."""
+    delta, delta_dot = np.asarray(delta, dtype=float), np.asarray(delta_dot, dtype=float)
+    return np.where(delta > 0, p.k * np.maximum(delta, 0.0) ** p.exponent * (1.0 + p.chi * delta_dot), 0.0)
+
+
+def hunt_crossley_continued(delta, delta_dot, p):
+    """k sign(delta) |delta|^n (1 + chi delta_dot)."""
+    delta, delta_dot = np.asarray(delta, dtype=float), np.asarray(delta_dot, dtype=float)
+    return p.k * _power(delta, p.exponent) * (1.0 + p.chi * delta_dot)
+
+
+LAWS.register(ContactLaw(
+    "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
+    (K,), hertz_force, hertz_continued, hertz_frequency,
+    family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz"))
+
+LAWS.register(ContactLaw(
+    "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
+    (K, CHI, EXPONENT), hunt_crossley_force, hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
+    family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
+    horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
+    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations()))

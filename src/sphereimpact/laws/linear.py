@@ -1,0 +1,151 @@
+"""Laws with a linear spring k delta: the chapter's eq. 4.1 and eq. 4.2, and Hunt-Crossley damping on it.
+
+Time scale 1 / omega_n, omega_n = sqrt(k / m); in tau = omega_n t, x = delta omega_n / v_n, y = delta_dot / v_n the
+weightless normal motion is y' = -P_hat with
+
+- kelvin-voigt: P_hat = x + 2 zeta y                     (family: zeta = b / (2 sqrt(k m)))
+- modified:     P_hat = x + 2 zeta y (1 - exp(-lam x))   (family: zeta, lam = c v_n / (omega_n R))
+- linear-hunt-crossley: P_hat = x (1 + chi v_n y)        (family: chi v_n)
+
+The chapter prints eq. 4.1 as P = k delta - b delta_dot and eq. 4.2 with exp(+100 delta / R) because its
+delta is the (negative) displacement of the centre; with delta as compression both read as below.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .base import LAWS, ContactLaw, Parameter
+
+K = Parameter("k", "N/m", "contact stiffness", "a finite number > 0", lambda x: x > 0, 60000.0)
+B = Parameter("b", "N s/m", "contact damping", "a finite number >= 0", lambda x: x >= 0, 10.5)
+RAMP = Parameter("ramp", "-", "constant c of the damping ramp 1 - exp(-c delta / R)", "a finite number > 0",
+                 lambda x: x > 0, 100.0)
+CHI = Parameter("chi", "s/m", "Hunt-Crossley damping factor in P = k delta^n (1 + chi delta_dot)",
+                "a finite number >= 0", lambda x: x >= 0, 0.0)
+
+
+def _arrays(delta, delta_dot):
+    return np.asarray(delta, dtype=float), np.asarray(delta_dot, dtype=float)
+
+
+def natural_frequency(p):
+    """omega_n = sqrt(k / m) [rad/s]."""
+    return np.sqrt(p.k / p.mass)
+
+
+def damping_ratio(p):
+    """zeta = b / (2 sqrt(k m)) [-]."""
+    return p.b / (2.0 * np.sqrt(p.k * p.mass))
+
+
+# --- eq. 4.1 ------------------------------------------------------------------------------------------
+def kelvin_voigt_force(delta, delta_dot, p):
+    """Eq. 4.1: P = k delta + b delta_dot [N] for delta > 0; jumps to b v_n at first touch, pulls before
+    delta returns to zero."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return np.where(delta > 0, p.k * delta + p.b * delta_dot, 0.0)
+
+
+def kelvin_voigt_continued(delta, delta_dot, p):
+    """k delta + b delta_dot for every delta (the linear law's own continuation)."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return p.k * delta + p.b * delta_dot
+
+
+# --- eq. 4.2 ------------------------------------------------------------------------------------------
+#: 1/n! for the Taylor continuation of the ramp.
+_INVERSE_FACTORIALS = tuple(1.0 / math.factorial(n) for n in range(1, 9))
+
+
+def ramp_continued(u):
+    """1 - exp(-u) for u >= 0; for u < 0 its degree-8 Taylor polynomial, with u clipped at -1.
+
+    No exponential is evaluated outside contact, the value is bounded, and the function is smooth to
+    8th order across u = 0 (the polynomial's error is below 1e-16 for |u| < 0.01, far more than one step
+    overshoots).
+    """
+    u = np.asarray(u, dtype=float)
+    ramp = np.atleast_1d(-np.expm1(-np.maximum(u, 0.0)))
+    negative = np.atleast_1d(u < 0)
+    if negative.any():  # only the stages past separation pay for the polynomial
+        w = np.minimum(-np.atleast_1d(u)[negative], 1.0)  # w = -u in (0, 1]
+        poly = np.zeros_like(w)
+        for c in reversed(_INVERSE_FACTORIALS):  # sum_{n=1..8} w^n / n!, by Horner
+            poly = (poly + c) * w
+        ramp[negative] = -poly
+    return ramp.reshape(u.shape)
+
+
+def modified_force(delta, delta_dot, p):
+    """Eq. 4.2: P = k delta + b delta_dot (1 - exp(-c delta / R)) [N] for delta > 0.
+
+    The ramp (c = ``p.ramp``, 100 in the chapter) makes P start from zero; it is evaluated as ``-expm1``
+    of a non-positive argument, so it is exact for small delta and cannot overflow.
+    """
+    delta, delta_dot = _arrays(delta, delta_dot)
+    inside = np.maximum(delta, 0.0)
+    ramp = -np.expm1(-p.ramp * inside / p.radius)
+    return np.where(delta > 0, p.k * inside + p.b * delta_dot * ramp, 0.0)
+
+
+def modified_continued(delta, delta_dot, p):
+    """Eq. 4.2 with the ramp continued past delta = 0 by :func:`ramp_continued`."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return p.k * delta + p.b * delta_dot * ramp_continued(p.ramp * delta / p.radius)
+
+
+# --- Hunt-Crossley damping on a linear spring ---------------------------------------------------------
+def linear_hunt_crossley_force(delta, delta_dot, p):
+    """P = k delta (1 + chi delta_dot) [N] for delta > 0: starts from zero, pulls where delta_dot < -1/chi."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return np.where(delta > 0, p.k * delta * (1.0 + p.chi * delta_dot), 0.0)
+
+
+def linear_hunt_crossley_continued(delta, delta_dot, p):
+    """k delta (1 + chi delta_dot) for every delta (a polynomial: its own continuation)."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return p.k * delta * (1.0 + p.chi * delta_dot)
+
+
+def hunt_crossley_relations() -> dict:
+    """The published COR -> chi relations for P = k delta^n (1 + chi delta_dot), v = approach speed v_n.
+
+    Derived for the Hertz contact by energy balance, each an approximation whose real COR is measured in
+    ``results/cor_relations.csv``:
+
+    - Hunt & Crossley (1975): chi = 3 (1 - e) / (2 v)
+    - Lankarani & Nikravesh (1990): chi = 3 (1 - e^2) / (4 v)
+    - Flores, Machado, Silva & Martins (2011): chi = 8 (1 - e) / (5 e v)
+    - Gonthier, McPhee, Lange & Piedboeuf (2004): chi = (1 - e^2) / (e v)
+    """
+    return {
+        "hunt-crossley": lambda e, p: 1.5 * (1.0 - e) / p.v_normal,
+        "lankarani-nikravesh": lambda e, p: 0.75 * (1.0 - e * e) / p.v_normal,
+        "flores": lambda e, p: 1.6 * (1.0 - e) / (e * p.v_normal),
+        "gonthier": lambda e, p: (1.0 - e * e) / (e * p.v_normal),
+    }
+
+
+LAWS.register(ContactLaw(
+    "kelvin-voigt", "eq. 4.1, linear spring-damper P = k delta + b delta_dot (the chapter's 'previous' model)",
+    (K, B), kelvin_voigt_force, kelvin_voigt_continued, natural_frequency,
+    family=lambda p: {"zeta": damping_ratio(p)},
+    horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
+    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt"))
+
+LAWS.register(ContactLaw(
+    "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
+    (K, B, RAMP), modified_force, modified_continued, natural_frequency,
+    family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
+    horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
+    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius))
+
+LAWS.register(ContactLaw(
+    "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
+    (K, CHI), linear_hunt_crossley_force, linear_hunt_crossley_continued, natural_frequency,
+    family=lambda p: {"chi_v": p.chi * p.v_normal},
+    horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
+    damping="chi", cor_relations=hunt_crossley_relations()))
