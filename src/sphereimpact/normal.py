@@ -15,7 +15,6 @@ event root finding on the dense output (Brent's method, a few ulp).
 
 from __future__ import annotations
 
-
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
