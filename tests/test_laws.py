@@ -63,3 +63,77 @@ def test_force_during_contact_is_the_one_sided_limit():
     scene = out.scene
     assert float(out.motion.force(0.0)) == pytest.approx(scene.b * scene.v_normal, rel=1e-15)
     assert out.force_min == pytest.approx(-scene.b * out.vc_n, rel=1e-12)
+
+
+# --- The Hertz family -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("speed", [0.1, 3.0, 30.0])
+def test_elastic_hertz_meets_its_closed_form(speed):
+    """Elastic Hertz: delta_m = ((n+1) m v^2 / (2k))^(1/(n+1)), t_f = (2/(n+1)) B(1/(n+1), 1/2) delta_m / v, COR 1."""
+    from scipy.special import beta
+
+    from sphereimpact import simulate
+
+    scene = Scene(model="hertz", modulus=1e7, speed=speed)
+    out = simulate(scene)
+    n = 1.5
+    delta_m = ((n + 1) * scene.mass * speed**2 / (2 * scene.k)) ** (1 / (n + 1))
+    t_f = 2 / (n + 1) * beta(1 / (n + 1), 0.5) * delta_m / speed
+    assert out.delta_m == pytest.approx(delta_m, rel=1e-9)
+    assert out.t_f == pytest.approx(t_f, rel=1e-9) and out.t_m == pytest.approx(t_f / 2, rel=1e-9)
+    assert out.cor == pytest.approx(1.0, abs=1e-9)
+
+
+def test_modulus_gives_the_hertz_constant():
+    scene = Scene(model="hertz", modulus=2e7, diameter=0.05)
+    assert scene.k == pytest.approx(4 / 3 * 2e7 * np.sqrt(0.025), rel=1e-15)
+    assert scene.with_(diameter=0.1).k == pytest.approx(4 / 3 * 2e7 * np.sqrt(0.05), rel=1e-15)  # follows R
+
+
+@pytest.mark.parametrize("name", ["hunt-crossley", "linear-hunt-crossley"])
+def test_hunt_crossley_cor_depends_on_chi_v_only(name):
+    """The family is chi v_n (and n): another ball, stiffness and speed with the same chi v_n give the same COR."""
+    from sphereimpact import simulate
+
+    a = law_scene(name, chi=0.1, speed=3.0)
+    b = a.with_(chi=0.3, speed=1.0, mass=0.02, k=5 * a.k)
+    assert a.family == pytest.approx(b.family, rel=1e-15)
+    assert simulate(a).cor == pytest.approx(simulate(b).cor, rel=1e-9)
+    assert simulate(a).cor < 1.0
+
+
+@pytest.mark.parametrize("chi", [0.1, 1.0, 10.0])
+def test_hunt_crossley_never_pulls(chi):
+    """P = k delta^n (1 + chi delta_dot) would pull only at delta_dot < -1/chi, which the restitution only
+    approaches (the rebound speed tends to 1/chi: COR -> 1/(chi v) for large chi v), so P >= 0 throughout
+    (above -1e-9 P_max, the project's round-off threshold), under either criterion."""
+    from sphereimpact import simulate
+
+    for separation in ("force", "penetration"):
+        out = simulate(law_scene("hunt-crossley", chi=chi, separation=separation))
+        assert out.force_min >= -1e-9 * out.force_max
+    very = simulate(law_scene("hunt-crossley", chi=10.0))
+    assert very.cor == pytest.approx(1 / (10.0 * very.scene.v_normal), rel=1e-6)
+
+
+BAD_LAW_PARAMETERS = [
+    ({"model": "hertz", "modulus": 1e7, "b": 3.0}, r"b is not a parameter of model 'hertz' \(its parameters: k, modulus\)"),
+    ({"model": "kelvin-voigt", "ramp": 100.0}, "ramp is not a parameter of model 'kelvin-voigt'"),
+    ({"model": "hertz"}, "k is required by model 'hertz'"),
+    ({"model": "hertz", "k": 1e6, "modulus": 1e7}, "give k or modulus for model 'hertz', not both"),
+    ({"model": "hunt-crossley", "k": 1e6, "exponent": 0.5}, r"exponent must be a finite number in \[1, 3\]; got 0.5"),
+    ({"model": "hunt-crossley", "k": 1e6, "chi": -1.0}, "chi must be a finite number >= 0 s/m; got -1.0"),
+    ({"model": "linear-hunt-crossley", "chi": float("nan")}, "chi must be a finite number >= 0 s/m; got nan"),
+    ({"model": "modified", "modulus": 1e7}, "modulus is not a parameter of model 'modified'"),
+]
+
+
+@pytest.mark.parametrize("fields, message", BAD_LAW_PARAMETERS, ids=[m.split(" ")[0] for _, m in BAD_LAW_PARAMETERS])
+def test_a_law_refuses_what_it_does_not_use(fields, message):
+    with pytest.raises(ValueError, match=message):
+        Scene(**fields)
+
+
+def test_changing_law_drops_the_parameters_the_new_law_lacks():
+    hertz = Scene().with_(model="hertz", k=1e6)
+    assert (hertz.b, hertz.ramp, hertz.k) == (None, None, 1e6)
+    assert Scene(model="hertz", k=1e6).with_(model="modified").k == 1e6  # k is everyone's: carried over

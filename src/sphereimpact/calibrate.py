@@ -139,7 +139,7 @@ def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
 
     start = relations.get("hunt-crossley") or getattr(scene, name) or 1.0
     low, high = _bracket(excess, math.log(start), f"cor {cor!r} with model {scene.model!r} at v_n = "
-                                                  f"{scene.v_normal:.6g} m/s (damping parameter {name})")
+                                                  f"{scene.v_normal:.6g} m/s (damping parameter {name})", cor)
     value = math.exp(brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200))
     calibrated = scene.with_(**{name: value})
     reached = normal_cor(calibrated)
@@ -148,25 +148,51 @@ def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
     return Calibration(calibrated, name, value, reached, "exact", relations)
 
 
-def _bracket(excess, start: float, what: str) -> tuple[float, float]:
-    """(low, high) in log(damping) with excess(low) > 0 > excess(high), expanding from ``start``."""
+def _bracket(excess, start: float, what: str, target: float) -> tuple[float, float]:
+    """(low, high) in log(damping) with excess(low) > 0 > excess(high), expanding from ``start``.
+
+    Where the expansion reaches a damping at which the contact no longer ends (e.g. an over-damped
+    kelvin-voigt contact under the penetration criterion), the bracket is sought by bisection between the
+    last damping that separates and that one; if none in between falls below the COR, it is unreachable.
+    """
+    step = math.log(GROWTH)
     low = high = start
     value_high = _safe(excess, high)
-    tries = 0
-    while not value_high < 0:
-        low, high = high, high + math.log(GROWTH)
+    if value_high is None:  # the start itself does not separate: come down first
+        for _ in range(TRIES):
+            high -= step
+            value_high = _safe(excess, high)
+            if value_high is not None:
+                break
+        else:
+            raise ValueError(f"cannot reach {what}: no damping tried lets the contact end")
+    low = high
+    for _ in range(TRIES):
+        if value_high is not None and value_high < 0:
+            break
+        if value_high is None:  # past the separating range: bisect back towards the last good damping
+            mid = 0.5 * (low + high)
+            value_mid = _safe(excess, mid)
+            if high - low < 1e-12:
+                break
+            if value_mid is None:
+                high = mid
+            elif value_mid < 0:
+                high, value_high = mid, value_mid
+            else:
+                low = mid
+            continue
+        low, high = high, high + step
         value_high = _safe(excess, high)
-        tries += 1
-        if tries > TRIES or value_high is None:
-            raise ValueError(f"cannot reach {what}: the COR does not fall that low however large the damping "
-                             "(lowest reachable COR is above it); choose a higher cor or another law")
-    tries = 0
-    while not excess(low) > 0:
-        low -= math.log(GROWTH)
-        tries += 1
-        if tries > TRIES:
-            raise ValueError(f"cannot reach {what}: the COR stays below it however small the damping")
-    return low, high
+    if value_high is None or not value_high < 0:
+        floor = excess(low) + target
+        raise ValueError(f"cannot reach {what}: the nearest this law comes before the contact stops ending is "
+                         f"{floor:.6g}; choose another value, separation criterion or law")
+    for _ in range(TRIES):
+        if excess(low) > 0:
+            return low, high
+        low -= step
+    raise ValueError(f"cannot reach {what}: the COR stays below it however small the damping")
 
 
 def _safe(excess, log_value: float):
@@ -190,7 +216,7 @@ def _fit_stiffness(scene: Scene, cor: float | None, relation: str, target_time: 
         return contact_time(at(log_k)) - target_time
 
     what = f"contact_time {target_time!r} s with model {scene.model!r} (stiffness k)"
-    low, high = _bracket(excess, math.log(scene.k), what)
+    low, high = _bracket(excess, math.log(scene.k), what, target_time)
     log_k = brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200)
     fitted = at(log_k)
     reached = contact_time(fitted)

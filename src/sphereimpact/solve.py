@@ -63,6 +63,9 @@ def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
         if scene.law.closed_form is None:
             closed = ", ".join(name for name, law in LAWS.items() if law.closed_form is not None)
             raise ValueError(f"method 'closed' needs a law with a closed form ({closed}); got model {scene.model!r}")
+        if scene.law.closed_form not in CLOSED_FORMS:
+            raise ValueError(f"model {scene.model!r} declares closed form {scene.law.closed_form!r}, which is not "
+                             f"one of {', '.join(CLOSED_FORMS)}")
         return CLOSED_FORMS[scene.law.closed_form](scene)
     return IntegratedNormal(scene, options)
 

@@ -16,6 +16,9 @@ import numpy as np
 
 from ..events import ImpactError
 
+#: The ODE these formulas solve (``ContactLaw.closed_form``): the linear spring-damper with the family's zeta.
+CLOSED_FORM = "kelvin-voigt"
+
 
 def _state(zeta, tau):
     """(x, y) at tau, stable in every regime."""

@@ -103,6 +103,12 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
     for model in dict.fromkeys(models.tolist()):
         rows = np.flatnonzero(models == model)
         law = LAWS[model]
+        if law.kernel is not None and law.kernel not in batch.KERNELS:
+            raise ValueError(f"model {model!r} declares kernel {law.kernel!r}, which the batched lanes do not have "
+                             f"({', '.join(batch.KERNELS)}); declare kernel=None to be solved per family")
+        if law.closed_form is not None and law.closed_form != closed.CLOSED_FORM:
+            raise ValueError(f"model {model!r} declares closed form {law.closed_form!r}, which the sweep does not "
+                             f"have ({closed.CLOSED_FORM})")
         view = _law_view(frame.iloc[rows], v_n[rows])
         w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
         numbers = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
@@ -114,7 +120,7 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
         family[rows] = [(model, *values) for values in zip(*numbers.values())] if numbers else [(model,)] * rows.size
     return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
             "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),
-            "modified": kernel == "modified", "closed": closed_form == "kelvin-voigt", "kernel": kernel,
+            "modified": kernel == "modified", "closed": closed_form == closed.CLOSED_FORM, "kernel": kernel,
             "family": family, "separation": frame["separation"].to_numpy()}
 
 

@@ -1,0 +1,91 @@
+"""A law registered from outside the package (here, in this file only) is served by every layer, or refused.
+
+The law: a linear spring with damping that grows with the contact, P = k delta + b delta_dot delta / R
+(parameters k and b, declared by reusing the chapter's).  It has no closed form and no batched kernel, so
+the sweep must take its exact per-family path; before the laws became plug-ins the sweep computed the
+kelvin-voigt closed form for it (COR 0.6788 against 0.5864 from simulate, no error).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from sphereimpact import LAWS, ContactLaw, Scene, SolverOptions, simulate
+from sphereimpact.cli import run
+from sphereimpact.laws.linear import B, K, damping_ratio, natural_frequency
+from sphereimpact.sweep.engine import grid, sweep
+
+NAME = "growing-damping"
+OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
+
+
+def _force(delta, delta_dot, p):
+    delta = np.asarray(delta, dtype=float)
+    return np.where(delta > 0, p.k * delta + p.b * np.asarray(delta_dot, dtype=float) * delta / p.radius, 0.0)
+
+
+def _continued(delta, delta_dot, p):
+    delta = np.asarray(delta, dtype=float)
+    return p.k * delta + p.b * np.asarray(delta_dot, dtype=float) * delta / p.radius
+
+
+GROWING = ContactLaw(
+    NAME, "P = k delta + b delta_dot delta / R (test law)", (K, B), _force, _continued, natural_frequency,
+    family=lambda p: {"zeta": damping_ratio(p), "depth": p.v_normal / (natural_frequency(p) * p.radius)},
+    horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)), damping="b")
+
+
+@pytest.fixture
+def law():
+    LAWS.register(GROWING)
+    yield GROWING
+    del LAWS[NAME]
+
+
+def test_simulate_sweep_and_cli_agree(law, capsys):
+    scene = Scene(model=NAME, b=400.0, angle=30.0)
+    ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))
+    assert ref.cor < 0.9  # the law damps: not mistaken for an elastic or another law
+    kv = simulate(Scene(model="kelvin-voigt", b=400.0, angle=30.0))
+    assert abs(kv.cor - ref.cor) > 0.01  # and it is not kelvin-voigt
+    table = sweep(grid(angle=[0.0, 30.0, 60.0], speed=[1.0, 3.0]).assign(model=NAME, b=400.0))
+    for row in table.to_dict("records"):
+        one = simulate(Scene(model=NAME, b=400.0, angle=row["angle"], speed=row["speed"]),
+                       SolverOptions(rtol=1e-12, atol=1e-12))
+        for key in OUTPUTS:
+            assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
+        assert row["regime"] == one.regime
+    assert run(["simulate", "--model", NAME, "--b", "400", "--angle", "30", "--rtol", "1e-12", "--atol", "1e-12",
+                "--json"]) == 0
+    cli = json.loads(capsys.readouterr().out)
+    for key in OUTPUTS:
+        assert cli[key] == getattr(ref, key), key  # the same call: bit for bit
+
+
+def test_tilted_gravity_and_calibration_reach_the_law(law):
+    from sphereimpact.calibrate import calibrate
+
+    scene = Scene(model=NAME, b=400.0, angle=20.0, gravity=9.81)
+    row = sweep(grid(angle=[20.0]).assign(model=NAME, b=400.0, gravity=9.81)).iloc[0]
+    assert row["cor"] == pytest.approx(simulate(scene).cor, rel=1e-8)
+    assert calibrate(scene, 0.6).cor == pytest.approx(0.6, rel=1e-9)
+
+
+def test_the_law_refuses_parameters_it_does_not_declare(law):
+    with pytest.raises(ValueError, match=f"ramp is not a parameter of model '{NAME}'"):
+        Scene(model=NAME, ramp=100.0)
+    with pytest.raises(ValueError, match="method 'closed' needs a law with a closed form"):
+        simulate(Scene(model=NAME), SolverOptions(method="closed"))
+
+
+def test_a_capability_the_sweep_lacks_is_refused_not_borrowed():
+    """A law claiming a batched kernel the lanes do not have is an error, never another law's kernel."""
+    from dataclasses import replace
+
+    LAWS.register(replace(GROWING, name="claims-kernel", kernel="my-kernel"))
+    try:
+        with pytest.raises(ValueError, match="declares kernel 'my-kernel'"):
+            sweep(grid(angle=[0.0]).assign(model="claims-kernel"))
+    finally:
+        del LAWS["claims-kernel"]
