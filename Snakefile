@@ -18,6 +18,7 @@ include: "workflow/rules/report.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
 include: "workflow/rules/sweep.smk"
+include: "workflow/rules/laws.smk"
 include: "workflow/rules/notebook.smk"
 
 
@@ -33,6 +34,8 @@ rule all:
         expand("paper_figures/{study}.png", study=["work_precision", "stability"]),
         expand("paper_figures/{map}.png", map=["spin_map", "cor_speed", "contact_speed"]),
         "results/bench_sweep.csv",
+        "results/cor_relations.csv",
+        expand("paper_figures/{fig}.png", fig=["laws_cor_speed", "laws_force"]),
         "results/readme/replication.md",
         "results/readme/speed.md",
         expand("results/notebooks/{name}.html", name=NOTEBOOKS),

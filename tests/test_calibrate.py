@@ -89,3 +89,15 @@ def test_cli_refuses_flags_the_law_does_not_use(argv, message, capsys):
 def test_calibrated_damping_is_monotone_in_cor():
     values = [calibrate(Scene(model="kelvin-voigt"), e).value for e in (0.9, 0.7, 0.5)]
     assert np.all(np.diff(values) > 0)
+
+
+@pytest.mark.parametrize("name", ["hunt-crossley", "linear-hunt-crossley"])
+@pytest.mark.parametrize("cor", [0.1, 0.5, 0.9])
+def test_hunt_crossley_calibration_meets_the_exact_energy_relation(name, cor):
+    """m v dv/d delta = -k delta^n (1 + chi v) separates, so the COR e of Hunt-Crossley damping on any spring solves
+    chi v (1 + e) = ln[(1 + chi v) / (1 - chi e v)]: an independent closed-form reference for the root find."""
+    from scipy.optimize import brentq
+
+    scene = Scene(model=name, speed=4.0, **({"modulus": 1e7} if name == "hunt-crossley" else {}))
+    exact = brentq(lambda c: c * (1 + cor) - np.log((1 + c) / (1 - c * cor)), 1e-3, (1 - 1e-15) / cor, xtol=1e-15)
+    assert calibrate(scene, cor).value * scene.v_normal == pytest.approx(exact, rel=1e-8)

@@ -69,6 +69,14 @@ NOTEBOOKS = {
         "paper_figures/work_precision.png",
         "paper_figures/stability.png",
     ],
+    "laws": [
+        "results/config.yaml",
+        "results/laws_fitted.csv",
+        "results/laws.csv",
+        "results/cor_relations.csv",
+        "paper_figures/laws_cor_speed.png",
+        "paper_figures/laws_force.png",
+    ],
     "sweeps": [
         "results/config.yaml",
         "results/sweep/angle_speed.csv",

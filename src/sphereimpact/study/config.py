@@ -12,19 +12,14 @@ from ..scene import Scene, SolverOptions
 #: Config key -> Scene field, for the parameters shared by every case.  k and b are spelled out in the
 #: config because snakemake's --config accepts only keys of two or more characters.
 SCENE_KEYS = {"mass": "mass", "diameter": "diameter", "inertia_factor": "inertia_factor", "mu": "mu",
-              "stiffness": "k", "damping": "b", "ramp": "ramp", "chi": "chi", "exponent": "exponent",
-              "modulus": "modulus", "speed": "speed", "gravity": "gravity"}
-
-#: Config keys without a schema default: law parameters that only some laws have (the chapter's laws use
-#: none of them).
-OPTIONAL_KEYS = ("chi", "exponent", "modulus")
+              "stiffness": "k", "damping": "b", "ramp": "ramp", "speed": "speed", "gravity": "gravity"}
 
 
 def shared_fields(config: dict, model: str | None = None) -> dict:
     """The Scene fields every case shares (ball, surface, contact, approach), from the config's keys.
 
-    With ``model``, only the law parameters that law uses (the config's contact keys serve every law in
-    ``models``; :func:`config_errors` refuses a key that none of them uses).
+    With ``model``, only the law parameters that law uses: the config's contact keys (stiffness, damping,
+    ramp) are the chapter's laws' (``models``), and ramp is eq. 4.2's alone.
     """
     uses = () if model is None else LAWS.law(model).parameter_names
     return {field: config[key] for key, field in SCENE_KEYS.items()
@@ -87,8 +82,30 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
                     f"exponent, e.g. {_yaml_number(error.instance)}")
         lines.append(f"config key {key}: {error.message}" + (f" ({hint})" if hint else ""))
     if not lines:
-        lines += _sweep_errors(config, schema)
+        lines += _sweep_errors(config, schema) + _law_errors(config)
     return lines
+
+
+def _law_errors(config: dict) -> list[str]:
+    """The laws section: registered laws, relations that exist, a valid speed range."""
+    from ..parsing import parse_range
+
+    section = config.get("laws", {})
+    errors = []
+    for key in ("models", "relation_models"):
+        for name in section.get(key, []):
+            if name not in LAWS:
+                errors.append(f"config key laws.{key}: {name!r} is not a registered law ({', '.join(LAWS)})")
+            elif key == "relation_models" and not LAWS[name].cor_relations:
+                errors.append(f"config key laws.relation_models: {name!r} declares no COR relations")
+    if "speeds" in section:
+        try:
+            speeds = parse_range(section["speeds"])
+            if not (speeds > 0).all():
+                errors.append(f"config key laws.speeds: speed must be > 0 m/s; the range holds {speeds.min():g}")
+        except ValueError as err:
+            errors.append(f"config key laws.speeds: {err}")
+    return errors
 
 
 def _non_finite(value, key=""):

@@ -19,7 +19,7 @@ def angle_speed_scenes(config: dict) -> pd.DataFrame:
     spec = config["sweep"]
     scenes = grid(angle=parse_range(spec["angle"]), speed=parse_range(spec["speed"]))
     primary = config["primary"]
-    ball = {k: v for k, v in shared_fields(config).items() if k != "speed"}  # speeds come from the grid
+    ball = {k: v for k, v in shared_fields(config, primary["model"]).items() if k != "speed"}  # speeds: the grid
     return scenes.assign(**ball, model=primary["model"], separation=primary["separation"])
 
 
@@ -48,14 +48,14 @@ def write_speed_table(config: dict, csv_path: str) -> None:
     speeds = parse_range(config["sweep"]["cor_speed"])
     frames = []
     for model in config["models"]:
-        scenes = pd.DataFrame(shared_fields(config) | {"speed": speeds}).assign(
+        scenes = pd.DataFrame(shared_fields(config, model) | {"speed": speeds}).assign(
             angle=0.0, model=model, separation=config["primary"]["separation"])
         table = sweep(scenes, target=config["sweep"]["target"])
         peaks = []
         with warnings.catch_warnings():  # the table's beyond_radius column flags delta_m > R
             warnings.simplefilter("ignore", BeyondRadiusWarning)
             for speed in speeds:
-                scene = Scene(**(shared_fields(config) | {"speed": float(speed)}), angle=0.0, model=model,
+                scene = Scene(**(shared_fields(config, model) | {"speed": float(speed)}), angle=0.0, model=model,
                               separation=config["primary"]["separation"])
                 peaks.append(simulate(scene, options_for(config, scene)).force_max)
         frames.append(table.assign(force_max=peaks))

@@ -21,7 +21,7 @@ import traceback
 from functools import cache
 from pathlib import Path
 
-from .config import OPTIONAL_KEYS, SCENE_KEYS
+from .config import SCENE_KEYS
 
 _SCENE = tuple(SCENE_KEYS)
 _SOLVER = ("method", "rtol", "atol")
@@ -40,6 +40,8 @@ RULE_KEYS = {
     "bench": (*_SCENE, "cases", "primary", "bench.repeats", "bench.domain"),
     "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million"),
     "readme": ("primary",),
+    "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
+    "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
 }
 
 
@@ -60,7 +62,7 @@ def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
         section, _, entry = key.partition(".")
         if entry:
             out.setdefault(section, {})[entry] = config[section][entry]
-        elif key in config or key not in OPTIONAL_KEYS:  # an optional law parameter may be absent
+        else:
             out[key] = config[key]
     if case is not None:
         out["cases"] = {case: config["cases"][case]}
