@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
-import numpy as np
 import pandas as pd
 
 from .style import RC, save
@@ -26,10 +25,8 @@ def cor_speed(speed_csv: str, fitted_csv: str, outputs) -> None:
                 ax.plot(rows["speed"].where(inside), rows[key].where(inside) * scale, linestyle=style, label=law)
                 if not inside.all():
                     ax.plot(rows["speed"].where(~inside), rows[key].where(~inside) * scale, color="0.6", lw=0.8)
-        speed = table.loc[np.isclose(table["cor"], fitted["cor"].iloc[0]), "speed"]
         for ax in axes:
-            if len(speed):
-                ax.axvline(float(speed.iloc[0]), color="0.5", lw=0.8, ls=":")
+            ax.axvline(float(fitted["speed"].iloc[0]), color="0.5", lw=0.8, ls=":")
         axes[0].set_ylabel("COR [-]")
         axes[1].set_ylabel("contact time t_f [ms]")
         axes[2].set_ylabel("peak force [N]")

@@ -54,12 +54,13 @@ def _scene_of_law(base: Scene, name: str) -> Scene:
 
 
 def fitted_table(fitted: dict) -> pd.DataFrame:
-    """One row per law: the fitted stiffness and damping with units, and the COR and t_f they give."""
+    """One row per law: the calibration speed, the fitted stiffness and damping with units, and the COR and
+    t_f they give."""
     rows = []
     for name, calibration in fitted.items():
         scene = calibration.scene
         damping = scene.law.damping
-        rows.append({"law": name, "k": scene.k, "k_unit": scene.law.parameter("k").unit,
+        rows.append({"law": name, "speed": scene.speed, "k": scene.k, "k_unit": scene.law.parameter("k").unit,
                      "damping": damping or "", "damping_value": getattr(scene, damping) if damping else np.nan,
                      "damping_unit": scene.law.parameter(damping).unit if damping else "",
                      "cor": calibration.cor, "t_f": calibration.contact_time, "doc": scene.law.doc})
