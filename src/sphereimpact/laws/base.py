@@ -150,7 +150,6 @@ class ContactLaw:
         raise KeyError(name)
 
 
-#: Effective modulus E* [Pa] -> Hertz stiffness constant k = (4/3) E* sqrt(R) [N/m^1.5].
 def hertz_constant(modulus, radius):
     """k = (4/3) E* sqrt(R) [N/m^1.5] for an effective modulus E* [Pa] and radius R [m]."""
     return 4.0 / 3.0 * modulus * np.sqrt(radius)
