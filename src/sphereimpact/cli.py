@@ -19,8 +19,8 @@ from .events import ImpactError
 from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
-from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene,
-                    SolverOptions, check_columns)
+from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY,
+                    TANGENTIAL_MODELS, TANGENTIAL_PARAMETERS, TANGENTIAL_RULES, Scene, SolverOptions, check_columns)
 from .solve import BODIES, BeyondRadiusWarning, simulate
 
 _D = Scene()
@@ -28,7 +28,16 @@ _O = SolverOptions()
 
 #: Output units for the readable (non-JSON) output of ``simulate``.
 UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
-         "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N", "wall_time": "s"}
+         "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N",
+         "rebound_angle": "deg", "rebound_angle_contact": "deg", "work_t": "J", "wall_time": "s"}
+#: Help for the tangential contact model's flags.
+TANGENTIAL_HELP = {
+    "tangential": "tangential contact: rigid (the chapter's: slips or rolls), linear (spring k_t = kappa k, "
+                  "linear-spring laws) or mindlin (k_t = 8 G* a, Hertz laws), both capped by mu P",
+    "kappa": f"tangential stiffness ratio k_t / k_n of linear or mindlin, {TANGENTIAL_RULES['kappa'][0]}",
+    "poisson": f"Poisson's ratio of like materials, {TANGENTIAL_RULES['poisson'][0]}, instead of kappa",
+    "shear_modulus": "effective shear modulus G* [Pa] of mindlin, > 0, instead of kappa (kappa = 4 G* / E*)",
+}
 #: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
 RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
           "gravity": "m/s^2"}
@@ -115,6 +124,9 @@ def _parser() -> argparse.ArgumentParser:
         help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     add("--contact-time", type=_number, default=None, metavar="S",
         help="with --cor: fit the stiffness k too, so that the contact time t_f is S [s]")
+    add("--tangential", choices=TANGENTIAL_MODELS, default=_D.tangential, help=TANGENTIAL_HELP["tangential"])
+    for name in TANGENTIAL_PARAMETERS:
+        add("--" + name.replace("_", "-"), type=_number, default=None, help=TANGENTIAL_HELP[name])
     add("--mass", type=_number, default=_D.mass, help="ball mass [kg], > 0")
     add("--diameter", type=_number, default=_D.diameter, help="ball diameter [m], > 0")
     add("--inertia-factor", type=_number, default=_D.inertia_factor,
@@ -153,6 +165,11 @@ def _parser() -> argparse.ArgumentParser:
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
     swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(LAWS))
+    swp.add_argument("--tangential", choices=TANGENTIAL_MODELS, default=_D.tangential,
+                     help=TANGENTIAL_HELP["tangential"] + " (compliant scenes are solved one by one)")
+    for name in TANGENTIAL_PARAMETERS:
+        swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
+                         help=TANGENTIAL_HELP[name] + ": a value or START:STOP:STEP")
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
     swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
     swp.add_argument("--chunk-size", type=int, default=100_000,
@@ -205,8 +222,8 @@ def check_out(path: str, force: bool) -> None:
 def _each_range(args, read) -> dict:
     """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
-    for name in [*RANGED, *_law_flags()]:
-        if getattr(args, name) is None:  # a law parameter not given: the law's default
+    for name in [*RANGED, *_law_flags(), *TANGENTIAL_PARAMETERS]:
+        if getattr(args, name) is None:  # a law or tangential parameter not given: the default
             continue
         try:
             out[name] = read(getattr(args, name))
@@ -231,7 +248,8 @@ def _sweep(args) -> None:
     laws = _law_flags()
     check_columns({name: values for name, values in ranges.items() if name not in laws}
                   | {"model": [args.model], "separation": [args.separation]})  # before any work
-    table = grid(**ranges).assign(model=args.model, separation=args.separation)  # law parameters: checked by sweep
+    table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
+                                  tangential=args.tangential)
     big = scenes >= 100_000 and sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
     write_table(result, args.out)
@@ -258,7 +276,7 @@ def _simulate(args) -> None:
     law = {name: getattr(args, name) for name in _law_flags()}
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
                   speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
-                  **law)
+                  tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law)
     options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
     fitted, units = {}, UNITS
     if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None):

@@ -19,11 +19,12 @@ from .scene import Scene
 #: The outputs of one impact, in the order of the JSON object and tables.
 OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
                "regime", "t_roll", "force_min", "force_max", "beyond_radius",
+               "switches", "rebound_angle", "rebound_angle_contact", "work_t",
                "method", "rtol", "atol", "nfev", "wall_time")
 
 #: Columns of :meth:`Outcome.history`, with units.
 HISTORY_COLUMNS = {
-    "t": "s", "delta": "m", "delta_dot": "m/s", "force": "N",
+    "t": "s", "delta": "m", "delta_dot": "m/s", "force": "N", "force_t": "N",
     "u_t": "m", "u_n": "m", "vc_t": "m/s", "vc_n": "m/s", "omega": "rad/s", "ve_t": "m/s", "ve_n": "m/s",
     "X": "m", "Y": "m", "VX": "m/s", "VY": "m/s",
 }
@@ -50,14 +51,24 @@ class Outcome:
     cor : float
         Coefficient of restitution ve_n / (v cos beta) [-].
     regime : str
-        ``sliding`` or ``rolling`` at separation, ``none`` for a normal impact.
+        The tangential mode at separation: ``sliding`` or ``rolling`` (rigid tangential contact),
+        ``sliding`` or ``sticking`` (compliant), ``none`` for a normal impact.
     t_roll : float or None
-        First instant the contact point stops slipping [s]; None if it never does.
+        First instant the contact point stops slipping (rolls, or sticks) [s]; None if it never does.
     force_min, force_max : float
         Extremes of the normal force during contact [N] (negative = pulling).
     beyond_radius : bool
         True when delta_m exceeds the radius R: the centre passed the flat's plane, outside what a contact
         law of a ball's surface can describe (:func:`sphereimpact.simulate` warns, or refuses when strict).
+    switches : int
+        Number of changes of tangential mode during contact.
+    rebound_angle, rebound_angle_contact : float
+        Direction of the centre's and of the contact point's velocity after impact, from the normal [deg]:
+        atan2(vc_t, vc_n) and atan2(ve_t, vc_n); negative when the tangential velocity is reversed.
+    work_t : float
+        Work of the tangential contact force on the ball [J] (<= 0: friction and a compliant contact's
+        hysteresis take energy): the change of translational-tangential and rotational kinetic energy
+        less the work of gravity along the flat.
     method, rtol, atol, nfev, wall_time
         Solver statistics; ``wall_time`` [s] covers the whole call.
     """
@@ -76,6 +87,10 @@ class Outcome:
     force_min: float
     force_max: float
     beyond_radius: bool
+    switches: int
+    rebound_angle: float
+    rebound_angle_contact: float
+    work_t: float
     method: str
     rtol: float
     atol: float
@@ -95,13 +110,18 @@ class Outcome:
         delta_m = float(motion.kinematics(motion.t_m)["delta"][0])
         end = motion.kinematics(motion.t_f)
         vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
+        ve_t = vc_t - omega * s.radius
+        work = (0.5 * s.mass * (vc_t * vc_t - s.v_tangent ** 2) + 0.5 * s.inertia * omega * omega
+                - s.mass * s.g_tangent * float(end["u_t"][0]))
         return cls(
             t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
-            vc_t=vc_t, vc_n=vc_n, ve_t=vc_t - omega * s.radius, ve_n=vc_n, omega_f=omega,
+            vc_t=vc_t, vc_n=vc_n, ve_t=ve_t, ve_n=vc_n, omega_f=omega,
             cor=vc_n / s.v_normal, regime=motion.regime, t_roll=motion.t_roll,
             force_min=extremum(motion.force, motion.grid, "min")[1],
             force_max=extremum(motion.force, motion.grid, "max")[1],
-            beyond_radius=bool(delta_m > s.radius), wall_time=wall_time, scene=s, motion=motion, **motion.stats)
+            beyond_radius=bool(delta_m > s.radius), switches=int(motion.switches),
+            rebound_angle=math.degrees(math.atan2(vc_t, vc_n)), rebound_angle_contact=math.degrees(math.atan2(ve_t, vc_n)),
+            work_t=work, wall_time=wall_time, scene=s, motion=motion, **motion.stats)
 
     def to_dict(self) -> dict:
         """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS`."""
@@ -129,6 +149,7 @@ class Outcome:
         sn, cs = math.sin(beta), math.cos(beta)
         return {
             "t": t, "delta": k["delta"], "delta_dot": k["delta_dot"], "force": self.motion.force(t),
+            "force_t": self.motion.tangential_force(t),
             "u_t": k["u_t"], "u_n": -k["delta"], "vc_t": k["vc_t"], "vc_n": k["vc_n"], "omega": k["omega"],
             "ve_t": k["vc_t"] - k["omega"] * radius, "ve_n": k["vc_n"],
             "X": normal_pos * sn + k["u_t"] * cs, "Y": normal_pos * cs - k["u_t"] * sn,

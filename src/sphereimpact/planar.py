@@ -16,6 +16,7 @@ can no longer supply that.  Each mode is a separate solve_ivp segment.
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -23,7 +24,7 @@ from scipy.integrate import solve_ivp
 from .events import ImpactError
 from .normal import SUBSTEPS, check_rebound, horizon, no_separation_message, separation_function
 from .scene import Scene, SolverOptions
-from .tangential import MAX_PHASES
+from .tangential import MAX_PHASES, phase_index
 
 
 class PlanarMotion:
@@ -51,13 +52,14 @@ class PlanarMotion:
         z = np.array([radius * self._n[0], radius * self._n[1], 0.0, -scene.speed, 0.0])
         mode = "sliding" if scene.has_tangential_motion else "rolling"
         t0, t_end = 0.0, horizon(scene)
-        self._segments, self.t_roll, t_m, nfev = [], None, None, 0
+        self._segments, self._modes, self.t_roll, t_m, nfev = [], [], None, None, 0
         while True:
             sol = self._segment(mode, t0, t_end, z)
             nfev += sol.nfev
             if sol.status == -1:
                 raise ImpactError(f"solver {options.method} failed: {sol.message}")
             self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
+            self._modes.append(mode)
             if t_m is None and len(sol.t_events[0]):
                 t_m = float(sol.t_events[0][0])
             if len(sol.t_events[1]):
@@ -77,6 +79,7 @@ class PlanarMotion:
         check_rebound(scene, options, float(self._contact(sol.y_events[1][0])[1]))
         self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
         self.regime = mode if scene.has_tangential_motion else "none"
+        self.switches = len(self._segments) - 1 if scene.has_tangential_motion else 0
         steps = np.concatenate([seg[3] for seg in self._segments])
         fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
         grid = np.unique((steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel())
@@ -123,8 +126,7 @@ class PlanarMotion:
     def _state(self, t):
         t = np.atleast_1d(np.asarray(t, dtype=float))
         out = np.empty((5, t.size))
-        starts = np.array([seg[0] for seg in self._segments])
-        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(self._segments) - 1)
+        which = phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
         for i, (_, _, dense, _) in enumerate(self._segments):
             mask = which == i
             if mask.any():
@@ -133,6 +135,15 @@ class PlanarMotion:
 
     def force(self, t):
         return self._contact(self._state(t))[2]
+
+    def tangential_force(self, t):
+        """Friction force on the ball along the flat [N] at t [s], as the segment's mode sets it."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        which = phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
+        sliding = np.array([mode == "sliding" for mode in self._modes])[which]
+        if not self.scene.has_tangential_motion:
+            return np.zeros_like(t)
+        return np.where(sliding, -self.scene.mu * np.maximum(self.force(t), 0.0), -self._hold)
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .laws import LAWS, PARAMETER_NAMES, hertz_constant
+from .laws import LAWS, PARAMETER_NAMES, hertz_constant, spring_exponent
 from .laws.base import MODULUS
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
@@ -23,6 +23,29 @@ STANDARD_GRAVITY = 9.80665
 #: Separation criteria: ``force`` ends contact when P returns to 0 (a
 #: unilateral contact cannot pull), ``penetration`` when delta returns to 0.
 SEPARATION_CRITERIA = ("force", "penetration")
+
+#: Tangential contact models: ``rigid`` (the chapter's: the contact point slips or rolls), ``linear``
+#: (a tangential spring k_t = kappa k for a linear-spring law) and ``mindlin`` (k_t = 8 G* a for a Hertz
+#: spring), both capped by Coulomb friction (:mod:`sphereimpact.compliance`).
+TANGENTIAL_MODELS = ("rigid", "linear", "mindlin")
+#: The ways to give the tangential stiffness ratio kappa = k_t / k_n: directly, from Poisson's ratio of like
+#: materials (kappa = 2 (1 - nu) / (2 - nu)), or from the effective shear modulus G* (mindlin: kappa = 4 G* / E*).
+TANGENTIAL_PARAMETERS = ("kappa", "poisson", "shear_modulus")
+TANGENTIAL_RULES = {
+    "kappa": ("a finite number > 0 (k_t / k_n; 2 (1 - nu) / (2 - nu) for like materials)", lambda x: x > 0),
+    "poisson": ("a finite number in (-1, 0.5]", lambda x: (x > -1) & (x <= 0.5)),
+    "shear_modulus": ("a finite number > 0 Pa (effective G*)", lambda x: x > 0),
+}
+
+
+#: Scene fields that hold names, not numbers.
+TEXT_FIELDS = ("model", "separation", "tangential")
+
+
+def kappa_from_poisson(nu):
+    """kappa = k_t / k_n = 2 (1 - nu) / (2 - nu) for two bodies of one elastic material (Mindlin 1949)."""
+    return 2.0 * (1.0 - nu) / (2.0 - nu)
+
 
 #: Integration methods: ``closed`` is the exact linear solution (kelvin-voigt
 #: only); the others are :func:`scipy.integrate.solve_ivp` methods.
@@ -145,7 +168,8 @@ def check_columns(columns: dict) -> dict:
     Parameters
     ----------
     columns : dict of str -> array_like
-        Scene field -> values; numeric fields must be numbers, ``model`` and ``separation`` strings.  Law
+        Scene field -> values; numeric fields must be numbers, ``model``, ``separation`` and ``tangential``
+        strings.  (The tangential parameters are checked per scene, by :class:`Scene`.)  Law
         parameters (k, b, ...) are checked against each row's law (missing ones take the law's default).
 
     Returns
@@ -173,12 +197,12 @@ def check_columns(columns: dict) -> dict:
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
                 raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
-        elif name in ("model", "separation"):
-            choices = tuple(LAWS) if name == "model" else SEPARATION_CRITERIA
+        elif name in TEXT_FIELDS:
+            choices = {"model": tuple(LAWS), "separation": SEPARATION_CRITERIA, "tangential": TANGENTIAL_MODELS}[name]
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
-        elif name in PARAMETER_NAMES:
+        elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS:
             raw = np.asarray(values)
             if raw.dtype == bool:
                 raise TypeError(f"{name} must be real numbers; got a boolean")
@@ -188,7 +212,7 @@ def check_columns(columns: dict) -> dict:
                 raise ValueError(f"{name} must be a number; got a non-numeric value") from None
         else:
             raise ValueError(f"unknown scene parameter {name!r}; expected one of "
-                             f"{', '.join([*RULES, 'model', 'separation', *PARAMETER_NAMES])}")
+                             f"{', '.join([*RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
     if "model" not in columns or "diameter" not in columns:
         return {}
     models = np.asarray(columns["model"], dtype=object).ravel()
@@ -240,6 +264,14 @@ class Scene:
         compress the contact beyond the radius (m g cos(beta) / k <= R).
     separation : str
         ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
+    tangential : str
+        Tangential contact model, one of :data:`TANGENTIAL_MODELS`: ``rigid`` (default, the chapter's),
+        ``linear`` (needs a linear-spring law) or ``mindlin`` (needs a Hertz spring, exponent 3/2).
+    kappa, poisson, shear_modulus : float or None
+        The tangential stiffness of a compliant model, one of three ways: kappa = k_t / k_n [-] > 0;
+        Poisson's ratio nu [-] in (-1, 0.5] of like materials, kappa = 2 (1 - nu) / (2 - nu) (2/3 for
+        rubber); or (``mindlin``) the effective shear modulus G* [Pa], kappa = 4 G* / E* with
+        E* = 3 k / (4 sqrt(R)).  ``kappa`` then holds the value used.  Refused for ``rigid``.
     """
 
     mass: float = 0.145
@@ -257,6 +289,10 @@ class Scene:
     modulus: float | None = None
     gravity: float = 0.0
     separation: str = "force"
+    tangential: str = "rigid"
+    kappa: float | None = None
+    poisson: float | None = None
+    shear_modulus: float | None = None
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
@@ -275,6 +311,50 @@ class Scene:
                              f"R = {self.radius:.3g} m (m g cos(beta) = {weight:.3g} N, more than the "
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
+        self._resolve_kappa()
+
+    def _resolve_kappa(self) -> None:
+        """Check the tangential model against the law and set ``kappa`` from whichever way it was given."""
+        _check_choice("tangential", self.tangential, TANGENTIAL_MODELS)
+        given = {}
+        for name in TANGENTIAL_PARAMETERS:
+            if getattr(self, name) is not None:
+                allowed, ok = TANGENTIAL_RULES[name]
+                given[name] = _check(name, getattr(self, name), allowed, ok)
+                object.__setattr__(self, name, given[name])
+        if self.tangential == "rigid":
+            if given:
+                raise ValueError(f"{next(iter(given))} is a parameter of the compliant tangential models "
+                                 "(linear, mindlin); this scene's tangential model is 'rigid'")
+            return
+        law = self.law
+        linear = tuple(name for name, other in LAWS.items() if other.spring == "linear")
+        hertzian = tuple(name for name, other in LAWS.items() if other.spring == "hertz")
+        if self.tangential == "linear" and law.spring != "linear":
+            raise ValueError(f"tangential 'linear' (k_t = kappa k, constant) needs a linear-spring law "
+                             f"({', '.join(linear)}); model {self.model!r} has a Hertz spring: use tangential 'mindlin'")
+        if self.tangential == "mindlin" and (law.spring != "hertz" or spring_exponent(law, self) != 1.5):
+            raise ValueError(f"tangential 'mindlin' (k_t = 8 G* a) needs a Hertz spring k delta^(3/2) "
+                             f"({', '.join(hertzian)}, exponent 1.5); model {self.model!r} has "
+                             + ("a linear spring: use tangential 'linear'" if law.spring == "linear"
+                                else f"exponent {spring_exponent(law, self):g}"))
+        if "shear_modulus" in given and self.tangential != "mindlin":
+            raise ValueError("shear_modulus sets kappa of tangential 'mindlin' (kappa = 4 G* / E*); "
+                             "for 'linear' give kappa or poisson")
+        derived = [name for name in ("poisson", "shear_modulus") if name in given]
+        if len(derived) > 1:
+            raise ValueError("give one of kappa, poisson or shear_modulus, not several")
+        if derived:
+            name = derived[0]
+            value = (kappa_from_poisson(given[name]) if name == "poisson"
+                     else 4.0 * given[name] / (0.75 * self.k / np.sqrt(self.radius)))
+            if "kappa" in given and given["kappa"] != value:  # equal: a scene copied with both
+                raise ValueError(f"give kappa or {name}, not both (kappa from {name} = {value:.6g})")
+            object.__setattr__(self, "kappa", float(value))
+        elif "kappa" not in given:
+            raise ValueError(f"kappa is required by tangential {self.tangential!r}: k_t / k_n, > 0 "
+                             "(2 (1 - nu) / (2 - nu) = 0.667 for rubber, nu = 0.5), or give poisson"
+                             + (" or shear_modulus" if self.tangential == "mindlin" else ""))
 
     # Derived quantities (SI) -------------------------------------------------
     @property
@@ -368,7 +448,8 @@ class Scene:
         """A validated copy with some fields changed.
 
         Changing ``model`` drops the old law's parameters that the new law does not use (and ``modulus``
-        when ``k`` changes); the others carry over.
+        when ``k`` changes); the others carry over.  ``tangential='rigid'`` drops kappa, poisson and
+        shear_modulus; kappa given as poisson or shear_modulus is recomputed.
         """
         if "model" in changes:
             uses = LAWS.law(changes["model"]).parameter_names
@@ -377,6 +458,10 @@ class Scene:
             changes["modulus"] = None
         if "diameter" in changes and self.modulus is not None and "k" not in changes:
             changes["k"] = None  # k follows the modulus at the new radius
+        if changes.get("tangential", self.tangential) == "rigid":
+            changes = {name: None for name in TANGENTIAL_PARAMETERS} | changes
+        elif "kappa" not in changes and (self.poisson is not None or self.shear_modulus is not None):
+            changes["kappa"] = None  # kappa follows poisson or shear_modulus (and k, R)
         return replace(self, **changes)
 
 

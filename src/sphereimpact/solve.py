@@ -2,7 +2,9 @@
 
 The reduced model integrates the normal motion only (or uses its closed form
 for kelvin-voigt) and derives tangential velocity and spin from the normal
-impulse; a normal impact (angle 0) has no tangential state at all.  The full
+impulse (rigid tangential contact), or integrates the tangential spring alone on
+the solved normal force (compliant: ``linear``, ``mindlin``); a normal impact
+(angle 0) has no tangential state at all.  The full
 planar model (:mod:`sphereimpact.planar`) integrates centre position,
 velocity and spin with event-driven sliding/rolling, as the cross-check.
 """
@@ -15,6 +17,7 @@ import warnings
 import numpy as np
 
 from .closed import CLOSED_FORMS
+from .compliance import CompliantTangential
 from .events import ImpactError
 from .laws import LAWS
 from .normal import IntegratedNormal, NormalMotion
@@ -31,16 +34,29 @@ class BeyondRadiusWarning(UserWarning):
 
 
 class ReducedMotion:
-    """Normal motion plus impulse-derived tangential motion, as one contact motion."""
+    """Normal motion plus the tangential motion it drives, as one contact motion.
 
-    def __init__(self, normal: NormalMotion):
+    The tangential motion follows from the normal impulse (``rigid``) or is integrated on the solved normal
+    force (``linear``, ``mindlin``); a normal impact has none.
+    """
+
+    def __init__(self, normal: NormalMotion, options: SolverOptions):
         self.normal, self.scene = normal, normal.scene
         self.t_m, self.t_f, self.grid, self.stats = normal.t_m, normal.t_f, normal.grid, normal.stats
-        if self.scene.has_tangential_motion:
+        if not self.scene.has_tangential_motion:
+            self.tangential, self.t_roll, self.regime, self.switches = None, None, "none", 0
+            return
+        if self.scene.tangential == "rigid":
             self.tangential = TangentialMotion(normal)
-            self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
         else:
-            self.tangential, self.t_roll, self.regime = None, None, "none"
+            self.tangential = CompliantTangential(normal, options)
+        self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
+        self.switches = self.tangential.switches
+
+    def tangential_force(self, t):
+        """Tangential contact force on the ball [N] at t [s] (0 for a normal impact)."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        return np.zeros_like(t) if self.tangential is None else self.tangential.force(t)
 
     def force(self, t):
         return self.normal.force(t)
@@ -96,7 +112,8 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     TypeError
         ``scene`` is not a Scene or ``options`` not a SolverOptions.
     ValueError
-        Unknown body, or ``closed`` with a law without a closed form.
+        Unknown body, ``closed`` with a law without a closed form, or a compliant tangential model with
+        body ``planar``.
     ImpactError
         The ball never separates, an event was missed, or (strict) delta_m exceeds the radius.
     """
@@ -110,9 +127,14 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
         raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
     start = time.perf_counter()
     if body == "reduced":
-        motion = ReducedMotion(normal_motion(scene, options))
+        motion = ReducedMotion(normal_motion(scene, options), options)
     else:
         from .planar import PlanarMotion
+
+        if scene.tangential != "rigid":
+            raise ValueError(f"body 'planar' has the rigid tangential contact only; tangential "
+                             f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
+                             "not depend on friction)")
 
         motion = PlanarMotion(scene, options)
     outcome = Outcome.from_motion(motion, time.perf_counter() - start)

@@ -42,6 +42,12 @@ class Phase:
     x0: float
 
 
+def phase_index(phases, t) -> np.ndarray:
+    """Index of the phase (objects with ``t0``, in time order) that holds each instant of the array t."""
+    starts = np.array([p.t0 for p in phases])
+    return np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(phases) - 1)
+
+
 class PositiveImpulse:
     """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
 
@@ -93,6 +99,8 @@ class TangentialMotion:
         First instant [s] the contact point stops slipping, None if it never does.
     regime : str
         ``sliding`` or ``rolling``: the mode at separation.
+    switches : int
+        Number of sliding/rolling switches.
     """
 
     def __init__(self, normal: NormalMotion):
@@ -125,6 +133,7 @@ class TangentialMotion:
             if len(self.phases) >= MAX_PHASES:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         self.regime = self.phases[-1].mode
+        self.switches = len(self.phases) - 1
 
     def _evaluate(self, p: Phase, t):
         """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p."""
@@ -150,13 +159,22 @@ class TangentialMotion:
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        out = np.zeros((3, t.size))
-        starts = np.array([p.t0 for p in self.phases])
-        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(self.phases) - 1)
+        out, which = np.zeros((3, t.size)), phase_index(self.phases, t)
         for i, p in enumerate(self.phases):
             mask = which == i
             if mask.any():
                 out[:, mask] = self._evaluate(p, t[mask])
+        return out
+
+    def force(self, t):
+        """Friction force F on the ball along the flat [N] at t [s]: -mu P+ sliding, the holding force rolling."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        out, which = np.zeros(t.size), phase_index(self.phases, t)
+        for i, p in enumerate(self.phases):
+            mask = which == i
+            if mask.any():
+                out[mask] = (-self.scene.mu * np.maximum(self.normal.force(t[mask]), 0.0) if p.mode == "sliding"
+                             else -self._hold)
         return out
 
     def friction_impulse(self) -> float:

@@ -108,6 +108,10 @@ class ContactLaw:
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.
+    rate : callable or None
+        ``rate(delta, delta_dot, delta_ddot, p) -> dP/dt`` [N/s] inside contact, the chain rule of the
+        force.  Tangential compliance needs it to tell when a slipping contact sticks again (the Coulomb
+        cap mu P moves with P).  None: :func:`force_rate` differentiates ``continued`` numerically.
     """
 
     name: str
@@ -124,6 +128,7 @@ class ContactLaw:
     closed_form: str | None = None
     kernel: str | None = None
     ramp_rate: Callable | None = None
+    rate: Callable | None = None
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]
@@ -148,6 +153,42 @@ class ContactLaw:
             if p.name == name:
                 return p
         raise KeyError(name)
+
+
+def spring_exponent(law: ContactLaw, p):
+    """n of the law's spring term k delta^n: 1 for a linear spring, the law's ``exponent`` or 3/2 for Hertz."""
+    if law.spring == "linear":
+        return 1.0
+    return p.exponent if "exponent" in law.parameter_names else 1.5
+
+
+def spring_stiffness(law: ContactLaw, delta, p):
+    """Tangent stiffness d(k delta^n)/d delta = n k delta^(n-1) of the law's spring term [N/m], delta >= 0.
+
+    The normal contact stiffness that a tangential spring is scaled from (k itself for a linear spring;
+    2 E* a, a = sqrt(R delta), for Hertz).
+    """
+    n = spring_exponent(law, p)
+    delta = np.maximum(np.asarray(delta, dtype=float), 0.0)
+    return np.broadcast_to(p.k * np.ones_like(delta), delta.shape) if n == 1.0 else n * p.k * delta ** (n - 1.0)
+
+
+def force_rate(law: ContactLaw, delta, delta_dot, delta_ddot, p):
+    """dP/dt [N/s] inside contact: the law's ``rate``, or a fourth-order central difference of
+    ``continued`` in delta and delta_dot (relative error about 1e-11) for a law that declares none."""
+    if law.rate is not None:
+        return law.rate(delta, delta_dot, delta_ddot, p)
+    delta, delta_dot = np.asarray(delta, dtype=float), np.asarray(delta_dot, dtype=float)
+
+    def partial(f, x, scale):
+        h = 1e-3 * np.maximum(np.abs(x), scale)
+        return (8.0 * (f(x + h) - f(x - h)) - (f(x + 2 * h) - f(x - 2 * h))) / (12.0 * h)
+
+    d_scale = np.maximum(np.abs(delta), 1e-3 * np.asarray(p.radius))
+    v_scale = np.maximum(np.abs(delta_dot), 1e-3 * np.asarray(p.v_normal))
+    by_delta = partial(lambda x: law.continued(x, delta_dot, p), delta, d_scale)
+    by_rate = partial(lambda y: law.continued(delta, y, p), delta_dot, v_scale)
+    return by_delta * delta_dot + by_rate * delta_ddot
 
 
 def hertz_constant(modulus, radius):

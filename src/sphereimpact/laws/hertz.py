@@ -57,14 +57,27 @@ def hunt_crossley_continued(delta, delta_dot, p):
     return p.k * _power(delta, p.exponent) * (1.0 + p.chi * delta_dot)
 
 
+def hertz_rate(delta, delta_dot, delta_ddot, p):
+    """dP/dt = (3/2) k delta^(1/2) delta_dot [N/s]."""
+    return HERTZ * p.k * np.sqrt(np.maximum(delta, 0.0)) * np.asarray(delta_dot, dtype=float)
+
+
+def hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
+    """dP/dt = n k delta^(n-1) delta_dot (1 + chi delta_dot) + k delta^n chi delta_ddot [N/s]."""
+    delta, delta_dot = np.maximum(np.asarray(delta, dtype=float), 0.0), np.asarray(delta_dot, dtype=float)
+    return p.k * (p.exponent * delta ** (p.exponent - 1.0) * delta_dot * (1.0 + p.chi * delta_dot)
+                  + delta ** p.exponent * p.chi * np.asarray(delta_ddot, dtype=float))
+
+
 LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_force, hertz_continued, hertz_frequency,
-    family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz"))
+    family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
+    rate=hertz_rate))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
     (K, CHI, EXPONENT), hunt_crossley_force, hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations()))
+    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), rate=hunt_crossley_rate))

@@ -55,6 +55,11 @@ def kelvin_voigt_continued(delta, delta_dot, p):
     return p.k * delta + p.b * delta_dot
 
 
+def kelvin_voigt_rate(delta, delta_dot, delta_ddot, p):
+    """dP/dt = k delta_dot + b delta_ddot [N/s]."""
+    return p.k * np.asarray(delta_dot, dtype=float) + p.b * np.asarray(delta_ddot, dtype=float)
+
+
 # --- eq. 4.2 ------------------------------------------------------------------------------------------
 #: 1/n! for the Taylor continuation of the ramp.
 _INVERSE_FACTORIALS = tuple(1.0 / math.factorial(n) for n in range(1, 9))
@@ -97,6 +102,14 @@ def modified_continued(delta, delta_dot, p):
     return p.k * delta + p.b * delta_dot * ramp_continued(p.ramp * delta / p.radius)
 
 
+def modified_rate(delta, delta_dot, delta_ddot, p):
+    """dP/dt = k delta_dot + b [delta_ddot (1 - exp(-u)) + delta_dot^2 (c/R) exp(-u)], u = c delta / R [N/s]."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    u = p.ramp * np.maximum(delta, 0.0) / p.radius
+    return p.k * delta_dot + p.b * (np.asarray(delta_ddot, dtype=float) * -np.expm1(-u)
+                                     + delta_dot * delta_dot * (p.ramp / p.radius) * np.exp(-u))
+
+
 # --- Hunt-Crossley damping on a linear spring ---------------------------------------------------------
 def linear_hunt_crossley_force(delta, delta_dot, p):
     """P = k delta (1 + chi delta_dot) [N] for delta > 0: starts from zero, pulls where delta_dot < -1/chi."""
@@ -108,6 +121,12 @@ def linear_hunt_crossley_continued(delta, delta_dot, p):
     """k delta (1 + chi delta_dot) for every delta (a polynomial: its own continuation)."""
     delta, delta_dot = _arrays(delta, delta_dot)
     return p.k * delta * (1.0 + p.chi * delta_dot)
+
+
+def linear_hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
+    """dP/dt = k delta_dot (1 + chi delta_dot) + k delta chi delta_ddot [N/s]."""
+    delta, delta_dot = _arrays(delta, delta_dot)
+    return p.k * (delta_dot * (1.0 + p.chi * delta_dot) + delta * p.chi * np.asarray(delta_ddot, dtype=float))
 
 
 def hunt_crossley_relations() -> dict:
@@ -134,18 +153,18 @@ LAWS.register(ContactLaw(
     (K, B), kelvin_voigt_force, kelvin_voigt_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt"))
+    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt", rate=kelvin_voigt_rate))
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
     (K, B, RAMP), modified_force, modified_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius))
+    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius, rate=modified_rate))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
     (K, CHI), linear_hunt_crossley_force, linear_hunt_crossley_continued, natural_frequency,
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    damping="chi", cor_relations=hunt_crossley_relations()))
+    damping="chi", cor_relations=hunt_crossley_relations(), rate=linear_hunt_crossley_rate))

@@ -13,7 +13,8 @@ Each scene takes the cheapest path that its law declares and that is exact for i
 4. a law without a kernel, without tangential gravity: its similarity family (``ContactLaw.family``)
    fixes the dimensionless normal motion, so the single-impact integrator solves one scene per distinct
    family (and gamma and criterion) and the others are scaled from it;
-5. gravity on an inclined flat (stick-slip with re-slip as P falls): the single-impact model, scene by scene.
+5. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
+   (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene.
 
 Tangential velocity, spin and regime follow from the normal impulse as in the
 single-impact core.  Results do not depend on the chunk size: every lane is
@@ -33,7 +34,7 @@ from ..events import ImpactError
 from ..laws import LAWS, PARAMETER_NAMES
 from ..normal import IntegratedNormal
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..scene import SEPARATION_CRITERIA, Scene, SolverOptions, check_columns
+from ..scene import SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns
 from ..solve import BeyondRadiusWarning, simulate
 from ..tangential import PositiveImpulse
 from . import batch, closed
@@ -66,23 +67,41 @@ def scene_table(scenes) -> pd.DataFrame:
                for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
     laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
     columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
-    columns.setdefault("modulus", np.full(n, np.nan))
-    return pd.DataFrame({name: columns[name] if name in ("model", "separation")
-                         else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+    for name in ("modulus", *TANGENTIAL_PARAMETERS):
+        columns.setdefault(name, np.full(n, np.nan))
+    frame = pd.DataFrame({name: columns[name] if name in TEXT_FIELDS
+                          else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+    for i in np.flatnonzero(_compliant(frame) | frame[list(TANGENTIAL_PARAMETERS)].notna().any(axis=1).to_numpy()):
+        try:  # the tangential model's parameters depend on the law: checked as the Scene checks them
+            scene = scene_of(frame.iloc[i].to_dict())
+        except ValueError as err:
+            raise ValueError(f"{err} (row {i})") from None
+        frame.loc[frame.index[i], "kappa"] = np.nan if scene.kappa is None else scene.kappa
+    return frame
+
+
+def _compliant(frame: pd.DataFrame) -> np.ndarray:
+    """Scenes with a compliant tangential contact (solved scene by scene)."""
+    return (frame["tangential"] != "rigid").to_numpy()
 
 
 def scene_of(row: dict) -> Scene:
     """The Scene of one row of a :func:`scene_table` (its NaN law parameters are the ones its law lacks)."""
-    values = {name: (value if name in ("model", "separation") else float(value)) for name, value in row.items()}
+    values = {name: (value if name in TEXT_FIELDS else float(value)) for name, value in row.items()}
     for name in PARAMETER_NAMES:
         if name == "modulus" or np.isnan(values[name]):  # k is already resolved from the modulus
+            values[name] = None
+    resolved = not np.isnan(values["kappa"])  # kappa is already resolved from poisson or shear_modulus
+    for name in TANGENTIAL_PARAMETERS:
+        if np.isnan(values[name]) or (name != "kappa" and resolved):
             values[name] = None
     return Scene(**values)
 
 
-def _tilted_gravity(frame: pd.DataFrame) -> np.ndarray:
-    """Scenes with gravity on an inclined flat (stick-slip with re-slip as P falls)."""
-    return ((frame["gravity"] > 0) & (frame["angle"] > 0)).to_numpy()
+def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
+    """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
+    compliant tangential contact at an angle (its tangential motion is integrated)."""
+    return (((frame["gravity"] > 0) | _compliant(frame)) & (frame["angle"] > 0)).to_numpy()
 
 
 def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
@@ -215,13 +234,14 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     scenes : DataFrame or dict of arrays
         Columns named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
-        ``separation``); missing columns take the chapter's defaults.
+        ``separation``, ``tangential``, ``kappa``, ...); missing columns take the chapter's defaults.
     target : float
         Relative accuracy of every output (1e-8: within 1e-8 of the single-impact reference).
     chunk_size : int
         Scenes integrated at once (memory stays bounded; results do not depend on it).
     progress : callable, optional
-        ``progress(done, total)`` after each chunk of integrated scenes.
+        ``progress(done, total)`` after each chunk of integrated scenes (and every 100 scenes solved one by
+        one: gravity on a slope, compliant tangential contact).
     span : DataFrame or dict of arrays, optional
         The whole sweep when ``scenes`` is one shard of it: interpolants are built on the whole
         sweep's range, so the merged shards equal the sweep run at once.  Defaults to ``scenes``.
@@ -247,8 +267,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
     regime = np.full(n, "none", dtype=object)
-    tilted_gravity = _tilted_gravity(frame)
-    for i in np.flatnonzero(tilted_gravity):  # stick-slip with re-slip: the exact single-impact path
+    single = _one_by_one(frame)
+    singles = np.flatnonzero(single)
+    for done, i in enumerate(singles, 1):  # stick-slip with re-slip, or compliance: the single-impact path
         with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
             warnings.simplefilter("ignore", BeyondRadiusWarning)
             out = simulate(scene_of(frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
@@ -256,7 +277,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         for key in result:
             result[key][i] = getattr(out, key)
         regime[i] = out.regime
-    rest = ~tilted_gravity
+        if progress and (done % 100 == 0 or done == singles.size):
+            progress(done, singles.size)
+    rest = ~single
     if rest.any():
         part = frame[rest]
         d = _dimensionless(part)
@@ -264,7 +287,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
             d_span = d
         else:
             whole = scene_table(span)
-            d_span = _dimensionless(whole[~_tilted_gravity(whole)])
+            d_span = _dimensionless(whole[~_one_by_one(whole)])
         dim = _normal_outputs(d, d_span, target, chunk_size, progress, part)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
