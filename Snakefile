@@ -19,6 +19,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/laws.smk"
+include: "workflow/rules/validation.smk"
 include: "workflow/rules/notebook.smk"
 
 
@@ -36,7 +37,9 @@ rule all:
         "results/bench_sweep.csv",
         "results/cor_relations.csv",
         expand("paper_figures/{fig}.png", fig=["laws_cor_speed", "laws_force"]),
+        expand("paper_figures/{fig}.png", fig=["validation_kharaz", "validation_maw", "compliance_map"]),
         "results/readme/replication.md",
         "results/readme/speed.md",
+        "results/readme/validation.md",
         expand("results/notebooks/{name}.html", name=NOTEBOOKS),
     default_target: True

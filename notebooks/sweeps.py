@@ -64,6 +64,22 @@ display(Markdown(f"At {map_speed:g} m/s: grip/slide boundary at **{boundary:.2f}
                  f"At {map_speed:g} m/s there is no grip/slide boundary on this grid."))
 
 # %% [markdown]
+# The dotted curves are the same ball with a compliant tangential contact (a tangential spring κk, κ = 2/3
+# for rubber, `results/compliance_map.csv`, drawn when the map is at the chapter's speed). Below the grip
+# boundary the contact point no longer grips: it sticks, stores tangential strain and gives it back, so the
+# spin rises above the rigid model's and the contact point leaves slipping backwards; past the boundary the
+# two coincide (notebook `validation`).
+
+# %%
+compliant_map = pd.read_csv("results/compliance_map.csv")
+rubber = compliant_map[np.isclose(compliant_map.kappa, 2 * (1 - config["compliance"]["poisson"])
+                                  / (2 - config["compliance"]["poisson"]))]
+worst = rubber.loc[rubber.spin_difference.abs().idxmax()]
+display(Markdown(f"Compliant against rigid at {config['speed']:g} m/s: largest spin difference "
+                 f"{100 * worst.spin_difference:+.1f} % at {worst.angle:g}°; identical within "
+                 f"{100 * config['compliance']['tolerance']:g} % from {rubber[rubber.rigid_within].angle.min():g}° on."))
+
+# %% [markdown]
 # ## COR against speed
 #
 # The linear law's COR, exp(−ζπ/√(1−ζ²)) for an under-damped contact, does not depend on speed. The modified

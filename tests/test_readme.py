@@ -64,10 +64,12 @@ def test_a_changed_untimed_cell_or_line_disagrees():
 def test_check_and_update_round_trip(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text("# T\n<!-- BEGIN GENERATED speed: x -->\nold\n<!-- END GENERATED speed -->\n"
-                      "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n")
+                      "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n"
+                      "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n")
     snippets = tmp_path / "snippets"
     snippets.mkdir()
     (snippets / "speed.md").write_text(TABLE)
+    (snippets / "validation.md").write_text("measured\n")
     (snippets / "replication.md").write_text("fresh\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))

@@ -20,7 +20,10 @@ TEST_CONFIG = "config/test.yaml"
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
            "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
-           "results/readme/speed.md",
+           "results/readme/speed.md", "results/readme/validation.md",
+           "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
+           "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
+           "results/notebooks/validation.html",
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
            "paper_figures/work_precision.png", "paper_figures/stability.png",
@@ -53,7 +56,7 @@ def planned(run) -> dict:
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):
     work = tmp_path_factory.mktemp("pipeline")
-    for item in ("Snakefile", "workflow", "config", "notebooks", "src"):
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
                                                             **({"ignore": IGNORE} if src.is_dir() else {}))

@@ -35,16 +35,19 @@ rule replicate:
 
 
 rule readme_snippets:
-    """The README's generated blocks (replication table, speed table), from the result files."""
+    """The README's generated blocks (replication, speed and validation tables), from the result files."""
     input:
         replication="results/replication.csv",
         findings="results/replication_findings.md",
         bench="results/bench.csv",
         bench_sweep="results/bench_sweep.csv",
+        validation_summary="results/validation_summary.csv",
+        validation="results/validation.csv",
         code=code("workflow/scripts/readme_snippets.py"),
     output:
         replication="results/readme/replication.md",
         speed="results/readme/speed.md",
+        validation="results/readme/validation.md",
     params:
         config=params_for("readme"),
     log:

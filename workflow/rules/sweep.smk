@@ -63,6 +63,7 @@ rule sweep_map:
         angle_speed="results/sweep/angle_speed.csv",
         speed="results/sweep/speed.csv",
         published=PUBLISHED,
+        compliance="results/compliance_map.csv",
         code=code("workflow/scripts/sweep_map.py"),
     output:
         png=report("paper_figures/{map}.png", caption="../report/sweep_map.rst", category="Sweeps"),

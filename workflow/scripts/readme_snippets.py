@@ -3,5 +3,6 @@ from sphereimpact.study.readme import write_snippets
 from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], "README snippets"):
-    write_snippets(snakemake.params.config, snakemake.input.replication, snakemake.input.findings, snakemake.input.bench,
-                   snakemake.input.bench_sweep, snakemake.output.replication, snakemake.output.speed)
+    inp, out = snakemake.input, snakemake.output
+    write_snippets(snakemake.params.config, inp.replication, inp.findings, inp.bench, inp.bench_sweep,
+                   inp.validation_summary, inp.validation, out.replication, out.speed, out.validation)

@@ -8,6 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from ..scene import kappa_from_poisson
 from ..study.replication import load_published
 from .paper import PUBLISHED_STYLE
 from .style import RC, save
@@ -36,9 +37,12 @@ def printed(published_path: str, config: dict, quantity: str) -> list[dict]:
     return out
 
 
-def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs) -> None:
+def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs, compliance_csv: str | None = None) -> None:
     """Spin and rebound contact-point slip against impact angle at ``config['sweep']['map_speed']``, with
-    the grip/slide boundary; the chapter's printed values are marked when that is the chapter's speed."""
+    the grip/slide boundary; the chapter's printed values are marked when that is the chapter's speed.
+
+    With ``compliance_csv`` (``results/compliance_map.csv``, solved at the chapter's speed) and the map at
+    that speed, the compliant tangential contact (rubber's kappa) is drawn beside the rigid one."""
     speed = config["sweep"]["map_speed"]
     table = pd.read_csv(angle_speed_csv)
     table = table[np.isclose(table["speed"], speed)].sort_values("angle")
@@ -49,8 +53,15 @@ def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs) -
     boundary = grip_boundary(table)
     with plt.rc_context(RC | {"figure.figsize": (6.4, 6.4)}):
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True)
-        top.plot(table["angle"], table["omega_f"], label="spin after impact $\\omega_f$")
-        bottom.plot(table["angle"], table["ve_t"], color="tab:orange", label="contact-point slip $v_{E,t}$")
+        top.plot(table["angle"], table["omega_f"], label="spin after impact $\\omega_f$ (rigid contact)")
+        bottom.plot(table["angle"], table["ve_t"], color="tab:orange", label="contact-point slip $v_{E,t}$ (rigid contact)")
+        if compliance_csv is not None and same_speed:
+            compliant = pd.read_csv(compliance_csv)
+            kappa = kappa_from_poisson(config["compliance"]["poisson"])
+            compliant = compliant[np.isclose(compliant["kappa"], kappa)].sort_values("angle")
+            label = f"compliant contact, κ = {kappa:.3g}"
+            top.plot(compliant["angle"], compliant["omega_f"], color="tab:blue", ls=":", label=label)
+            bottom.plot(compliant["angle"], compliant["ve_t"], color="tab:orange", ls=":", label=label)
         for ax, key in ((top, "omega_f"), (bottom, "ve_t")):
             if boundary is not None:
                 ax.axvline(boundary, color="gray", linestyle="--",
@@ -97,10 +108,11 @@ def contact_speed(speed_csv: str, outputs) -> None:
         save(fig, outputs)
 
 
-def draw_map(name: str, angle_speed_csv: str, speed_csv: str, published_path: str, config: dict, outputs) -> None:
+def draw_map(name: str, angle_speed_csv: str, speed_csv: str, published_path: str, config: dict, outputs,
+             compliance_csv: str | None = None) -> None:
     """Draw sweep map ``name`` (``spin_map``, ``cor_speed`` or ``contact_speed``) to ``outputs``."""
     if name == "spin_map":
-        spin_map(angle_speed_csv, published_path, config, outputs)
+        spin_map(angle_speed_csv, published_path, config, outputs, compliance_csv)
     elif name == "cor_speed":
         cor_speed(speed_csv, published_path, config, outputs)
     elif name == "contact_speed":

@@ -22,6 +22,8 @@ VARIANTS = {
     "ramp 1000": ("eq. 4.2 ramp constant 1000 instead of 100", {"ramp": 1000.0}, "reduced"),
     "previous law": ("eq. 4.1 instead of eq. 4.2", {"model": "kelvin-voigt"}, "reduced"),
     "full planar model": ("integrates centre, spin and slip instead of the normal ODE only", {}, "planar"),
+    "compliant contact": ("adds a tangential spring k_t = κ k, κ = 2/3 (rubber, ν = 0.5)",
+                          {"tangential": "linear", "poisson": 0.5}, "reduced"),
 }
 
 TIGHT = SolverOptions(rtol=1e-12, atol=1e-12)

@@ -29,19 +29,22 @@ _SOLVER = ("method", "rtol", "atol")
 #: Rule -> the config keys its job reads (``a.b`` selects one entry of a section).
 RULE_KEYS = {
     "simulate": (*_SCENE, *_SOLVER, "separations", "samples"),
-    "replicate": (*_SCENE, *_SOLVER, "cases", "primary"),
+    "replicate": (*_SCENE, *_SOLVER, "cases", "primary", "compliance.poisson"),
     "figure": ("figure_separation",),
     "work_precision": (*_SCENE, "cases", "primary", "numerics.methods", "numerics.tolerances"),
     "stability": (*_SCENE, "numerics.methods", "numerics.stability"),
     "ablation": (*_SCENE, "cases", "primary"),
     "sweep_shard": (*_SCENE, "primary", "sweep.angle", "sweep.speed", "sweep.target"),
     "speed_table": (*_SCENE, *_SOLVER, "models", "primary", "sweep.cor_speed", "sweep.target"),
-    "sweep_map": ("speed", "cases", "sweep.map_speed"),
+    "sweep_map": ("speed", "cases", "sweep.map_speed", "compliance.poisson"),
     "bench": (*_SCENE, "cases", "primary", "bench.repeats", "bench.domain"),
     "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million"),
     "readme": ("primary",),
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
+    "validation": ("validation",),
+    "compliance_map": (*_SCENE, "compliance"),
+    "validation_figures": ("compliance",),
 }
 
 

@@ -1,0 +1,82 @@
+"""The model against Kharaz et al. (2001), in physical and in Maw's normalised variables; the chapter-ball map."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from .style import RC, save
+
+#: Line style per tangential model.
+_STYLES = {"rigid": dict(color="0.45", ls="--"), "linear": dict(color="C0", ls="-"), "mindlin": dict(color="C0", ls="-")}
+_PANELS = (("e_t", "tangential COR e_t = v_t'/v_t [-]"), ("omega_rad_s", "rebound spin |ω| [rad/s]"),
+           ("rebound_angle_deg", "rebound angle of the centre [deg]"))
+
+
+def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
+    """e_t, spin and rebound angle against incidence: measured points, rigid and compliant curves."""
+    curves, summary = pd.read_csv(curves_csv), pd.read_csv(summary_csv)
+    data = pd.read_csv(data_csv, comment="#")
+    low = float(summary["min_incidence"].iloc[0])
+    with plt.rc_context(RC | {"figure.figsize": (6.4, 8.4)}):
+        fig, axes = plt.subplots(3, 1, sharex=True)
+        for ax, (key, label) in zip(axes, _PANELS):
+            for model, rows in curves.groupby("model", sort=False):
+                ax.plot(rows["incidence_deg"], rows[key], label=f"{model} tangential contact", **_STYLES[model])
+            points = data[data["quantity"] == key]
+            ax.plot(points["incidence_deg"], points["value"], "o", color="C3", ms=5, label="Kharaz et al. (2001)")
+            ax.axvspan(0, low, color="0.92", zorder=0)
+            ax.set_ylabel(label)
+        axes[0].legend(loc="lower right", fontsize=8)
+        axes[-1].set_xlabel("incidence from the normal [deg]")
+        axes[-1].set_xlim(0, max(62.0, float(data["incidence_deg"].max()) + 2))
+        text = "; ".join(f"{r.model}: e_t RMS {r.e_t_rms:.3f}, worst spin {100 * r.spin_worst_relative:.1f} %"
+                         for r in summary.itertuples())
+        axes[0].set_title(f"5 mm alumina on glass, 3.9 m/s (shaded: below {low:g}°)\n{text}", fontsize=8)
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+def maw(curves_csv: str, derived_csv: str, outputs) -> None:
+    """Maw's normalised variables: psi_2 of the contact point against psi_1, the models and the data."""
+    curves, derived = pd.read_csv(curves_csv), pd.read_csv(derived_csv)
+    with plt.rc_context(RC):
+        fig, ax = plt.subplots()
+        for model, rows in curves.groupby("model", sort=False):
+            ax.plot(rows["psi1"], rows["psi2"], label=f"{model} tangential contact", **_STYLES[model])
+        ax.plot(derived["psi1"], derived["psi2"], "s", color="C3", ms=5,
+                label="Kharaz et al., from e_t and spin (derived)")
+        ax.axhline(0.0, color="0.3", lw=0.6)
+        right = min(12.0, float(curves["psi1"].max()))
+        shown = curves[curves["psi1"] <= right]["psi2"]
+        ax.set_xlim(0, right)
+        ax.set_ylim(min(float(shown.min()), float(derived["psi2"].min()), 0.0) - 0.5, float(shown.max()) + 0.5)
+        ax.set_xlabel("ψ1 = κ tan θ / μ (incidence)")
+        ax.set_ylabel("ψ2 = κ tan θc / μ (contact point's rebound)")
+        ax.set_title("Maw's normalised variables (rigid: a broken line; negative ψ2: reversed contact point)",
+                     fontsize=8)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+def compliance_map(map_csv: str, kappa_rubber: float, tolerance: float, outputs) -> None:
+    """Largest relative difference (spin, rebound velocity) of compliant against rigid, over angle x kappa."""
+    table = pd.read_csv(map_csv)
+    angles, kappas = np.unique(table["angle"]), np.unique(table["kappa"])
+    grid = table.pivot(index="kappa", columns="angle", values="difference").loc[kappas, angles].to_numpy()
+    with plt.rc_context(RC):
+        fig, ax = plt.subplots()
+        mesh = ax.pcolormesh(angles, kappas, np.log10(np.maximum(grid, 1e-16)), shading="nearest",
+                             cmap="viridis", vmin=-4, vmax=0)
+        ax.contour(angles, kappas, grid, levels=[tolerance], colors="w", linewidths=1.2)
+        ax.axhline(kappa_rubber, color="C3", lw=1.0, ls="--")
+        ax.set_yscale("log")
+        ax.set_xlabel("angle of the flat [deg]")
+        ax.set_ylabel("κ = k_t / k_n")
+        ax.set_title(f"Chapter's ball: compliant vs rigid tangential contact (white: {100 * tolerance:g} %;\n"
+                     f"red: κ = {kappa_rubber:.3g}, rubber)", fontsize=9)
+        fig.colorbar(mesh, ax=ax, label="log10 largest relative difference (spin, rebound velocity)")
+        fig.tight_layout()
+        save(fig, outputs)

@@ -1,0 +1,61 @@
+# Against real measurements: the rigid and the compliant tangential contact on Kharaz, Gorham & Salman
+# (2001); where compliance matters for the chapter's ball.
+
+
+rule validation:
+    """Each measured point against each tangential model; model curves; Maw's variables of the data."""
+    input:
+        data=config["validation"]["data"],
+        code=code("workflow/scripts/validation.py"),
+    output:
+        residuals=report("results/validation.csv", caption="../report/validation.rst", category="Validation"),
+        summary=report("results/validation_summary.csv", caption="../report/validation.rst", category="Validation"),
+        curves="results/validation_curves.csv",
+        maw="results/validation_maw.csv",
+    params:
+        config=params_for("validation"),
+    log:
+        "logs/validation/validation.log",
+    conda:
+        ENV
+    script:
+        "../scripts/validation.py"
+
+
+rule compliance_map:
+    """The chapter's ball over angle x kappa: where the rigid tangential contact is enough."""
+    input:
+        code=code("workflow/scripts/compliance_map.py"),
+    output:
+        csv=report("results/compliance_map.csv", caption="../report/validation.rst", category="Validation"),
+    params:
+        config=params_for("compliance_map"),
+    log:
+        "logs/validation/compliance_map.log",
+    conda:
+        ENV
+    script:
+        "../scripts/compliance_map.py"
+
+
+rule validation_figures:
+    """The model against the data (physical and Maw's variables) and the chapter-ball map."""
+    input:
+        data=config["validation"]["data"],
+        curves="results/validation_curves.csv",
+        summary="results/validation_summary.csv",
+        maw="results/validation_maw.csv",
+        map="results/compliance_map.csv",
+        code=code("workflow/scripts/validation_figures.py"),
+    output:
+        kharaz=report("paper_figures/validation_kharaz.png", caption="../report/validation.rst", category="Validation"),
+        maw=report("paper_figures/validation_maw.png", caption="../report/validation.rst", category="Validation"),
+        map=report("paper_figures/compliance_map.png", caption="../report/validation.rst", category="Validation"),
+    params:
+        config=params_for("validation_figures"),
+    log:
+        "logs/validation/figures.log",
+    conda:
+        ENV
+    script:
+        "../scripts/validation_figures.py"
