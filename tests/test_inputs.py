@@ -230,3 +230,48 @@ def test_the_sweep_flags_a_compression_beyond_the_radius_on_every_path():
         table = sweep(scenes)
     assert table["beyond_radius"].tolist() == [False, True, True, True]
     assert (table["delta_m"] > table["diameter"] / 2).tolist() == table["beyond_radius"].tolist()
+
+
+def test_extreme_inputs_are_answered_or_refused_in_bounded_time():
+    """Inputs that ran for minutes in the sweep (mass 1e-300, b 1e300) now take the single-impact path, which
+    answers as simulate does or refuses with one error naming the row, and no RuntimeWarning escapes."""
+    import warnings
+
+    from sphereimpact import ImpactError, Scene, simulate
+    from sphereimpact.sweep.engine import sweep
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a RuntimeWarning would fail the test
+        tiny = sweep({"angle": [60.0], "mass": [1e-300]})
+        one = simulate(Scene(angle=60, mass=1e-300))
+        assert tiny["cor"].iloc[0] == pytest.approx(one.cor, rel=1e-8)
+        assert tiny["t_f"].iloc[0] == pytest.approx(one.t_f, rel=1e-8)
+        with pytest.raises(ImpactError, match=r"^sweep row 0: no separation"):
+            sweep({"angle": [60.0], "b": [1e300]})
+        with pytest.raises(ImpactError, match="no separation"):
+            simulate(Scene(angle=60, b=1e300))
+
+
+def test_damping_beyond_the_lanes_domain_takes_the_single_impact_path():
+    from sphereimpact import Scene, simulate
+    from sphereimpact.sweep.engine import LANES_ZETA_MAX, sweep
+
+    table = sweep({"angle": [0.0, 30.0], "b": [3e4, 3e4]})  # zeta = 161
+    assert Scene(b=3e4).zeta > LANES_ZETA_MAX
+    for row in table.itertuples():
+        one = simulate(Scene(angle=row.angle, b=3e4))
+        assert row.cor == pytest.approx(one.cor, rel=1e-8) and row.t_f == pytest.approx(one.t_f, rel=1e-8)
+
+
+def test_a_contact_that_never_ends_is_refused_within_the_evaluation_budget(monkeypatch):
+    """eq. 4.1 over-damped (zeta = 54) under the penetration criterion never returns to delta = 0; the budget of
+    right-hand-side evaluations stops the search with a message that says so (lowered here to keep the test
+    quick; the default is sphereimpact.normal.MAX_NFEV)."""
+    from sphereimpact import ImpactError, Scene, simulate
+    from sphereimpact import normal
+
+    monkeypatch.setattr(normal, "MAX_NFEV", 20_000)
+    with pytest.raises(ImpactError, match=r"no separation within 2e\+04 right-hand-side evaluations .*"
+                                          r"try --separation force"):
+        simulate(Scene(model="kelvin-voigt", b=1e4, separation="penetration"))
+    assert simulate(Scene(model="kelvin-voigt", b=1e4)).nfev < 20_000  # the force criterion ends it quickly

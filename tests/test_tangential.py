@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from conftest import TIGHT, assert_outputs_close
@@ -118,3 +119,32 @@ def test_tight_tolerance_keeps_converging_through_separation(body):
     exact = simulate(scene, SolverOptions(method="closed"))
     errors = [abs(simulate(scene, SolverOptions(rtol=r, atol=r), body=body).cor - exact.cor) for r in (1e-10, 1e-12)]
     assert errors[1] < 1e-11 and errors[1] < errors[0]
+
+
+def test_positive_impulse_is_the_quadrature_of_the_positive_force():
+    """J+ and K+ against the trapezoid rule on max(P, 0), for a force that pulls before delta returns to 0
+    (kelvin-voigt, penetration criterion) and for one that never pulls."""
+    from scipy.integrate import cumulative_trapezoid
+
+    from sphereimpact.tangential import PositiveImpulse
+
+    for scene in (Scene(model="kelvin-voigt", separation="penetration", angle=30), Scene(model="hertz", k=1e9)):
+        normal = simulate(scene).motion.normal
+        impulse = PositiveImpulse(normal)
+        t = np.linspace(0.0, normal.t_f, 200001)
+        positive = np.maximum(normal.force(t), 0.0)
+        j = cumulative_trapezoid(positive, t, initial=0.0)
+        k = cumulative_trapezoid(j, t, initial=0.0)
+        assert np.max(np.abs(impulse(t) - j)) < 1e-8 * j[-1]
+        assert np.max(np.abs(impulse.integral(t) - k)) < 1e-8 * k[-1]
+        assert len(impulse.intervals) == 1  # P > 0 on one interval: from first touch to tension or separation
+
+
+def test_a_flickering_force_costs_no_more_than_a_few_intervals():
+    """A slow creep back to delta = 0 (eq. 4.2, zeta = 536, penetration criterion) makes P flicker about 0
+    thousands of times; J+ is then evaluated in one vectorised pass (interval by interval, the same scene at
+    ten times the damping ran for over ten minutes)."""
+    scene = Scene(angle=30, b=1e5, separation="penetration")
+    out = simulate(scene)
+    assert len(out.motion.tangential.jp.intervals) > 1000
+    assert out.vc_t == pytest.approx(scene.v_tangent / (1 + scene.inertia_factor), rel=1e-6)  # it grips and rolls

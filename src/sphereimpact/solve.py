@@ -11,6 +11,7 @@ velocity and spin with event-driven sliding/rolling, as the cross-check.
 
 from __future__ import annotations
 
+import math
 import time
 import warnings
 
@@ -20,7 +21,7 @@ from .closed import CLOSED_FORMS
 from .compliance import CompliantTangential
 from .events import ImpactError
 from .laws import LAWS
-from .normal import IntegratedNormal, NormalMotion
+from .normal import IntegratedNormal, NormalMotion, describe_family
 from .outcome import Outcome
 from .scene import Scene, SolverOptions
 from .tangential import TangentialMotion
@@ -138,6 +139,10 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
 
         motion = PlanarMotion(scene, options)
     outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    bad = [key for key, value in outcome.to_dict().items() if isinstance(value, float) and not math.isfinite(value)]
+    if bad:  # never a NaN in a result
+        raise ImpactError(f"no finite {', '.join(bad)} ({describe_family(scene)}criterion '{scene.separation}'): "
+                          "the scene lies outside what the solver resolves")
     if outcome.beyond_radius:
         message = (f"maximum compression delta_m = {outcome.delta_m:.3g} m exceeds the radius R = "
                    f"{scene.radius:.3g} m: the centre passed the flat's plane, outside the model (lower the speed "

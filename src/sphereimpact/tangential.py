@@ -53,34 +53,52 @@ class PositiveImpulse:
 
     P changes sign only at its roots on (0, t_f); on each interval where it is
     positive J+ follows the exact impulse J(t) of the normal motion, elsewhere
-    it stays constant.
+    it stays constant.  Evaluation is vectorised over the intervals (cumulative
+    sums and a binary search), so a contact whose force flickers about zero
+    thousands of times (a slow creep back to delta = 0) costs no more than a few.
     """
 
     def __init__(self, normal: NormalMotion):
         self._n = normal
         cuts = [0.0] + roots(normal.force, normal.grid, after=0.0) + [normal.t_f]
-        cuts = sorted(set(c for c in cuts if c <= normal.t_f))
-        mids = [0.5 * (a + b) for a, b in zip(cuts[:-1], cuts[1:])]
-        self.intervals = [(a, b) for a, b, m in zip(cuts[:-1], cuts[1:], mids)
-                          if float(normal.force(m)) > 0]
+        cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
+        mids = 0.5 * (cuts[:-1] + cuts[1:])
+        positive = np.asarray(normal.force(mids), dtype=float) > 0 if mids.size else np.zeros(0, bool)
+        self._a, self._b = cuts[:-1][positive], cuts[1:][positive]
+        self.intervals = list(zip(self._a.tolist(), self._b.tolist()))
+        self._ja, self._jb = normal.impulse(self._a), normal.impulse(self._b)
+        self._ka, self._kb = normal.impulse_integral(self._a), normal.impulse_integral(self._b)
+        gained = self._jb - self._ja  # J+ gained over each interval
+        self._before = np.concatenate([[0.0], np.cumsum(gained)])  # J+ at each interval's start, and at the end
+        # K+ at each interval's start: the previous intervals' pieces plus the constant stretches between them
+        pieces = (self._before[:-1] - self._ja) * (self._b - self._a) + self._kb - self._ka
+        gaps = self._before[1:-1] * (self._a[1:] - self._b[:-1])
+        self._k_start = np.concatenate([[0.0], np.cumsum(pieces[:-1] + gaps)]) if self._a.size else np.zeros(0)
+
+    def _locate(self, t):
+        """Index of the last interval starting at or before each t (-1 before the first), and t clipped to it."""
+        i = np.searchsorted(self._a, t, side="right") - 1
+        j = np.maximum(i, 0)
+        return i, j, np.clip(t, self._a[j], self._b[j])
 
     def __call__(self, t):
         """J+(t) [N s]."""
         t = np.asarray(t, dtype=float)
-        total = np.zeros_like(t)
-        for a, b in self.intervals:
-            total = total + self._n.impulse(np.clip(t, a, b)) - self._n.impulse(a)
-        return total
+        if not self._a.size:
+            return np.zeros_like(t)
+        i, j, c = self._locate(t)
+        return np.where(i < 0, 0.0, self._before[j] + self._n.impulse(c) - self._ja[j])
 
     def integral(self, t):
         """K+(t) = integral of J+ from 0 to t [N s^2]."""
         t = np.asarray(t, dtype=float)
-        n, total = self._n, np.zeros_like(t)
-        for a, b in self.intervals:
-            c, ja = np.clip(t, a, b), n.impulse(a)
-            total = (total + n.impulse_integral(c) - n.impulse_integral(a) - ja * (c - a)
-                     + (n.impulse(b) - ja) * np.maximum(t - b, 0.0))
-        return total
+        if not self._a.size:
+            return np.zeros_like(t)
+        i, j, c = self._locate(t)
+        inside = (self._k_start[j] + (self._before[j] - self._ja[j]) * (c - self._a[j])
+                  + self._n.impulse_integral(c) - self._ka[j])
+        after = self._before[j + 1] * np.maximum(t - self._b[j], 0.0)
+        return np.where(i < 0, 0.0, inside + after)
 
 
 class TangentialMotion:
