@@ -137,3 +137,21 @@ def test_changing_law_drops_the_parameters_the_new_law_lacks():
     hertz = Scene().with_(model="hertz", k=1e6)
     assert (hertz.b, hertz.ramp, hertz.k) == (None, None, 1e6)
     assert Scene(model="hertz", k=1e6).with_(model="modified").k == 1e6  # k is everyone's: carried over
+
+
+@pytest.mark.parametrize("name", ["kelvin-voigt", "modified", "linear-hunt-crossley", "hertz", "hunt-crossley"])
+def test_scalar_force_is_the_continued_law(name):
+    """The integrator's scalar right-hand side (no numpy) is the vectorised continuation, to rounding, on both
+    sides of delta = 0 and in the ramp's Taylor region."""
+    from sphereimpact import LAWS, Scene
+
+    law = LAWS[name]
+    scene = Scene(model=name, k=6e4 if law.spring == "linear" else 1e9,
+                  **({"chi": 0.3} if "chi" in law.parameter_names else {}))
+    deltas = np.concatenate([-np.geomspace(1e-9, 1e-3, 7), [0.0], np.geomspace(1e-9, 3e-2, 9)])
+    rates = np.array([-3.0, -0.1, 0.0, 0.5, 3.0])
+    for d in deltas:
+        for v in rates:
+            expected = float(law.continued(np.array(d), np.array(v), scene))
+            got = law.scalar(float(d), float(v), scene)
+            assert got == pytest.approx(expected, rel=4e-16, abs=1e-300), (d, v)

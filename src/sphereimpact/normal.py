@@ -171,6 +171,7 @@ class IntegratedNormal(NormalMotion):
         d_scale, gamma = v / w, scene.g_normal / (w * v)
         p_scale = scene.mass * w * v
         law = scene.stage_force  # smooth past separation: the crossing step stays accurate
+        scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
         sep = separation_function(scene)
 
         calls = [0]
@@ -179,7 +180,9 @@ class IntegratedNormal(NormalMotion):
             calls[0] += 1
             if calls[0] > MAX_NFEV:
                 raise _Budget
-            return [z[1], -law(z[0] * d_scale, z[1] * v) / p_scale + gamma]
+            x, y = float(z[0]), float(z[1])
+            force = scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v)
+            return [y, -force / p_scale + gamma]
 
         def max_compression(tau, z):
             return z[1]

@@ -108,6 +108,11 @@ class ContactLaw:
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.
+    scalar : callable or None
+        ``scalar(delta, delta_dot, p) -> float``: ``continued`` for Python floats, without numpy (the
+        single-impact integrator calls its right-hand side thousands of times with scalars, where numpy's
+        per-call overhead dominates).  Must agree with ``continued`` to rounding (tested); None: the
+        integrator calls ``continued``.
     rate : callable or None
         ``rate(delta, delta_dot, delta_ddot, p) -> dP/dt`` [N/s] inside contact, the chain rule of the
         force.  Tangential compliance needs it to tell when a slipping contact sticks again (the Coulomb
@@ -128,6 +133,7 @@ class ContactLaw:
     closed_form: str | None = None
     kernel: str | None = None
     ramp_rate: Callable | None = None
+    scalar: Callable | None = None
     rate: Callable | None = None
 
     def __post_init__(self):

@@ -57,6 +57,21 @@ def hunt_crossley_continued(delta, delta_dot, p):
     return p.k * _power(delta, p.exponent) * (1.0 + p.chi * delta_dot)
 
 
+def _power_scalar(delta: float, n: float) -> float:
+    """sign(delta) |delta|^n for one Python float."""
+    return abs(delta) ** n if delta >= 0.0 else -(abs(delta) ** n)
+
+
+def hertz_scalar(delta: float, delta_dot: float, p) -> float:
+    """k sign(delta) |delta|^(3/2) for Python floats."""
+    return p.k * _power_scalar(delta, HERTZ)
+
+
+def hunt_crossley_scalar(delta: float, delta_dot: float, p) -> float:
+    """k sign(delta) |delta|^n (1 + chi delta_dot) for Python floats."""
+    return p.k * _power_scalar(delta, p.exponent) * (1.0 + p.chi * delta_dot)
+
+
 def hertz_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = (3/2) k delta^(1/2) delta_dot [N/s]."""
     return HERTZ * p.k * np.sqrt(np.maximum(delta, 0.0)) * np.asarray(delta_dot, dtype=float)
@@ -73,11 +88,12 @@ LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_force, hertz_continued, hertz_frequency,
     family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
-    rate=hertz_rate))
+    scalar=hertz_scalar, rate=hertz_rate))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
     (K, CHI, EXPONENT), hunt_crossley_force, hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), rate=hunt_crossley_rate))
+    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scalar=hunt_crossley_scalar,
+    rate=hunt_crossley_rate))

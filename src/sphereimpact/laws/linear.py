@@ -55,6 +55,11 @@ def kelvin_voigt_continued(delta, delta_dot, p):
     return p.k * delta + p.b * delta_dot
 
 
+def kelvin_voigt_scalar(delta: float, delta_dot: float, p) -> float:
+    """k delta + b delta_dot for Python floats."""
+    return p.k * delta + p.b * delta_dot
+
+
 def kelvin_voigt_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot + b delta_ddot [N/s]."""
     return p.k * np.asarray(delta_dot, dtype=float) + p.b * np.asarray(delta_ddot, dtype=float)
@@ -102,6 +107,21 @@ def modified_continued(delta, delta_dot, p):
     return p.k * delta + p.b * delta_dot * ramp_continued(p.ramp * delta / p.radius)
 
 
+def ramp_scalar(u: float) -> float:
+    """:func:`ramp_continued` for one Python float (the same formula, evaluated with :mod:`math`)."""
+    if u >= 0.0:
+        return -math.expm1(-u)
+    w, poly = min(-u, 1.0), 0.0
+    for c in reversed(_INVERSE_FACTORIALS):
+        poly = (poly + c) * w
+    return -poly
+
+
+def modified_scalar(delta: float, delta_dot: float, p) -> float:
+    """Eq. 4.2 continued past delta = 0, for Python floats."""
+    return p.k * delta + p.b * delta_dot * ramp_scalar(p.ramp * delta / p.radius)
+
+
 def modified_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot + b [delta_ddot (1 - exp(-u)) + delta_dot^2 (c/R) exp(-u)], u = c delta / R [N/s]."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -120,6 +140,11 @@ def linear_hunt_crossley_force(delta, delta_dot, p):
 def linear_hunt_crossley_continued(delta, delta_dot, p):
     """k delta (1 + chi delta_dot) for every delta (a polynomial: its own continuation)."""
     delta, delta_dot = _arrays(delta, delta_dot)
+    return p.k * delta * (1.0 + p.chi * delta_dot)
+
+
+def linear_hunt_crossley_scalar(delta: float, delta_dot: float, p) -> float:
+    """k delta (1 + chi delta_dot) for Python floats."""
     return p.k * delta * (1.0 + p.chi * delta_dot)
 
 
@@ -153,18 +178,21 @@ LAWS.register(ContactLaw(
     (K, B), kelvin_voigt_force, kelvin_voigt_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt", rate=kelvin_voigt_rate))
+    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt", scalar=kelvin_voigt_scalar,
+    rate=kelvin_voigt_rate))
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
     (K, B, RAMP), modified_force, modified_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius, rate=modified_rate))
+    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
+    rate=modified_rate))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
     (K, CHI), linear_hunt_crossley_force, linear_hunt_crossley_continued, natural_frequency,
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    damping="chi", cor_relations=hunt_crossley_relations(), rate=linear_hunt_crossley_rate))
+    damping="chi", cor_relations=hunt_crossley_relations(), scalar=linear_hunt_crossley_scalar,
+    rate=linear_hunt_crossley_rate))
