@@ -134,7 +134,6 @@ class CompliantTangential:
         self.t_roll = sticks[0] if sticks else None
         self.regime = self.phases[-1].mode
         self.switches = len(self.phases) - 1
-        assert self.phases[-1].t1 == t_f
 
     # --- the normal motion's quantities that drive the tangential one ---------------------------------
     def cap(self, t):

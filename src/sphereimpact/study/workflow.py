@@ -38,7 +38,7 @@ RULE_KEYS = {
     "speed_table": (*_SCENE, *_SOLVER, "models", "primary", "sweep.cor_speed", "sweep.target"),
     "sweep_map": ("speed", "cases", "sweep.map_speed", "compliance.poisson"),
     "bench": (*_SCENE, "cases", "primary", "bench.repeats", "bench.domain"),
-    "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million"),
+    "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million", "bench.laws"),
     "readme": ("primary",),
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),

@@ -100,7 +100,17 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
     return row | {"target_speedup": target_speedup, "peak_memory_mb": peak / 2**20}
 
 
-def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True) -> pd.DataFrame:
+#: Per-law rows: law -> its parameters on the chapter's ball.  The Hertz constant 8.8e5 N/m^1.5 gives about
+#: the chapter's peak force at 3 m/s (k_linear (v_n / omega_n)^(-1/2)); chi = 0.05 s/m, a COR near 0.9 there.
+LAW_SCENES = {
+    "linear-hunt-crossley": {"k": 6.0e4, "chi": 0.05},
+    "hertz": {"k": 8.8e5},
+    "hunt-crossley": {"k": 8.8e5, "chi": 0.05},
+}
+
+
+def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True,
+        laws=tuple(LAW_SCENES)) -> pd.DataFrame:
     """Every benchmark sweep; writes ``csv_path``.
 
     Parameters
@@ -113,6 +123,9 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         Random scenes of the per-lane sweep (k, b, m, angle and speed drawn per scene).
     million : bool
         Also time a 10^6-scene one-ball sweep.
+    laws : sequence of str
+        Laws of :data:`LAW_SCENES` to time on a one-ball angle x speed sweep each (the path the engine
+        takes for them: per similarity family, or batched lanes if the law has a kernel).
     """
     rng = np.random.default_rng(1)
     varied = pd.DataFrame({"angle": rng.uniform(0, 89, lanes), "speed": rng.uniform(0.5, 30, lanes),
@@ -126,6 +139,10 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         measure("angle x speed, one ball, kelvin-voigt (closed form)", one_ball.assign(model="kelvin-voigt"), None,
                 **options),
     ]
+    small = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.0))
+    for law in laws:
+        rows.append(measure(f"angle x speed, one ball, {law}", small.assign(model=law, **LAW_SCENES[law]), None,
+                            **options))
     if million:
         rows.append(measure("10^6 scenes, modified, angle x speed",
                             grid(angle=np.linspace(0, 89, 1000), speed=np.linspace(0.5, 30, 1000)), 1000, **options))
