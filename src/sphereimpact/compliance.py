@@ -50,7 +50,7 @@ from .events import ImpactError, first_root
 from .laws import force_rate, spring_exponent, spring_stiffness
 from .normal import NormalMotion
 from .scene import SolverOptions
-from .tangential import MAX_PHASES, PositiveImpulse, phase_index
+from .tangential import MAX_PHASES, PositiveImpulse, by_phase
 
 STICKING, SLIDING = "sticking", "sliding"
 #: Fraction of the law's time scale over which the start of an impact is probed when both P and the
@@ -267,21 +267,11 @@ class CompliantTangential:
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        out, which = np.zeros((3, t.size)), phase_index(self.phases, t)
-        for i, p in enumerate(self.phases):
-            mask = which == i
-            if mask.any():
-                out[:, mask] = self._evaluate(p, t[mask])
-        return out
+        return by_phase(self.phases, t, self._evaluate, (3,))
 
     def force(self, t):
         """Tangential contact force F on the ball [N] at t [s] (negative: against the down-slope motion)."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        out, which = np.zeros(t.size), phase_index(self.phases, t)
-        for i, p in enumerate(self.phases):
-            mask = which == i
-            if mask.any():
-                out[mask] = (self._stick_force(p, t[mask]) if p.mode == STICKING
-                             else -p.sigma * self.cap(t[mask]))
-        return out
+        def phase_force(p, instants):
+            return self._stick_force(p, instants) if p.mode == STICKING else -p.sigma * self.cap(instants)
+
+        return by_phase(self.phases, t, phase_force)

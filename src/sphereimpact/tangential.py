@@ -48,6 +48,20 @@ def phase_index(phases, t) -> np.ndarray:
     return np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(phases) - 1)
 
 
+def by_phase(phases, t, evaluate, rows: tuple = ()) -> np.ndarray:
+    """``evaluate(phase, instants)`` on each phase's share of the instants t [s], assembled in t's order.
+
+    ``rows`` is the leading shape of what ``evaluate`` returns per instant (``(3,)`` for v_t, omega, x_t).
+    """
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    out, which = np.zeros((*rows, t.size)), phase_index(phases, t)
+    for i, p in enumerate(phases):
+        mask = which == i
+        if mask.any():
+            out[..., mask] = evaluate(p, t[mask])
+    return out
+
+
 class PositiveImpulse:
     """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
 
@@ -176,24 +190,16 @@ class TangentialMotion:
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        out, which = np.zeros((3, t.size)), phase_index(self.phases, t)
-        for i, p in enumerate(self.phases):
-            mask = which == i
-            if mask.any():
-                out[:, mask] = self._evaluate(p, t[mask])
-        return out
+        return by_phase(self.phases, t, self._evaluate, (3,))
 
     def force(self, t):
         """Friction force F on the ball along the flat [N] at t [s]: -mu P+ sliding, the holding force rolling."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        out, which = np.zeros(t.size), phase_index(self.phases, t)
-        for i, p in enumerate(self.phases):
-            mask = which == i
-            if mask.any():
-                out[mask] = (-self.scene.mu * np.maximum(self.normal.force(t[mask]), 0.0) if p.mode == "sliding"
-                             else -self._hold)
-        return out
+        def phase_force(p, instants):
+            if p.mode == "sliding":
+                return -self.scene.mu * np.maximum(self.normal.force(instants), 0.0)
+            return np.full(instants.size, -self._hold)
+
+        return by_phase(self.phases, t, phase_force)
 
     def friction_impulse(self) -> float:
         """Tangential impulse of friction over the contact [N s] (negative: it opposes slip)."""
