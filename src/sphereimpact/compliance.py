@@ -41,7 +41,7 @@ falls through zero (a root on the normal motion's grid; d P/dt from the law, see
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -50,7 +50,7 @@ from .events import ImpactError, first_root
 from .laws import force_rate, spring_exponent, spring_stiffness
 from .normal import NormalMotion
 from .scene import SolverOptions
-from .tangential import MAX_PHASES, PositiveImpulse, by_phase
+from .tangential import MAX_PHASES, Phase, PositiveImpulse, by_phase
 
 STICKING, SLIDING = "sticking", "sliding"
 #: Fraction of the law's time scale over which the start of an impact is probed when both P and the
@@ -62,19 +62,14 @@ STICK_STEPS = 64
 
 
 @dataclass(frozen=True)
-class CompliantPhase:
-    """One sticking or sliding interval [t0, t1] [s] with the tangential state at t0 (SI).
+class CompliantPhase(Phase):
+    """A rigid-model :class:`~sphereimpact.tangential.Phase` (mode ``sticking`` or ``sliding`` here) and what
+    the compliant contact adds.
 
-    ``sigma`` is the slip direction of a sliding phase (F = -sigma mu P+); ``solution`` the dense output
-    of a sticking phase, (F, J_t, K_t) scaled, in tau = t / T.
+    ``sigma`` is the slip direction of a sliding phase (F = -sigma mu P+); ``force0`` the tangential force
+    [N] at t0; ``solution`` the dense output of a sticking phase, (F, J_t, K_t) scaled, in tau = t / T.
     """
 
-    mode: str
-    t0: float
-    t1: float
-    v0: float
-    omega0: float
-    x0: float
     sigma: float = 0.0
     force0: float = 0.0
     solution: object = None
@@ -195,8 +190,8 @@ class CompliantTangential:
             grid = np.concatenate([[p.t0], normal.grid[normal.grid > p.t0]])
             t_switch = first_root(self._stick_gap(p.sigma, p), grid, direction=-1)
             if t_switch is None or t_switch >= t_f:
-                return self._close(p, t_f), None
-            done = self._close(p, t_switch)
+                return replace(p, t1=t_f), None
+            done = replace(p, t1=t_switch)
             v, omega, x = (float(q) for q in self._evaluate(done, t_switch))
             return done, CompliantPhase(STICKING, t_switch, t_f, v, omega, x,
                                         force0=-p.sigma * float(self.cap(t_switch)))
@@ -225,25 +220,21 @@ class CompliantTangential:
                         dense_output=True, events=(upper, lower), max_step=(span[1] - span[0]) / STICK_STEPS)
         if sol.status == -1:
             raise ImpactError(f"tangential stick phase: solver failed: {sol.message}")
-        p = CompliantPhase(p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0, force0=p.force0, solution=sol.sol)
+        p = replace(p, solution=sol.sol)
         hits = [(float(times[0]), i) for i, times in enumerate(sol.t_events) if len(times)]
         if not hits:
-            return self._close(p, t_f), None
+            return replace(p, t1=t_f), None
         tau_switch, which = min(hits)
         t_switch = tau_switch / w
         if t_switch >= t_f:
-            return self._close(p, t_f), None
-        done = self._close(p, t_switch)
+            return replace(p, t1=t_f), None
+        done = replace(p, t1=t_switch)
         v, omega, x = (float(q) for q in self._evaluate(done, t_switch))
         force = float(self._stick_force(done, t_switch))
         sigma = -1.0 if which == 0 else 1.0  # F = +cap: the contact slips backwards
         if force == 0.0:  # the cap closed to zero with F: slip goes the contact point's way
             sigma = 1.0 if v - omega * s.radius >= 0 else -1.0
         return done, CompliantPhase(SLIDING, t_switch, t_f, v, omega, x, sigma=sigma)
-
-    @staticmethod
-    def _close(p: CompliantPhase, t1: float) -> CompliantPhase:
-        return CompliantPhase(p.mode, p.t0, t1, p.v0, p.omega0, p.x0, p.sigma, p.force0, p.solution)
 
     def _stick_force(self, p: CompliantPhase, t):
         return p.solution(np.asarray(t, dtype=float) * self._w)[0] * self._fs
