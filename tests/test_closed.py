@@ -92,3 +92,38 @@ def test_ball_held_by_gravity_never_separates():
     for method in ("closed", "DOP853"):
         with pytest.raises(ImpactError, match="P never returns to 0"):
             simulate(scene, SolverOptions(method=method))
+
+
+@pytest.mark.parametrize("b, separation", [(5.0, "force"), (5.0, "penetration"), (150.0, "force"),
+                                           (CRITICAL_B, "force"), (400.0, "force"), (1e4, "force"), (1e6, "force")])
+def test_event_formulas_are_the_roots_of_the_solution(b, separation):
+    """Without gravity t_m and t_f come from formulas (no root search); each is a root of the solution's own
+    delta_dot and of the separation function, found here by Brent's method on the closed form."""
+    from scipy.optimize import brentq
+
+    scene = Scene(model="kelvin-voigt", b=b, separation=separation)
+    motion = ClosedFormNormal(scene)
+    rate = motion.state(motion.t_m)[1]
+    assert abs(rate) < 1e-14 * scene.v_normal
+    delta_f, rate_f = motion.state(motion.t_f)
+    if separation == "force":  # P = k delta + b delta_dot: zero to round-off in its two terms
+        assert abs(float(motion.force(motion.t_f))) < 1e-13 * (scene.k * abs(delta_f) + scene.b * abs(rate_f))
+        assert float(motion.force(0.999 * motion.t_f)) > 0.0  # the first root, not a later one
+        root = brentq(lambda t: float(scene.k * motion.state(t)[0] + scene.b * motion.state(t)[1]),
+                      0.5 * motion.t_f, 1.5 * motion.t_f, xtol=1e-300, rtol=8.9e-16)
+    else:
+        root = brentq(lambda t: float(motion.state(t)[0]), 0.5 * motion.t_f, 1.5 * motion.t_f, xtol=1e-300,
+                      rtol=8.9e-16)
+    assert motion.t_f == pytest.approx(root, rel=1e-12)
+
+
+def test_heavily_overdamped_contact_time_is_exact():
+    """zeta = 5361 (b = 1e6): t_f = 2 acosh(zeta) / (omega_n sqrt(zeta^2 - 1)) = 5.382 us.  A root search on
+    P = k delta + b delta_dot (two large terms) missed it by 1 %, and the integrator by 17 %."""
+    scene = Scene(model="kelvin-voigt", b=1e6)
+    z, w = scene.zeta, scene.omega_n
+    out = simulate(scene)
+    assert out.method == "closed"
+    assert out.t_f == pytest.approx(2.0 * math.acosh(z) / (w * math.sqrt(z * z - 1.0)), rel=1e-14)
+    assert out.t_f == pytest.approx(5.382e-6, rel=1e-3)
+    assert out.t_m == pytest.approx(0.5 * out.t_f, rel=1e-14)
