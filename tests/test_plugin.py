@@ -63,6 +63,14 @@ def test_simulate_sweep_and_cli_agree(law, capsys):
         assert cli[key] == getattr(ref, key), key  # the same call: bit for bit
 
 
+def test_a_law_without_a_scalar_formula_runs_on_scipys_dop853(law):
+    """The default DOP853-scalar needs ContactLaw.scalar: without it, the same algorithm through scipy."""
+    scene = Scene(model=NAME, b=400.0, angle=30.0)
+    out, ref = simulate(scene), simulate(scene, SolverOptions(method="DOP853"))
+    assert out.method == "DOP853"
+    assert out.to_dict() | {"wall_time": 0.0} == ref.to_dict() | {"wall_time": 0.0}
+
+
 def test_tilted_gravity_and_calibration_reach_the_law(law):
     from sphereimpact.calibrate import calibrate
 

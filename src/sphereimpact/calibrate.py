@@ -28,7 +28,7 @@ RELATIONS = ("exact", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthie
 #: Calibrated COR and contact time are met to this relative accuracy.
 ACCURACY = 1e-9
 #: The impacts solved inside the root finds: tight, so the calibrated outputs hold ACCURACY.
-TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-12)
+TIGHT = SolverOptions(method="DOP853-scalar", rtol=1e-12, atol=1e-12)
 #: Bracket expansion: factor per try and most tries (4^40 ~ 1e24 either side of the start).
 GROWTH, TRIES = 4.0, 40
 

@@ -137,7 +137,8 @@ def _parser() -> argparse.ArgumentParser:
         help=f"gravitational acceleration [m/s^2], >= 0; the bare flag means {STANDARD_GRAVITY} "
              f"(default: {_D.gravity})")
     add("--method", default=_O.method, metavar="NAME",
-        help="integrator: " + ", ".join(METHODS) + " ('closed' is the exact solution, kelvin-voigt only)")
+        help="integrator: " + ", ".join(METHODS) + " (default auto: the law's closed form where it has one, "
+             "else DOP853-scalar; 'closed' is the exact solution, kelvin-voigt only)")
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")

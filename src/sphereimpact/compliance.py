@@ -46,6 +46,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from .dense import fast_solution
 from .events import ImpactError, first_root
 from .laws import force_rate, spring_exponent, spring_stiffness
 from .normal import NormalMotion
@@ -220,7 +221,7 @@ class CompliantTangential:
                         dense_output=True, events=(upper, lower), max_step=(span[1] - span[0]) / STICK_STEPS)
         if sol.status == -1:
             raise ImpactError(f"tangential stick phase: solver failed: {sol.message}")
-        p = replace(p, solution=sol.sol)
+        p = replace(p, solution=fast_solution(sol.sol))
         hits = [(float(times[0]), i) for i, times in enumerate(sol.t_events) if len(times)]
         if not hits:
             return replace(p, t1=t_f), None

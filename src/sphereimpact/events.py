@@ -69,11 +69,12 @@ def first_root(f, grid, direction: int = 0, after: float | None = None) -> float
     return found[0] if found else None
 
 
-def extremum(f, grid, kind: str) -> tuple[float, float]:
+def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     """Global ``'min'`` or ``'max'`` of ``f`` over ``[grid[0], grid[-1]]``.
 
     The best sample is refined by a bounded Brent search between its
-    neighbours; the end points are candidates too.
+    neighbours; the end points are candidates too.  ``values``, if given, is f on the grid (computed
+    once for both extremes).
 
     Returns
     -------
@@ -81,7 +82,7 @@ def extremum(f, grid, kind: str) -> tuple[float, float]:
     """
     grid = np.asarray(grid, dtype=float)
     sgn = 1.0 if kind == "min" else -1.0
-    values = sgn * np.asarray(f(grid), dtype=float)
+    values = sgn * np.asarray(f(grid) if values is None else values, dtype=float)
     i = int(np.argmin(values))
     best_t, best_v = float(grid[i]), float(values[i])
     if 0 < i < len(grid) - 1:

@@ -18,9 +18,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
+from . import dop853
+from .dense import StackedDOP853, fast_solution
 from .events import ImpactError
 from .laws import spring_exponent
-from .scene import Scene, SolverOptions
+from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
 
 #: Samples per solver step used when scanning event functions on the dense output.
 SUBSTEPS = 8
@@ -68,18 +70,22 @@ class NormalMotion:
         limits (kelvin-voigt starts at b v_n, not 0, and ends at b delta_dot(t_f)),
         however round-off puts delta(t_f) on either side of zero.
         """
+        scalar = self.scene.law.scalar
+        if scalar is not None and np.ndim(t) == 0:  # one instant (root and extremum searches): plain floats
+            delta, delta_dot = self.state(t)
+            return scalar(float(delta), float(delta_dot), self.scene)
         return self.scene.stage_force(*self.state(t))
 
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
         s = self.scene
-        t = np.asarray(t, dtype=float)
+        t = float(t) if np.ndim(t) == 0 else np.asarray(t, dtype=float)
         return s.mass * (s.v_normal - self.state(t)[1] + s.g_normal * t)
 
     def impulse_integral(self, t):
         """K(t) = integral of J from 0 to t [N s^2], exact from delta(t)."""
         s = self.scene
-        t = np.asarray(t, dtype=float)
+        t = float(t) if np.ndim(t) == 0 else np.asarray(t, dtype=float)
         return s.mass * (s.v_normal * t - self.state(t)[0] + 0.5 * s.g_normal * t * t)
 
     @property
@@ -104,11 +110,29 @@ def separation_function(scene: Scene):
     return lambda delta, delta_dot: np.where(np.asarray(delta) > 0, scene.force(delta, delta_dot), -1.0)
 
 
+def scalar_separation_function(scene: Scene):
+    """:func:`separation_function` for Python floats, by the law's scalar formula (``ContactLaw.scalar``)."""
+    if scene.separation == "penetration":
+        return lambda delta, delta_dot: delta
+    law = scene.law.scalar
+    return lambda delta, delta_dot: law(delta, delta_dot, scene) if delta > 0 else -1.0
+
+
+def _join(first, later):
+    """One dense output: ``first`` up to ``later``'s start, then ``later`` (stacked or OdeSolution)."""
+    if isinstance(first, StackedDOP853) and isinstance(later, StackedDOP853):
+        return first.join(later)
+    keep = int(np.searchsorted(first.ts, later.ts[0], side="left"))
+    return OdeSolution(np.concatenate([first.ts[:keep], later.ts]), first.interpolants[:keep] + later.interpolants)
+
+
 def no_separation_message(scene: Scene, t_end: float) -> str:
     """One line explaining a contact that never ends under the chosen criterion."""
     what = "delta never returns to 0" if scene.separation == "penetration" else "P never returns to 0"
     hint = " (try --separation force)" if scene.separation == "penetration" else ""
-    return (f"no separation: {what} within {t_end:.3g} s under the '{scene.separation}' criterion "
+    when = (f"within {t_end:.3g} s" if np.isfinite(t_end)
+            else "(an over-damped contact: it decays to 0 only asymptotically)")
+    return (f"no separation: {what} {when} under the '{scene.separation}' criterion "
             f"({describe_family(scene)}gravity {scene.gravity:g} m/s^2){hint}")
 
 
@@ -173,7 +197,10 @@ class IntegratedNormal(NormalMotion):
         p_scale = scene.mass * w * v
         law = scene.stage_force  # smooth past separation: the crossing step stays accurate
         scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
-        sep = separation_function(scene)
+        # DOP853-scalar needs the law's scalar formula; without one, scipy's DOP853 is the same algorithm
+        method = DEFAULT_INTEGRATOR if options.method == "auto" else options.method  # auto, when integrated
+        method = "DOP853" if method == "DOP853-scalar" and scalar is None else method
+        sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
 
         calls = [0]
 
@@ -205,40 +232,49 @@ class IntegratedNormal(NormalMotion):
             band_exit.direction, band_exit.terminal = -1, True  # x falling through the edge: restitution
             events.append(band_exit)
         end = horizon(scene) * w
-        solve = dict(method=options.method, rtol=options.rtol, atol=options.atol, dense_output=True)
+
+        def integrate(span, z0, max_step, events):
+            try:
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                    if method == "DOP853-scalar":
+                        return dop853.solve(rhs, span, z0, options.rtol, options.atol, max_step=max_step,
+                                            events=events)
+                    return solve_ivp(rhs, span, z0, method=method, rtol=options.rtol, atol=options.atol,
+                                     dense_output=True, max_step=max_step, events=events)
+            except OverflowError:  # float arithmetic (x ** n) raises where numpy returns inf
+                raise ImpactError(f"the contact force overflows ({describe_family(scene)}method {method}): the "
+                                  "scene lies outside what the solver resolves") from None
+
         budget = ImpactError(
-            f"no separation within {MAX_NFEV:.0e} right-hand-side evaluations (method {options.method}; "
+            f"no separation within {MAX_NFEV:.0e} right-hand-side evaluations (method {method}; "
             f"{describe_family(scene)}criterion '{scene.separation}'): the contact is too stiff or too slow to end"
             + (": an over-damped contact returns to delta = 0 slowly if ever, try --separation force"
                if scene.separation == "penetration" else ""))
         try:  # overflow in an absurd scene (b = 1e300) is reported by the checks below, not as a warning
-            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                sol = solve_ivp(rhs, (0.0, end), [0.0, 1.0], max_step=options.max_step * w, events=events, **solve)
+            sol = integrate((0.0, end), [0.0, 1.0], options.max_step * w, events)
         except _Budget:
             raise budget from None
-        self._check_status(sol, options)
+        self._check_status(sol, method)
         rest = None  # the restitution's ramp band, when it is left (always after maximum compression)
         if lam is not None and len(sol.t_events[2]) and not len(sol.t_events[1]):
             start, z0 = float(sol.t_events[2][0]), sol.y_events[2][0]
             step = min(options.max_step * w, BAND_STEP / (lam * max(abs(z0[1]), 1e-300)))
             try:
-                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                    rest = solve_ivp(rhs, (start, end), z0, max_step=step, events=(separation,), **solve)
+                rest = integrate((start, end), z0, step, (separation,))
             except _Budget:
                 raise budget from None
-            self._check_status(rest, options)
+            self._check_status(rest, method)
         final, at = (sol, 1) if rest is None else (rest, 0)  # where the separation event is
         t_m, t_f = sol.t_events[0], final.t_events[at]
         if final.status == 0 or len(t_f) == 0:
             raise ImpactError(no_separation_message(scene, horizon(scene)))
         if len(t_m) == 0:
             raise ImpactError("separation found before maximum compression: event missed "
-                              f"(method {options.method}, rtol {options.rtol:g}); tighten the tolerance")
-        nfev, dense, steps = sol.nfev, sol.sol, sol.t
+                              f"(method {method}, rtol {options.rtol:g}); tighten the tolerance")
+        nfev, dense, steps = sol.nfev, fast_solution(sol.sol), sol.t
         if rest is not None:  # one dense output over both parts
             nfev += rest.nfev
-            dense = OdeSolution(np.concatenate([sol.sol.ts[:-1], rest.sol.ts]),
-                                sol.sol.interpolants + rest.sol.interpolants)
+            dense = _join(dense, fast_solution(rest.sol))
             steps = np.concatenate([sol.t[:-1], rest.t])
         if float(spring_exponent(scene.law, scene)).is_integer():
             rate_f = float(dense(float(t_f[0]))[1])
@@ -250,15 +286,13 @@ class IntegratedNormal(NormalMotion):
             # spring's continuation is smooth, and its interpolant is the more accurate: it is kept.)
             tau_k, tau_f = float(dense.ts[-2]), float(t_f[0])
             try:
-                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                    tail = solve_ivp(rhs, (tau_k, tau_f), dense(tau_k), max_step=step if rest is not None
-                                     else options.max_step * w, **solve)
+                tail = integrate((tau_k, tau_f), dense(tau_k), step if rest is not None else options.max_step * w,
+                                 ())
             except _Budget:
                 raise budget from None
-            self._check_status(tail, options)
+            self._check_status(tail, method)
             nfev += tail.nfev
-            dense = OdeSolution(np.concatenate([dense.ts[:-1], tail.sol.ts[1:]]),
-                                dense.interpolants[:-1] + tail.sol.interpolants)
+            dense = _join(dense, fast_solution(tail.sol))
             steps = np.concatenate([steps[:-1], tail.t[1:]])
             rate_f = float(tail.y[1, -1])
         check_rebound(scene, options, rate_f * v)
@@ -269,13 +303,16 @@ class IntegratedNormal(NormalMotion):
         fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
         grid = (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
         self.grid = np.append(grid[grid < self.t_f], self.t_f)
-        self.stats = {"method": options.method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
+        self.stats = {"method": method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
 
     @staticmethod
-    def _check_status(sol, options: SolverOptions) -> None:
+    def _check_status(sol, method: str) -> None:
         if sol.status == -1:
-            raise ImpactError(f"solver {options.method} failed: {sol.message}")
+            raise ImpactError(f"solver {method} failed: {sol.message}")
 
     def state(self, t):
+        if np.ndim(t) == 0 and isinstance(self._sol, StackedDOP853):  # one instant, in plain floats
+            x, y = self._sol.single(float(t) * self._w)
+            return x * self._d_scale, y * self._v
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v

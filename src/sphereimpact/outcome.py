@@ -111,14 +111,15 @@ class Outcome:
         end = motion.kinematics(motion.t_f)
         vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
         ve_t = vc_t - omega * s.radius
+        forces = motion.force(motion.grid)
         work = (0.5 * s.mass * (vc_t * vc_t - s.v_tangent ** 2) + 0.5 * s.inertia * omega * omega
                 - s.mass * s.g_tangent * float(end["u_t"][0]))
         return cls(
             t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
             vc_t=vc_t, vc_n=vc_n, ve_t=ve_t, ve_n=vc_n, omega_f=omega,
             cor=vc_n / s.v_normal, regime=motion.regime, t_roll=motion.t_roll,
-            force_min=extremum(motion.force, motion.grid, "min")[1],
-            force_max=extremum(motion.force, motion.grid, "max")[1],
+            force_min=extremum(motion.force, motion.grid, "min", forces)[1],
+            force_max=extremum(motion.force, motion.grid, "max", forces)[1],
             beyond_radius=bool(delta_m > s.radius), switches=int(motion.switches),
             rebound_angle=math.degrees(math.atan2(vc_t, vc_n)), rebound_angle_contact=math.degrees(math.atan2(ve_t, vc_n)),
             work_t=work, wall_time=wall_time, scene=s, motion=motion, **motion.stats)

@@ -46,7 +46,9 @@ class PlanarMotion:
         self._t = np.array([math.cos(beta), -math.sin(beta)])
         radius, length = scene.radius, scene.speed / scene.frequency
         scale = np.array([length, length, scene.speed, scene.speed, scene.speed / radius])
-        self._options = dict(method=options.method, rtol=options.rtol, atol=options.atol * scale,
+        # auto and DOP853-scalar (the reduced model's float integrator of the same algorithm): scipy's DOP853
+        method = "DOP853" if options.method in ("auto", "DOP853-scalar") else options.method
+        self._options = dict(method=method, rtol=options.rtol, atol=options.atol * scale,
                              max_step=options.max_step, dense_output=True)
         self._hold = scene.mass * scene.g_tangent * scene.inertia_factor / (1 + scene.inertia_factor)
         z = np.array([radius * self._n[0], radius * self._n[1], 0.0, -scene.speed, 0.0])
@@ -57,7 +59,7 @@ class PlanarMotion:
             sol = self._segment(mode, t0, t_end, z)
             nfev += sol.nfev
             if sol.status == -1:
-                raise ImpactError(f"solver {options.method} failed: {sol.message}")
+                raise ImpactError(f"solver {self._options['method']} failed: {sol.message}")
             self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
             self._modes.append(mode)
             if t_m is None and len(sol.t_events[0]):
@@ -84,7 +86,8 @@ class PlanarMotion:
         fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
         grid = np.unique((steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel())
         self.grid = np.append(grid[(grid >= 0) & (grid < self.t_f)], self.t_f)
-        self.stats = {"method": options.method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
+        self.stats = {"method": self._options["method"], "rtol": options.rtol, "atol": options.atol,
+                      "nfev": int(nfev)}
 
     def _contact(self, z):
         """(delta, delta_dot, P) of state(s) z."""

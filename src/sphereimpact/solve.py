@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from dataclasses import replace
 
 import numpy as np
 
@@ -23,7 +24,7 @@ from .events import ImpactError
 from .laws import LAWS
 from .normal import IntegratedNormal, NormalMotion, describe_family
 from .outcome import Outcome
-from .scene import Scene, SolverOptions
+from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
 from .tangential import TangentialMotion
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
@@ -74,8 +75,19 @@ class ReducedMotion:
                 "omega": omega, "u_t": u_t}
 
 
+def resolve_method(scene: Scene, options: SolverOptions) -> SolverOptions:
+    """``options`` with ``auto`` made concrete: the law's closed form if it has one, else
+    :data:`~sphereimpact.scene.DEFAULT_INTEGRATOR`."""
+    if options.method != "auto":
+        return options
+    closed = scene.law.closed_form is not None and scene.law.closed_form in CLOSED_FORMS
+    return replace(options, method="closed" if closed else DEFAULT_INTEGRATOR)
+
+
 def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
-    """The normal motion of ``scene``: its law's closed form for ``method='closed'``, else integrated."""
+    """The normal motion of ``scene``: its law's closed form for ``method='closed'`` (or ``auto`` on a law
+    that has one), else integrated."""
+    options = resolve_method(scene, options)
     if options.method == "closed":
         if scene.law.closed_form is None:
             closed = ", ".join(name for name, law in LAWS.items() if law.closed_form is not None)

@@ -74,7 +74,9 @@ class PositiveImpulse:
 
     def __init__(self, normal: NormalMotion):
         self._n = normal
-        cuts = [0.0] + roots(normal.force, normal.grid, after=0.0) + [normal.t_f]
+        # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
+        inner = [] if normal.scene.separation == "force" else roots(normal.force, normal.grid, after=0.0)
+        cuts = [0.0] + inner + [normal.t_f]
         cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
         mids = 0.5 * (cuts[:-1] + cuts[1:])
         positive = np.asarray(normal.force(mids), dtype=float) > 0 if mids.size else np.zeros(0, bool)
@@ -97,6 +99,9 @@ class PositiveImpulse:
 
     def __call__(self, t):
         """J+(t) [N s]."""
+        if np.ndim(t) == 0 and len(self.intervals) == 1:  # one instant of a force that never pulls: J(t)
+            a, b = self.intervals[0]
+            return float(self._n.impulse(min(max(float(t), a), b)) - self._ja[0]) if t > a else 0.0
         t = np.asarray(t, dtype=float)
         if not self._a.size:
             return np.zeros_like(t)
@@ -185,8 +190,12 @@ class TangentialMotion:
         return v, omega, x
 
     def _slip(self, p: Phase, t):
-        v, omega, _ = self._evaluate(p, t)
-        return v - omega * self.scene.radius
+        """Slip velocity v_t - omega R [m/s] at t in sliding phase p (the velocities only: no K+)."""
+        s = self.scene
+        t = np.asarray(t, dtype=float)
+        dj = self.jp(t) - self.jp(p.t0)
+        return (p.v0 - p.omega0 * s.radius + s.g_tangent * (t - p.t0)
+                - s.mu * dj * (1.0 + 1.0 / s.inertia_factor) / s.mass)
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""

@@ -1,6 +1,8 @@
 """Reference solutions and the error measure of the accuracy studies.
 
-``kelvin-voigt``: the closed form (:mod:`sphereimpact.closed`), exact to round-off.
+``kelvin-voigt``: the closed form (:mod:`sphereimpact.closed`), exact to round-off.  Other laws (Hertz,
+Hunt-Crossley): scipy's DOP853 at rtol 1e-13, for the benchmarks (their accuracy is tested in
+tests/test_laws.py against closed forms and calibration).
 ``modified``: the normal problem in dimensionless form integrated with
 mpmath's arbitrary-precision Taylor method (:func:`mpmath.odefun`), with
 events found by :func:`mpmath.findroot`, at two working precisions; their
@@ -104,10 +106,16 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
 
 
 def reference(scene: Scene) -> Reference:
-    """The reference outputs of ``scene`` (closed form, or Taylor at 32 digits bounded by 22 digits)."""
+    """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at 32 digits bounded by 22
+    digits (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded by its distance from
+    rtol 1e-12 (a second implementation beside the package's default DOP853-scalar, not an exact one)."""
     if scene.model == "kelvin-voigt":
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")
+    if scene.model != "modified":
+        fine = simulate(scene, SolverOptions(method="DOP853", rtol=1e-13, atol=1e-15)).to_dict()
+        coarse = simulate(scene, SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)).to_dict()
+        return Reference(fine, max(worst_error(coarse, fine, scene), 2.2e-16), "scipy DOP853, rtol 1e-13")
     fine = outputs_from_normal(scene, *taylor_normal(scene, 32))
     coarse = outputs_from_normal(scene, *taylor_normal(scene, 22))
     bound = max(worst_error(coarse, fine, scene), 2.2e-16)

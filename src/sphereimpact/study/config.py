@@ -55,7 +55,7 @@ def options_for(config: dict, scene: Scene) -> SolverOptions:
     """The configured options, except that ``closed`` is used only where the law has a closed form."""
     options = solver_options(config)
     if options.method == "closed" and scene.law.closed_form is None:
-        return SolverOptions(method="DOP853", rtol=options.rtol, atol=options.atol)
+        return SolverOptions(method="DOP853-scalar", rtol=options.rtol, atol=options.atol)
     return options
 
 

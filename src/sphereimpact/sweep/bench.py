@@ -23,7 +23,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from ..numerics.bench import TOLERANCES
+from ..numerics.bench import LAW_SCENES, TOLERANCES
 from ..numerics.handwritten import handwritten
 from ..numerics.reference import relative_errors
 from ..numerics.timing import median_seconds
@@ -32,6 +32,8 @@ from ..solve import BeyondRadiusWarning, simulate
 from .engine import SCENE_COLUMNS, grid, scene_of, sweep
 
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
+#: The per-scene reference: scipy's DOP853 at rtol 1e-13, not the package's default integrator.
+REFERENCE = SolverOptions(method="DOP853", rtol=1e-13, atol=1e-13)
 #: Per-scene contenders: name -> solve(scene, rtol) -> outputs.
 CONTENDERS = {
     "handwritten": lambda scene, rtol: handwritten(scene, rtol),
@@ -83,7 +85,7 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
     sample = [_scene(row) for row in outputs]
     n = len(table)
     del table  # a large table held while the per-scene contenders are timed slowed them unevenly
-    refs = [simulate(s, SolverOptions(rtol=1e-13, atol=1e-13)).to_dict() for s in sample]
+    refs = [simulate(s, REFERENCE).to_dict() for s in sample]
     error = _worst(outputs, refs, sample)
     seconds = median_seconds(lambda: sweep(scenes), repeats)
     tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
@@ -98,15 +100,6 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
         row |= {f"{label}_rtol": got["rtol"], f"{label}_error": got["error"], f"{label}_reached": got["reached"],
                 f"{label}_throughput": 1.0 / got["seconds"], f"speedup_over_{label}": throughput * got["seconds"]}
     return row | {"target_speedup": target_speedup, "peak_memory_mb": peak / 2**20}
-
-
-#: Per-law rows: law -> its parameters on the chapter's ball.  The Hertz constant 8.8e5 N/m^1.5 gives about
-#: the chapter's peak force at 3 m/s (k_linear (v_n / omega_n)^(-1/2)); chi = 0.05 s/m, a COR near 0.9 there.
-LAW_SCENES = {
-    "linear-hunt-crossley": {"k": 6.0e4, "chi": 0.05},
-    "hertz": {"k": 8.8e5},
-    "hunt-crossley": {"k": 8.8e5, "chi": 0.05},
-}
 
 
 def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True,

@@ -1,0 +1,112 @@
+"""Fast evaluation of a DOP853 dense output, bit for bit the values of scipy's.
+
+:class:`scipy.integrate.OdeSolution` evaluates each solver step's interpolant through a Python call per
+step touched (a vector of instants over a whole contact visits every step) and a scalar instant through
+several layers of checks.  The post-processing of one impact evaluates its solution a few hundred times
+(event roots and extrema refined by Brent's method, grids), and through OdeSolution that cost 1.7 to 2.3 ms
+an impact, as much as the integration itself.
+
+:class:`StackedDOP853` holds the interpolants of a DOP853 solution as stacked arrays and evaluates them
+with the same arithmetic, in the same order, as :class:`scipy.integrate._ivp.rk.Dop853DenseOutput`
+(``y = (((F_6 x + F_5)(1 - x) + F_4) x + ...) + y_old``, x the fraction of the step), so the values are
+identical to the last bit (tests/test_dense.py): vectorised over all steps at once for arrays, in plain
+float arithmetic for a scalar.  Instants on a step boundary take the earlier step, as OdeSolution does.
+:func:`fast_solution` returns it for a DOP853 solution and the OdeSolution unchanged for any other method;
+:mod:`sphereimpact.dop853` builds it directly.
+"""
+
+from __future__ import annotations
+
+import bisect
+
+import numpy as np
+from scipy.integrate import OdeSolution
+
+
+def horner_dop853(coefficients, x: float, y_old) -> list:
+    """One step's DOP853 interpolant at fraction x in plain floats.
+
+    ``coefficients`` are the rows of scipy's F (7 rows of n values) in reverse order; the arithmetic is
+    scipy's, in its order.
+    """
+    y = [0.0] * len(y_old)
+    for i, row in enumerate(coefficients):
+        factor = x if i % 2 == 0 else 1 - x
+        y = [(a + b) * factor for a, b in zip(y, row)]
+    return [a + b for a, b in zip(y, y_old)]
+
+
+class StackedDOP853:
+    """A DOP853 dense output over ascending steps, evaluated like OdeSolution (see module docstring).
+
+    Parameters
+    ----------
+    ts : array_like, shape (n_steps + 1,)
+        Step boundaries, ascending (the last may end inside its step, at a terminal event).
+    f : array_like, shape (n_steps, 7, n)
+        Each step's interpolation coefficients, scipy's ``F``.
+    y_old, t_old, h : array_like
+        Each step's start state (n_steps, n), start time and signed size (n_steps,).
+    """
+
+    def __init__(self, ts, f, y_old, t_old, h):
+        self.ts = np.asarray(ts, dtype=float)
+        self.f = np.asarray(f, dtype=float)
+        self.y_old = np.asarray(y_old, dtype=float)
+        self.t_old = np.asarray(t_old, dtype=float)
+        self.h = np.asarray(h, dtype=float)
+        self._last = len(self.h) - 1
+        self._reversed = self.f[:, ::-1]  # the evaluation runs from the highest coefficient down
+        self._ts_list, self._f_list = self.ts.tolist(), self._reversed.tolist()
+        self._y0_list, self._t0_list, self._h_list = self.y_old.tolist(), self.t_old.tolist(), self.h.tolist()
+
+    @classmethod
+    def from_solution(cls, solution: OdeSolution) -> "StackedDOP853":
+        """The stacked form of an ascending OdeSolution of DOP853 interpolants."""
+        steps = solution.interpolants
+        return cls(solution.ts, [p.F for p in steps], [p.y_old for p in steps], [p.t_old for p in steps],
+                   [p.h for p in steps])
+
+    def join(self, later: "StackedDOP853") -> "StackedDOP853":
+        """This solution up to ``later.ts[0]``, then ``later`` (whose first step starts there)."""
+        keep = int(np.searchsorted(self.ts, later.ts[0], side="left"))  # steps ending at or before the join
+        return StackedDOP853(np.concatenate([self.ts[:keep], later.ts]),
+                             np.concatenate([self.f[:keep], later.f]),
+                             np.concatenate([self.y_old[:keep], later.y_old]),
+                             np.concatenate([self.t_old[:keep], later.t_old]),
+                             np.concatenate([self.h[:keep], later.h]))
+
+    def __call__(self, t):
+        """The state at t: shape (n,) for a scalar t, (n, len(t)) for an array (as OdeSolution)."""
+        if np.ndim(t) == 0:
+            return np.array(self.single(float(t)))
+        t = np.asarray(t, dtype=float)
+        step = np.clip(np.searchsorted(self.ts, t, side="left") - 1, 0, self._last)
+        x = ((t - self.t_old[step]) / self.h[step])[:, None]
+        f = self._reversed[step]
+        y = np.zeros((t.size, self.y_old.shape[1]))
+        for i in range(f.shape[1]):
+            y += f[:, i]
+            if i % 2 == 0:
+                y *= x
+            else:
+                y *= 1 - x
+        y += self.y_old[step]
+        return y.T
+
+    def single(self, t: float) -> list:
+        """The state at one instant t, as a list of floats (the cheapest call)."""
+        step = min(max(bisect.bisect_left(self._ts_list, t) - 1, 0), self._last)
+        x = (t - self._t0_list[step]) / self._h_list[step]
+        return horner_dop853(self._f_list[step], x, self._y0_list[step])
+
+
+def fast_solution(solution):
+    """A faster evaluator with identical values for a DOP853 OdeSolution; anything else is returned as is."""
+    if isinstance(solution, StackedDOP853):
+        return solution
+    steps = solution.interpolants
+    ascending = solution.ts[-1] > solution.ts[0]
+    if ascending and steps and all(type(p).__name__ == "Dop853DenseOutput" and hasattr(p, "F") for p in steps):
+        return StackedDOP853.from_solution(solution)
+    return solution
