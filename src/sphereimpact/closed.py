@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from .dense import is_instant
 from .events import ImpactError, first_root
 from .laws import LAWS
 from .normal import NormalMotion, no_separation_message, separation_function
@@ -141,7 +142,7 @@ class ClosedFormNormal(NormalMotion):
                 (self._slow + (self._sigma + q) * d) / (2.0 * q))
 
     def state(self, t):
-        if self._under and np.ndim(t) == 0:  # one instant (root and extremum searches): plain floats
+        if self._under and is_instant(t):  # one instant (root and extremum searches): plain floats
             t = float(t)
             e, c = math.exp(-self._sigma * t), math.cos(self._freq * t)
             s = math.sin(self._freq * t) / self._freq if self._freq * t != 0.0 else t

@@ -30,7 +30,8 @@ The normal motion does not depend on friction, so only (F, J_t, K_t) is integrat
 solved normal motion, and only while the contact sticks: J_t is the tangential impulse and K_t its time
 integral, from which v_t, omega and x_t follow exactly.  Sliding phases are closed-form in the normal
 impulse, as in the rigid model.  Stick and slip switch at roots located on the dense output, never by
-sign() or tanh in a right-hand side: sticking ends when |F| reaches mu P+ (a solve_ivp event); sliding
+sign() or tanh in a right-hand side: sticking ends when |F| reaches mu P+ (an event of the DOP853-scalar
+integration, :mod:`sphereimpact.dop853`); sliding
 ends when the stick rule would no longer push |F| past the moving cap, i.e. when
 
     g = sigma s - (d(mu P+)/dt - rho mu P+) / k_t
@@ -44,9 +45,9 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
-from .dense import fast_solution
+from . import dop853
+from .dense import is_instant
 from .events import ImpactError, first_root
 from .laws import force_rate, spring_exponent, spring_stiffness
 from .normal import NormalMotion
@@ -144,6 +145,10 @@ class CompliantTangential:
     def _rho(self, delta, delta_dot):
         """History rule rho [1/s]: 0 for ``linear``; (dk_t/dt)/k_t = (n-1) delta_dot / delta while unloading
         for ``mindlin``."""
+        if is_instant(delta):  # one instant (the stick phase's right-hand side): plain floats
+            if self.scene.tangential == "linear" or delta <= 0 or delta_dot >= 0:
+                return 0.0
+            return (self._n - 1.0) * delta_dot / delta
         if self.scene.tangential == "linear":
             return np.zeros_like(np.asarray(delta, dtype=float))
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -200,13 +205,15 @@ class CompliantTangential:
         slip0, inverse_mass = p.v0 - p.omega0 * s.radius, (1.0 + 1.0 / s.inertia_factor) / s.mass
         fs, js = self._fs, self._js
 
-        def rhs(tau, z):
+        g_t = s.g_tangent
+
+        def rhs(tau, z):  # plain floats: DOP853-scalar's right-hand side
             t = tau / w
             delta, delta_dot = normal.state(t)
-            k_t = s.kappa * float(spring_stiffness(self._law, delta, s))
-            slip = slip0 + s.g_tangent * (t - p.t0) + inverse_mass * z[1] * js
-            rho = float(self._rho(delta, delta_dot))
-            return [(-k_t * slip + rho * z[0] * fs) / (w * fs), z[0], z[1]]
+            delta, delta_dot = float(delta), float(delta_dot)
+            k_t = s.kappa * spring_stiffness(self._law, delta, s)
+            slip = slip0 + g_t * (t - p.t0) + inverse_mass * z[1] * js
+            return [(-k_t * slip + self._rho(delta, delta_dot) * z[0] * fs) / (w * fs), z[0], z[1]]
 
         def upper(tau, z):  # F reaching +mu P+ (pushing the ball forward)
             return float(self.cap(tau / w)) / fs - z[0]
@@ -217,11 +224,11 @@ class CompliantTangential:
         for event in (upper, lower):
             event.terminal, event.direction = True, -1
         span = (p.t0 * w, t_f * w)
-        sol = solve_ivp(rhs, span, [p.force0 / fs, 0.0, 0.0], method="DOP853", rtol=opts.rtol, atol=opts.atol,
-                        dense_output=True, events=(upper, lower), max_step=(span[1] - span[0]) / STICK_STEPS)
+        sol = dop853.solve(rhs, span, [p.force0 / fs, 0.0, 0.0], opts.rtol, opts.atol, events=(upper, lower),
+                           max_step=(span[1] - span[0]) / STICK_STEPS)
         if sol.status == -1:
             raise ImpactError(f"tangential stick phase: solver failed: {sol.message}")
-        p = replace(p, solution=fast_solution(sol.sol))
+        p = replace(p, solution=sol.sol)
         hits = [(float(times[0]), i) for i, times in enumerate(sol.t_events) if len(times)]
         if not hits:
             return replace(p, t1=t_f), None

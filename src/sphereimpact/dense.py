@@ -23,6 +23,12 @@ import numpy as np
 from scipy.integrate import OdeSolution
 
 
+def is_instant(t) -> bool:
+    """True for one instant (a Python or numpy scalar, or a 0-d array): the cheap test first, since the
+    scalar paths of the post-processing and of right-hand sides call it thousands of times an impact."""
+    return type(t) is float or np.ndim(t) == 0
+
+
 def horner_dop853(coefficients, x: float, y_old) -> list:
     """One step's DOP853 interpolant at fraction x in plain floats.
 
@@ -78,7 +84,7 @@ class StackedDOP853:
 
     def __call__(self, t):
         """The state at t: shape (n,) for a scalar t, (n, len(t)) for an array (as OdeSolution)."""
-        if np.ndim(t) == 0:
+        if is_instant(t):
             return np.array(self.single(float(t)))
         t = np.asarray(t, dtype=float)
         step = np.clip(np.searchsorted(self.ts, t, side="left") - 1, 0, self._last)

@@ -19,7 +19,7 @@ import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
 from . import dop853
-from .dense import StackedDOP853, fast_solution
+from .dense import StackedDOP853, fast_solution, is_instant
 from .events import ImpactError
 from .laws import spring_exponent
 from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
@@ -71,7 +71,7 @@ class NormalMotion:
         however round-off puts delta(t_f) on either side of zero.
         """
         scalar = self.scene.law.scalar
-        if scalar is not None and np.ndim(t) == 0:  # one instant (root and extremum searches): plain floats
+        if scalar is not None and is_instant(t):  # one instant (root and extremum searches): plain floats
             delta, delta_dot = self.state(t)
             return scalar(float(delta), float(delta_dot), self.scene)
         return self.scene.stage_force(*self.state(t))
@@ -79,13 +79,13 @@ class NormalMotion:
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
         s = self.scene
-        t = float(t) if np.ndim(t) == 0 else np.asarray(t, dtype=float)
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         return s.mass * (s.v_normal - self.state(t)[1] + s.g_normal * t)
 
     def impulse_integral(self, t):
         """K(t) = integral of J from 0 to t [N s^2], exact from delta(t)."""
         s = self.scene
-        t = float(t) if np.ndim(t) == 0 else np.asarray(t, dtype=float)
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         return s.mass * (s.v_normal * t - self.state(t)[0] + 0.5 * s.g_normal * t * t)
 
     @property
@@ -311,7 +311,7 @@ class IntegratedNormal(NormalMotion):
             raise ImpactError(f"solver {method} failed: {sol.message}")
 
     def state(self, t):
-        if np.ndim(t) == 0 and isinstance(self._sol, StackedDOP853):  # one instant, in plain floats
+        if is_instant(t) and isinstance(self._sol, StackedDOP853):  # one instant, in plain floats
             x, y = self._sol.single(float(t) * self._w)
             return x * self._d_scale, y * self._v
         z = self._sol(np.asarray(t, dtype=float) * self._w)

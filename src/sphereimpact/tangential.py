@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .dense import is_instant
 from .events import ImpactError, first_root, roots
 from .normal import NormalMotion
 
@@ -99,7 +100,7 @@ class PositiveImpulse:
 
     def __call__(self, t):
         """J+(t) [N s]."""
-        if np.ndim(t) == 0 and len(self.intervals) == 1:  # one instant of a force that never pulls: J(t)
+        if is_instant(t) and len(self.intervals) == 1:  # one instant of a force that never pulls: J(t)
             a, b = self.intervals[0]
             return float(self._n.impulse(min(max(float(t), a), b)) - self._ja[0]) if t > a else 0.0
         t = np.asarray(t, dtype=float)

@@ -19,6 +19,8 @@ from typing import Callable, Mapping
 
 import numpy as np
 
+from ..dense import is_instant
+
 #: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
 PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
 
@@ -175,6 +177,8 @@ def spring_stiffness(law: ContactLaw, delta, p):
     2 E* a, a = sqrt(R delta), for Hertz).
     """
     n = spring_exponent(law, p)
+    if is_instant(delta):  # one instant (a stick phase's right-hand side): plain floats
+        return float(p.k) if n == 1.0 else n * p.k * max(float(delta), 0.0) ** (n - 1.0)
     delta = np.maximum(np.asarray(delta, dtype=float), 0.0)
     return np.broadcast_to(p.k * np.ones_like(delta), delta.shape) if n == 1.0 else n * p.k * delta ** (n - 1.0)
 
