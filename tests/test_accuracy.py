@@ -37,11 +37,10 @@ def capped(scene):
 
 #: (lam, zeta, separation) -> why the default path still misses 1e-9 there (measured).
 KNOWN = {
-    (20.0, 0.01, "force"): "COR off by 2.2e-9: not the restitution band (moving its edge does not help)",
-    (20.0, 0.01, "penetration"): "COR off by 2.2e-9: not the restitution band (moving its edge does not help)",
-    **{(lam, 3.0, "force"): "over-damped: P = k delta + b delta_dot is a difference of two large terms near "
-                            "P = 0, so t_f carries about zeta^2 x the state error (2e-9 to 7e-9)"
-       for lam in (3.0, 20.0, 75.0)},
+    # none today: over-damped, the force criterion's t_f carries 4 zeta^2 x the state's error, and the
+    # tolerances are divided by that (sphereimpact.normal.conditioned_tolerances: zeta = 3 missed by 2e-9
+    # to 7e-9 before); lam = 20, zeta = 0.01 missed the COR by 2.2e-9 until the restitution restarts with
+    # bounded steps also when maximum compression is inside the ramp band.
 }
 
 
@@ -53,7 +52,7 @@ def _case(lam, zeta, separation, gravity):
 
 GRID = [_case(lam, zeta, separation, gravity)
         for lam in (3.0, 20.0, 75.0, 150.0)
-        for zeta in (0.01, 0.5, 3.0)
+        for zeta in (0.01, 0.5, 3.0, 10.0)
         for separation in ("force", "penetration") if not (separation == "penetration" and zeta >= 1)
         for gravity in (0.0,)] + [_case(75.0, 0.056, separation, 9.80665) for separation in ("force", "penetration")]
 
