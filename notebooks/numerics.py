@@ -79,7 +79,9 @@ display(Markdown(f"Methods: {', '.join(config['numerics']['methods'])}; toleranc
 # ### The default method and tolerance
 #
 # The package's default is meant to be the cheapest (method, rtol) on the reduced model that meets the
-# accuracy target on every output, in both chapter cases and under both force laws. The chart's choice
+# accuracy target on every output, in every charted case (the chapter's two and the domain scenes of
+# `numerics.domain`: eq. 4.2's ramp switching off within a few steps at high λ, an over-damped contact)
+# and under both force laws. The chart's choice
 # and the package's default are set side by side here: timings vary from run to run, so the front-runners
 # can swap; the default is a fixed setting that meets the target with margin (a test asserts the accuracy,
 # never the speed).

@@ -18,9 +18,18 @@ def chapter_cases(config: dict, models=("modified", "kelvin-voigt")) -> dict:
             for model in models for case in config["cases"]}
 
 
+def domain_cases(config: dict, models=("modified", "kelvin-voigt")) -> dict:
+    """The work-precision scenes beyond the chapter's (``numerics.domain``: name -> changes to the first
+    case), under each model (force criterion), keyed 'name/model'."""
+    first = next(iter(config["cases"]))
+    return {f"{name}/{model}": scene_for(config, first, model, config["primary"]["separation"], **changes)
+            for model in models for name, changes in config["numerics"].get("domain", {}).items()}
+
+
 def write_work_precision(config: dict, csv_path: str) -> None:
     numerics = config["numerics"]
-    frame = work_precision(chapter_cases(config), numerics["tolerances"], numerics["methods"])
+    frame = work_precision(chapter_cases(config) | domain_cases(config), numerics["tolerances"],
+                           numerics["methods"])
     frame["case"] = frame["case"].str.split("/").str[0]
     frame.to_csv(csv_path, **CSV)
 
