@@ -95,3 +95,15 @@ def test_end_of_contact_does_not_flip_on_one_ulp(speeds):
         assert out.force_min >= -1e-9 * out.force_max  # P never pulls under the force criterion
         assert out.t_f == pytest.approx(outs[0].t_f, rel=1e-9)
         assert out.cor == pytest.approx(outs[0].cor, rel=1e-9)
+
+
+def test_maximum_compression_found_by_the_band_event_alone():
+    """Regression: when maximum compression lies inside the ramp band, the band event (delta_dot there) and
+    the maximum-compression event share a root; at 6.6 m/s on the laws study's calibrated eq. 4.2 the band
+    event's root came first, stopped the integration, and t_m was reported missing."""
+    scene = Scene(speed=6.6, b=10.630341729066144, k=59919.7991439172)
+    out = simulate(scene)
+    ref = simulate(scene, SolverOptions(method="DOP853", rtol=1e-13, atol=1e-13))
+    assert out.t_m == pytest.approx(ref.t_m, rel=1e-9)
+    assert abs(out.motion.normal.state(out.t_m)[1]) < 1e-12 * scene.v_normal
+    assert max(relative_errors(out.to_dict(), ref.to_dict(), scene).values()) < TARGET

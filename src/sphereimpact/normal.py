@@ -299,6 +299,10 @@ class IntegratedNormal(NormalMotion):
             self._check_status(rest, method)
         final, at = (sol, 1) if rest is None else (rest, 0)  # where the separation event is
         t_m, t_f = sol.t_events[0], final.t_events[at]
+        if not len(t_m) and rest is not None and lam * sol.y_events[2][0][0] < BAND_EDGE:
+            # the band event fired at maximum compression (its function is delta_dot there) and its root
+            # came first: that root is t_m
+            t_m = sol.t_events[2]
         if final.status == 0 or len(t_f) == 0:
             raise ImpactError(no_separation_message(scene, horizon(scene)))
         if len(t_m) == 0:
