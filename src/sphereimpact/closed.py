@@ -15,7 +15,8 @@ These forms never subtract nearly equal numbers (x'(t) over-damped is written wi
 (r1 - r2 exp(-2 q t)) / (2 q), see ``_basis``), so they are accurate to a few ulp in every regime,
 including zeta -> 1 from either side and zeta in the thousands.
 
-Events are the roots of these exact functions, bracketed on a dense grid
+Without gravity the events are formulas (see ``_events``).  With gravity they are the roots of these
+exact functions, bracketed on a dense grid
 (uniform plus geometric, for the fast and slow time scales) and refined with
 Brent's method to a few ulp.
 """
@@ -34,8 +35,8 @@ from .scene import Scene
 
 #: Uniform and geometric samples used to bracket events.
 GRID_POINTS = 4097
-#: Uniform samples over [0, t_f] when the events are in closed form: the grid then only brackets the
-#: tangential switch and the force's extremes on one smooth half-period.
+#: Uniform samples over [0, t_f] (and a quarter as many geometric ones, for an over-damped start) when the
+#: events are in closed form: the grid then only brackets the tangential switch and the force's extremes.
 EVENT_FREE_GRID = 129
 
 

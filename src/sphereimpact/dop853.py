@@ -1,7 +1,8 @@
 """scipy's DOP853, run in plain Python floats for a small system: method ``DOP853-scalar``.
 
-:func:`scipy.integrate.solve_ivp` spends most of one impact's time on numpy calls on two-element arrays:
-about 70 us a step against some 20 us of arithmetic.  :func:`solve` is the same algorithm, in floats:
+:func:`scipy.integrate.solve_ivp` spends most of one impact's time on numpy calls on two-element arrays,
+not on arithmetic: on eq. 4.2 at rtol 1e-10 (24 steps, 551 evaluations with dense output and two events)
+it took 2.55 ms, and :func:`solve`, the same algorithm in plain floats, 1.11 ms.  It has
 
 - the tableau, error estimator, dense output and coefficients of :class:`scipy.integrate.DOP853`
   (Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Springer 1993,
@@ -20,8 +21,8 @@ compares step sequences, states and events), at a fraction of the cost; the dens
 from __future__ import annotations
 
 import math
-from operator import mul
 from dataclasses import dataclass, field
+from operator import mul
 
 import numpy as np
 from scipy.integrate import DOP853
@@ -113,8 +114,9 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
     Returns
     -------
     Solution
-        ``t`` (step ends), ``y`` (the state there, shape (n, len(t))), ``sol`` (dense output), ``t_events`` and ``y_events`` (lists of arrays per
-        event), ``nfev``, ``status`` (1 terminal event, 0 end of span, -1 step too small) and ``message``.
+        ``t`` (step ends), ``y`` (the state there, shape (n, len(t))), ``sol`` (dense output),
+        ``t_events`` and ``y_events`` (lists of arrays per event), ``nfev``, ``status`` (1 terminal event,
+        0 end of span, -1 step too small) and ``message``.
     """
     t, t_bound = float(t_span[0]), float(t_span[1])
     y = [float(v) for v in y0]

@@ -185,7 +185,7 @@ def conditioned_tolerances(scene: Scene, options: SolverOptions) -> tuple[float,
     P / (k delta) ~ (r1 / omega_n)^2 ~ 1 / (4 zeta^2)), so t_f carries about 4 zeta^2 times the state's
     error (measured: 2e-9 to 7e-9 at zeta = 3 and rtol 1e-10).  There the tolerances are divided by 4
     zeta^2, down to 1e-13, up to zeta = :data:`CONDITIONED_ZETA_MAX`: only such scenes pay, by about
-    (4 zeta^2)^(1/8) in steps (1.6x at zeta = 3).
+    (4 zeta^2)^(1/8) in steps (1.6x at zeta = 3).  The outcome reports the tolerances asked for.
     """
     zeta = scene.family.get("zeta")
     if scene.separation != "force" or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
@@ -259,7 +259,7 @@ class IntegratedNormal(NormalMotion):
             def band_exit(tau, z):  # falls through 0 once in restitution inside the band
                 return max(lam * z[0] - BAND_EDGE, z[1])
 
-            band_exit.direction, band_exit.terminal = -1, True  # x falling through the edge: restitution
+            band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
             events.append(band_exit)
         end = horizon(scene) * w
         rtol, atol = conditioned_tolerances(scene, options)
@@ -286,7 +286,7 @@ class IntegratedNormal(NormalMotion):
         except _Budget:
             raise budget from None
         self._check_status(sol, method)
-        rest = None  # the restitution's ramp band, when it is left (always after maximum compression)
+        rest = None  # restitution inside the ramp band, integrated with bounded steps
         if lam is not None and len(sol.t_events[2]) and not len(sol.t_events[1]):
             start, z0 = float(sol.t_events[2][0]), sol.y_events[2][0]
             step = min(options.max_step * w, BAND_STEP / (lam * max(abs(z0[1]), BAND_SPEED)))

@@ -100,7 +100,7 @@ class PositiveImpulse:
 
     def __call__(self, t):
         """J+(t) [N s]."""
-        if is_instant(t) and len(self.intervals) == 1:  # one instant of a force that never pulls: J(t)
+        if is_instant(t) and len(self.intervals) == 1:  # one instant, one pushing interval: J(t) - J(a)
             a, b = self.intervals[0]
             return float(self._n.impulse(min(max(float(t), a), b)) - self._ja[0]) if t > a else 0.0
         t = np.asarray(t, dtype=float)
