@@ -93,6 +93,8 @@ def test_stacked_dense_output_is_scipys_to_the_bit():
     assert np.array_equal(stacked(t), ref.sol(t))
     for instant in t[::37]:
         assert np.array_equal(stacked(instant), ref.sol(instant))
+    for size in range(1, 7):  # a few instants take the float path, more the vectorised one: the same bits
+        assert np.array_equal(stacked(t[100:100 + size]), ref.sol(t[100:100 + size]))
 
 
 def test_join_matches_scipys_concatenation_to_the_bit():

@@ -23,6 +23,10 @@ import numpy as np
 from scipy.integrate import OdeSolution
 
 
+#: Up to this many instants an array is evaluated instant by instant (same values, bit for bit).
+SMALL = 4
+
+
 def is_instant(t) -> bool:
     """True for one instant (a Python or numpy scalar, or a 0-d array): the cheap test first, since the
     scalar paths of the post-processing and of right-hand sides call it thousands of times an impact."""
@@ -87,6 +91,9 @@ class StackedDOP853:
         if is_instant(t):
             return np.array(self.single(float(t)))
         t = np.asarray(t, dtype=float)
+        if t.size <= SMALL:  # a few instants: the float path per instant beats numpy's per-call cost
+            return np.array([self.single(instant) for instant in t.tolist()], dtype=float).reshape(
+                t.size, self.y_old.shape[1]).T
         step = np.clip(np.searchsorted(self.ts, t, side="left") - 1, 0, self._last)
         x = ((t - self.t_old[step]) / self.h[step])[:, None]
         f = self._reversed[step]

@@ -107,8 +107,9 @@ class Outcome:
         ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
         """
         s = motion.scene
-        delta_m = float(motion.kinematics(motion.t_m)["delta"][0])
-        end = motion.kinematics(motion.t_f)
+        both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call for both instants
+        delta_m = float(both["delta"][0])
+        end = {key: values[1:] for key, values in both.items()}
         vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
         ve_t = vc_t - omega * s.radius
         forces = motion.force(motion.grid)
