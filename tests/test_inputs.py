@@ -279,3 +279,10 @@ def test_a_contact_that_never_ends_is_refused_within_the_evaluation_budget(monke
     # the default takes eq. 4.1's closed form, which knows at once
     with pytest.raises(ImpactError, match=r"delta never returns to 0 \(an over-damped contact"):
         simulate(Scene(model="kelvin-voigt", b=1e4, separation="penetration"))
+
+
+def test_damping_that_stops_the_ball_at_first_touch_is_named():
+    """Hunt-Crossley with chi v_n = 3e300: maximum compression and separation coincide to round-off.  The
+    refusal names the damping number instead of only blaming the tolerance."""
+    with pytest.raises(ImpactError, match=r"chi_v = 3e\+300.*stops the ball within round-off"):
+        simulate(Scene(model="hunt-crossley", modulus=1e7, chi=1e300))

@@ -306,8 +306,10 @@ class IntegratedNormal(NormalMotion):
         if final.status == 0 or len(t_f) == 0:
             raise ImpactError(no_separation_message(scene, horizon(scene)))
         if len(t_m) == 0:
-            raise ImpactError("separation found before maximum compression: event missed "
-                              f"(method {method}, rtol {options.rtol:g}); tighten the tolerance")
+            raise ImpactError(f"separation found before maximum compression ({describe_family(scene)}method "
+                              f"{method}, rtol {options.rtol:g}): an event was missed (tighten the tolerance), "
+                              "or the damping stops the ball within round-off of first touch (beyond what the "
+                              "solver resolves)")
         nfev, dense, steps = sol.nfev, fast_solution(sol.sol), sol.t
         if rest is not None:  # one dense output over both parts
             nfev += rest.nfev
