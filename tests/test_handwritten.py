@@ -37,3 +37,21 @@ def test_baseline_of_the_other_laws_meets_its_tolerance(model, params, angle, sp
         from scipy.special import beta
 
         assert got["t_f"] == pytest.approx(0.8 * beta(0.4, 0.5) / scene.frequency, rel=1e-9)
+
+
+def test_time_split_and_profile_tables():
+    """The bench's 'where the time goes' tables: every stage of every scene, simulate's share 1, and a
+    profile whose top functions include the integrator (what is measured, not how fast: no timing is
+    asserted)."""
+    from sphereimpact.numerics.bench import profile_call, stages
+
+    scenes = {"oblique/modified": Scene(angle=60.0), "oblique/kelvin-voigt": Scene(angle=60.0, model="kelvin-voigt")}
+    table = stages(scenes, repeats=1)
+    assert sorted(table.groupby("scene").stage.apply(tuple).apply(sorted).iloc[0]) == sorted(
+        ("normal", "tangential", "outcome", "simulate", "handwritten"))
+    assert len(table) == 10 and (table.time > 0).all()
+    assert table[table.stage == "simulate"].share.tolist() == [1.0, 1.0]
+    profile = profile_call(Scene(angle=60.0), calls=5, top=8)
+    assert len(profile) == 8 and profile.own_us.is_monotonic_decreasing
+    assert (profile.share > 0).all() and profile.share.sum() <= 1.0
+    assert profile.function.str.contains("dop853.py").any()

@@ -64,6 +64,8 @@ NOTEBOOKS = {
         "results/config.yaml",
         "results/work_precision.csv",
         "results/bench.csv",
+        "results/bench_stages.csv",
+        "results/bench_profile.csv",
         "results/stability.csv",
         "results/ablation.csv",
         "paper_figures/work_precision.png",

@@ -24,6 +24,8 @@ rule bench:
         code=code("workflow/scripts/bench.py"),
     output:
         csv=report("results/bench.csv", caption="../report/bench.rst", category="Numerics"),
+        stages=report("results/bench_stages.csv", caption="../report/bench_stages.rst", category="Numerics"),
+        profile=report("results/bench_profile.csv", caption="../report/bench_profile.rst", category="Numerics"),
     params:
         config=params_for("bench"),
     threads: workflow.cores  # timed: no other job shares the machine

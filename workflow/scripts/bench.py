@@ -3,4 +3,4 @@ from sphereimpact.study.numerics import write_bench
 from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], "bench"):
-    write_bench(snakemake.params.config, snakemake.output.csv)
+    write_bench(snakemake.params.config, snakemake.output.csv, snakemake.output.stages, snakemake.output.profile)

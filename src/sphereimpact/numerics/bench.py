@@ -86,6 +86,60 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     return pd.DataFrame(rows)
 
 
+def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
+    """Where one impact's time goes, stage by stage, for each scene (same protocol as the bench).
+
+    Rows per scene: ``normal`` (the normal motion: closed form or integration), ``tangential`` (the
+    tangential motion and spin on it), ``outcome`` (outputs: force extremes, kinematics at t_m and t_f),
+    ``simulate`` (the whole call: the stages plus checks) and ``handwritten`` (the script, at simulate's
+    tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
+    """
+    from ..outcome import Outcome
+    from ..solve import ReducedMotion, normal_motion, resolve_method
+
+    rows = []
+    default = SolverOptions()
+    for name, scene in scenes.items():
+        options = resolve_method(scene, default)
+        normal = normal_motion(scene, options)
+        motion = ReducedMotion(normal, options)
+        times = {"normal": per_call_seconds(lambda: normal_motion(scene, options), repeats),
+                 "tangential": per_call_seconds(lambda: ReducedMotion(normal, options), repeats),
+                 "outcome": per_call_seconds(lambda: Outcome.from_motion(motion, 0.0), repeats),
+                 "simulate": per_call_seconds(lambda: simulate(scene, default), repeats),
+                 "handwritten": per_call_seconds(lambda: handwritten(scene, default.rtol), repeats)}
+        rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"]}
+                 for stage, seconds in times.items()]
+    return pd.DataFrame(rows)
+
+
+def profile_call(scene: Scene, calls: int = 200, top: int = 12) -> pd.DataFrame:
+    """A profile of ``simulate(scene)``: the ``top`` functions by own time over ``calls`` calls.
+
+    Columns: ``function`` (file:line(name), the package's path shortened), ``calls`` and ``own_us`` per
+    impact, ``share`` of the profiled total.  Under the profiler small calls weigh more than they cost
+    without it: the shares say where the time goes, not how much there is.
+    """
+    import cProfile
+    import pstats
+
+    simulate(scene)  # imports and caches out of the profile
+    profiler = cProfile.Profile()
+    profiler.enable()
+    for _ in range(calls):
+        simulate(scene)
+    profiler.disable()
+    stats = pstats.Stats(profiler).stats
+    total = sum(entry[2] for entry in stats.values())
+    rows = []
+    for (path, line, function), (_, count, own, _, _) in stats.items():
+        where = path.split("site-packages/")[-1].split("src/")[-1]
+        rows.append({"function": f"{where}:{line}({function})", "calls": count / calls,
+                     "own_us": own / calls * 1e6, "share": own / total})
+    frame = pd.DataFrame(rows).sort_values("own_us", ascending=False, kind="stable")
+    return frame.head(top).reset_index(drop=True)
+
+
 def cheapest(frame: pd.DataFrame, target: float = TARGET) -> pd.DataFrame:
     """Per case, model and body of a work-precision table: the fastest point whose error meets ``target``."""
     ok = frame[(frame["status"] == "ok") & (frame["error"] <= target)]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..numerics.ablation import ablation
-from ..numerics.bench import bench_scenes, simulate_vs_handwritten
+from ..numerics.bench import bench_scenes, profile_call, simulate_vs_handwritten, stages
 from ..numerics.stability import stability
 from ..numerics.workprecision import work_precision
 from .config import scene_for
@@ -34,11 +34,17 @@ def write_work_precision(config: dict, csv_path: str) -> None:
     frame.to_csv(csv_path, **CSV)
 
 
-def write_bench(config: dict, csv_path: str) -> None:
-    """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain."""
+def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) -> None:
+    """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain;
+    where its time goes, stage by stage on each scene and function by function (a profile) on the most
+    oblique configured case under the primary law."""
     bench = config["bench"]
-    frame = simulate_vs_handwritten(bench_scenes(chapter_cases(config), bench["domain"]), bench["repeats"])
-    frame.to_csv(csv_path, **CSV)
+    scenes = bench_scenes(chapter_cases(config), bench["domain"])
+    simulate_vs_handwritten(scenes, bench["repeats"]).to_csv(csv_path, **CSV)
+    stages(scenes, bench["repeats"]).to_csv(stages_csv, **CSV)
+    oblique = max(config["cases"], key=lambda case: config["cases"][case].get("angle", 0.0))
+    profiled = scene_for(config, oblique, config["primary"]["model"], config["primary"]["separation"])
+    profile_call(profiled).to_csv(profile_csv, **CSV)
 
 
 def write_stability(config: dict, csv_path: str) -> None:
