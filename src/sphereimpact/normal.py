@@ -22,7 +22,7 @@ from . import dop853
 from .dense import StackedDOP853, fast_solution, is_instant
 from .events import ImpactError
 from .laws import spring_exponent
-from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
+from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions, ivp_method
 
 #: Samples per solver step used when scanning event functions on the dense output.
 SUBSTEPS = 8
@@ -229,7 +229,8 @@ class IntegratedNormal(NormalMotion):
         scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
         # DOP853-scalar needs the law's scalar formula; without one, scipy's DOP853 is the same algorithm
         method = DEFAULT_INTEGRATOR if options.method == "auto" else options.method  # auto, when integrated
-        method = "DOP853" if method == "DOP853-scalar" and scalar is None else method
+        if scalar is None:
+            method = ivp_method(method)
         sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
 
         calls = [0]

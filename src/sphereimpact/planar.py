@@ -23,7 +23,7 @@ from scipy.integrate import solve_ivp
 
 from .events import ImpactError
 from .normal import SUBSTEPS, check_rebound, horizon, no_separation_message, separation_function
-from .scene import Scene, SolverOptions
+from .scene import Scene, SolverOptions, ivp_method
 from .tangential import MAX_PHASES, phase_index
 
 
@@ -46,9 +46,7 @@ class PlanarMotion:
         self._t = np.array([math.cos(beta), -math.sin(beta)])
         radius, length = scene.radius, scene.speed / scene.frequency
         scale = np.array([length, length, scene.speed, scene.speed, scene.speed / radius])
-        # auto and DOP853-scalar (the reduced model's float integrator of the same algorithm): scipy's DOP853
-        method = "DOP853" if options.method in ("auto", "DOP853-scalar") else options.method
-        self._options = dict(method=method, rtol=options.rtol, atol=options.atol * scale,
+        self._options = dict(method=ivp_method(options.method), rtol=options.rtol, atol=options.atol * scale,
                              max_step=options.max_step, dense_output=True)
         self._hold = scene.mass * scene.g_tangent * scene.inertia_factor / (1 + scene.inertia_factor)
         z = np.array([radius * self._n[0], radius * self._n[1], 0.0, -scene.speed, 0.0])

@@ -56,6 +56,13 @@ METHODS = ("auto", "closed", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau",
 DEFAULT_INTEGRATOR = "DOP853-scalar"
 
 
+def ivp_method(method: str) -> str:
+    """The :func:`scipy.integrate.solve_ivp` method that runs ``method`` where the float integrator cannot
+    (the planar body, a law without a scalar formula, naive formulations): ``auto`` and ``DOP853-scalar``
+    are DOP853's algorithm."""
+    return "DOP853" if method in ("auto", DEFAULT_INTEGRATOR) else method
+
+
 #: Numeric Scene fields other than the law's parameters: (allowed range as stated in messages, vectorised
 #: test).  One table for the scalar checks of :class:`Scene` and the array checks of sweeps, so both say the
 #: same thing.  The law's own parameters (k, b, ramp, chi, exponent, modulus) are declared by the law

@@ -28,16 +28,11 @@ from scipy.integrate import solve_ivp
 
 from ..events import ImpactError
 from ..normal import separation_function
-from ..scene import Scene, SolverOptions
+from ..scene import Scene, SolverOptions, ivp_method
 from ..solve import BeyondRadiusWarning, simulate
 from .reference import reference, worst_error
 from .timing import median_time
 from .workprecision import METHODS
-
-
-def _naive(method: str) -> str:
-    """The solve_ivp method naive code calls for ``method``: DOP853-scalar is the package's DOP853 in floats."""
-    return "DOP853" if method == "DOP853-scalar" else method
 
 
 #: Right-hand-side evaluations after which a naive formulation is declared stuck.
@@ -110,8 +105,8 @@ def _through_contact(scene: Scene, method: str, rtol: float, lead: float):
     max_compression.direction = -1
     separation = _separation_event(scene)
     v = scene.v_normal
-    sol = solve_ivp(_budgeted(rhs), (-lead, 1.0), [-v * lead, v], method=_naive(method), rtol=rtol, atol=rtol * 1e-3,
-                    events=(max_compression, separation))
+    sol = solve_ivp(_budgeted(rhs), (-lead, 1.0), [-v * lead, v], method=ivp_method(method), rtol=rtol,
+                    atol=rtol * 1e-3, events=(max_compression, separation))
     if sol.status != 1:
         raise ImpactError(f"no separation ({sol.message})")
     out = {"t_m": sol.t_events[0][0], "delta_m": sol.y_events[0][0][0], "t_f": sol.t_events[1][0],
@@ -147,7 +142,7 @@ def _friction_ode(scene: Scene, law, method: str, rtol: float):
         f = -mu * p * law(z[2] - z[3] * radius)
         return [z[1], -p / m, f / m, -f * radius / inertia]
 
-    sol = solve_ivp(_budgeted(rhs), (0.0, 1.0), [0.0, scene.v_normal, scene.v_tangent, 0.0], method=_naive(method),
+    sol = solve_ivp(_budgeted(rhs), (0.0, 1.0), [0.0, scene.v_normal, scene.v_tangent, 0.0], method=ivp_method(method),
                     rtol=rtol, atol=rtol * 1e-3, events=_separation_event(scene))
     if sol.status != 1:
         raise ImpactError(f"no separation ({sol.message})")
@@ -181,7 +176,7 @@ def _step_end_separation(scene: Scene, method: str, rtol: float) -> tuple[float,
     """Separation taken as the first step end where P <= 0 or delta <= 0 (no root finding)."""
     w, v = scene.omega_n, scene.v_normal
     sol = solve_ivp(lambda t, z: [z[1], -float(scene.stage_force(z[0], z[1])) / scene.mass], (0.0, 50 / w),
-                    [0.0, v], method=_naive(method), rtol=rtol, atol=rtol * v / w)
+                    [0.0, v], method=ivp_method(method), rtol=rtol, atol=rtol * v / w)
     force = scene.force(sol.y[0], sol.y[1])
     ended = np.flatnonzero((sol.t > 0) & ((sol.y[0] <= 0) | (force <= 0)))
     if not len(ended):
@@ -223,7 +218,7 @@ def past_separation(base: Scene, methods=METHODS, window: float = 0.2) -> list[d
 
         try:
             with np.errstate(over="ignore", invalid="ignore"):
-                sol = solve_ivp(_budgeted(rhs), (0.0, window), [0.0, scene.v_normal], method=_naive(method),
+                sol = solve_ivp(_budgeted(rhs), (0.0, window), [0.0, scene.v_normal], method=ivp_method(method),
                                 rtol=1e-8, atol=1e-12)
             bad = np.flatnonzero(~np.isfinite(sol.y).all(axis=0))
             status = (f"failed: non-finite state at t = {sol.t[bad[0]]:.3g} s" if len(bad)
