@@ -52,7 +52,7 @@ from .events import ImpactError, first_root
 from .laws import force_rate, spring_exponent, spring_stiffness
 from .normal import NormalMotion
 from .scene import SolverOptions
-from .tangential import MAX_PHASES, Phase, PositiveImpulse, by_phase
+from .tangential import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
 STICKING, SLIDING = "sticking", "sliding"
 #: Fraction of the law's time scale over which the start of an impact is probed when both P and the
@@ -167,7 +167,7 @@ class CompliantTangential:
             cap = s.mu * np.maximum(force, 0.0)
             cap_rate = np.where(force > 0, s.mu * force_rate(law, delta, delta_dot, accel, s), 0.0)
             k_t = s.kappa * spring_stiffness(law, delta, s)
-            v, omega, _ = self._evaluate(p, t)
+            v, omega = self._evaluate(p, t, with_x=False)
             with np.errstate(divide="ignore", invalid="ignore"):
                 gap = sigma * (v - omega * s.radius) - (cap_rate - self._rho(delta, delta_dot) * cap) / k_t
             return np.where((force > 0) & (k_t > 0), gap, 1.0)  # no cap or no spring: nothing to stick
@@ -247,8 +247,9 @@ class CompliantTangential:
     def _stick_force(self, p: CompliantPhase, t):
         return p.solution(np.asarray(t, dtype=float) * self._w)[0] * self._fs
 
-    def _evaluate(self, p: CompliantPhase, t):
-        """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p."""
+    def _evaluate(self, p: CompliantPhase, t, with_x: bool = True):
+        """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p; (v_t, omega) only without ``with_x``
+        (the stick-gap search, which needs no K+)."""
         s = self.scene
         t = np.asarray(t, dtype=float)
         dt = t - p.t0
@@ -258,11 +259,9 @@ class CompliantTangential:
         else:
             j0 = self.jp(p.t0)
             impulse = -p.sigma * s.mu * (self.jp(t) - j0)
-            integral = -p.sigma * s.mu * (self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt)
-        v = p.v0 + s.g_tangent * dt + impulse / s.mass
-        omega = p.omega0 - impulse / (s.inertia_factor * s.mass * s.radius)  # R J / I, no R^2 to underflow
-        x = p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt + integral / s.mass
-        return v, omega, x
+            integral = (-p.sigma * s.mu * (self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt)
+                        if with_x else None)
+        return from_impulse(s, p, dt, impulse, integral if with_x else None)
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""

@@ -107,14 +107,13 @@ class Outcome:
         ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
         """
         s = motion.scene
-        both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call for both instants
+        both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call: [0] at t_m, [1] at t_f
         delta_m = float(both["delta"][0])
-        end = {key: values[1:] for key, values in both.items()}
-        vc_t, vc_n, omega = float(end["vc_t"][0]), float(end["vc_n"][0]), float(end["omega"][0])
+        vc_t, vc_n, omega = float(both["vc_t"][1]), float(both["vc_n"][1]), float(both["omega"][1])
         ve_t = vc_t - omega * s.radius
         forces = motion.force(motion.grid)
         work = (0.5 * s.mass * (vc_t * vc_t - s.v_tangent ** 2) + 0.5 * s.inertia * omega * omega
-                - s.mass * s.g_tangent * float(end["u_t"][0]))
+                - s.mass * s.g_tangent * float(both["u_t"][1]))
         return cls(
             t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
             vc_t=vc_t, vc_n=vc_n, ve_t=ve_t, ve_n=vc_n, omega_f=omega,

@@ -63,6 +63,22 @@ def by_phase(phases, t, evaluate, rows: tuple = ()) -> np.ndarray:
     return out
 
 
+def from_impulse(scene, p, dt, impulse, integral=None):
+    """(v_t [m/s], omega [rad/s]) and, given ``integral``, x_t [m], at dt [s] into phase p from the tangential
+    impulse on the ball since its start (``impulse`` J_t [N s]) and that impulse's time integral (K_t [N s^2]):
+
+        v = v0 + g_t dt + J_t / m,   omega = omega0 - J_t R / I,   x = x0 + v0 dt + g_t dt^2 / 2 + K_t / m.
+
+    The one place the rigid (J_t = -mu dJ+) and the compliant tangential motions turn impulse into motion.
+    """
+    s = scene
+    v = p.v0 + s.g_tangent * dt + impulse / s.mass
+    omega = p.omega0 - impulse / (s.inertia_factor * s.mass * s.radius)  # R J / I, no R^2 to underflow
+    if integral is None:
+        return v, omega
+    return v, omega, p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt + integral / s.mass
+
+
 class PositiveImpulse:
     """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
 
@@ -183,20 +199,15 @@ class TangentialMotion:
             v = p.v0 + accel * dt
             return v, v / s.radius, p.x0 + p.v0 * dt + 0.5 * accel * dt * dt
         j0 = self.jp(p.t0)
-        dj = self.jp(t) - j0
         dk = self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt
-        v = p.v0 + s.g_tangent * dt - s.mu * dj / s.mass
-        omega = p.omega0 + s.mu * dj / (s.inertia_factor * s.mass * s.radius)  # mu R dJ / I, no R^2 to underflow
-        x = p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt - s.mu * dk / s.mass
-        return v, omega, x
+        return from_impulse(s, p, dt, -s.mu * (self.jp(t) - j0), -s.mu * dk)
 
     def _slip(self, p: Phase, t):
         """Slip velocity v_t - omega R [m/s] at t in sliding phase p (the velocities only: no K+)."""
         s = self.scene
         t = np.asarray(t, dtype=float)
-        dj = self.jp(t) - self.jp(p.t0)
-        return (p.v0 - p.omega0 * s.radius + s.g_tangent * (t - p.t0)
-                - s.mu * dj * (1.0 + 1.0 / s.inertia_factor) / s.mass)
+        v, omega = from_impulse(s, p, t - p.t0, -s.mu * (self.jp(t) - self.jp(p.t0)))
+        return v - omega * s.radius
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
