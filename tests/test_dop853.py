@@ -122,8 +122,8 @@ def test_simulate_gives_scipys_answer(scene):
     fast = simulate(scene, SolverOptions(method="DOP853-scalar"))
     ref = simulate(scene, SolverOptions(method="DOP853"))
     assert fast.method == "DOP853-scalar" and ref.method == "DOP853" and fast.nfev == ref.nfev
-    for key in OUTPUTS:
-        assert getattr(fast, key) == pytest.approx(getattr(ref, key), rel=1e-12, abs=1e-15), key
+    for key in OUTPUTS:  # abs: ve_t = vc_t - omega R cancels two O(1 m/s) terms (rolling: 2.7e-5 m/s left)
+        assert getattr(fast, key) == pytest.approx(getattr(ref, key), rel=1e-12, abs=1e-14), key
     assert fast.regime == ref.regime
 
 
