@@ -34,9 +34,11 @@ SUBSTEPS = 8
 #: lam = 20, zeta = 0.01 the COR erred by 2.2e-9 until it did), with steps of at most
 #: BAND_STEP / (lam max(|y|, BAND_SPEED)) (|y| is 0 at maximum compression and grows towards the rebound
 #: speed, < 1), starting from the step size it had reached (measured in the commits that introduced them,
-#: and tested in test_accuracy.py).
+#: and tested in test_accuracy.py).  BAND_STEP: on a grid of 90 scenes (lam 3-150, zeta 0.01-3, both
+#: criteria) the worst error against the capped reference is 6.9e-10 for every cap from 2 to 6 and 9.95e-10
+#: at 8; 4 keeps a factor 2 from that edge and takes 18 % fewer evaluations than 2 at 45 deg and 20 m/s.
 BAND_EDGE = 30.0
-BAND_STEP = 2.0
+BAND_STEP = 4.0
 BAND_SPEED = 0.25
 #: Most right-hand-side evaluations one normal motion may take (about 10 s): a bound on the cost of any
 #: input.  The accepted domain needs far fewer (eq. 4.2 at zeta = 160 under the penetration criterion, its
