@@ -149,3 +149,23 @@ def test_a_flickering_force_costs_no_more_than_a_few_intervals():
     out = simulate(scene)
     assert len(out.motion.tangential.jp.intervals) > 1000
     assert out.vc_t == pytest.approx(scene.v_tangent / (1 + scene.inertia_factor), rel=1e-6)  # it grips and rolls
+
+
+@pytest.mark.parametrize("scene", [Scene(angle=30.0, gravity=9.81), Scene(angle=60.0),
+                                   Scene(model="kelvin-voigt", separation="penetration", angle=30)],
+                         ids=["regrip", "sliding", "kv-pulling"])
+def test_scalar_paths_give_the_array_paths_values_to_the_bit(scene):
+    """The post-processing reads a few instants in plain floats (J+, K+, slip, the motion at t_m and t_f)
+    and grids through numpy; both must be the same numbers, or outputs would depend on how they were asked.
+    (On an integrated motion, whose dense output is bitwise the same either way; the kelvin-voigt closed
+    form's scalar and array formulas agree to round-off only.)"""
+    tangential = simulate(scene, SolverOptions(method="DOP853-scalar")).motion.tangential
+    t = np.linspace(0.0, tangential.normal.t_f, 41)
+    grid = tangential.at(t)  # more than SMALL instants: the array path
+    few = np.column_stack([tangential.at(t[i:i + 2]) for i in range(0, t.size - 1, 2)] + [tangential.at(t[-1:])])
+    assert np.array_equal(few, grid)
+    jp = tangential.jp
+    assert [jp(float(x)) for x in t] == jp(t).tolist()
+    assert [jp.integral(float(x)) for x in t] == jp.integral(t).tolist()
+    p = tangential.phases[0]
+    assert [tangential._slip(p, float(x)) for x in t] == tangential._slip(p, t).tolist()

@@ -18,7 +18,11 @@ class ImpactError(RuntimeError):
 
 def _scalar(f):
     """``f`` as a function of one float returning one float (f may return a 1-element array)."""
-    return lambda t: float(np.reshape(f(t), -1)[0])
+    def value(t):
+        v = f(t)
+        return v if type(v) is float else float(np.reshape(v, -1)[0])
+
+    return value
 
 
 def _refine(f, a: float, b: float) -> float:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -368,37 +369,40 @@ class Scene:
                              + (" or shear_modulus" if self.tangential == "mindlin" else ""))
 
     # Derived quantities (SI) -------------------------------------------------
-    @property
+    # The geometric ones are cached: the post-processing of one impact reads them thousands of times, and
+    # what they depend on (mass, diameter, inertia_factor, angle, speed, gravity) is set once, first thing
+    # in __post_init__.
+    @cached_property
     def radius(self) -> float:
         """R = D / 2 [m]."""
         return 0.5 * self.diameter
 
-    @property
+    @cached_property
     def inertia(self) -> float:
         """I = alpha m R^2 [kg m^2]."""
         return self.inertia_factor * self.mass * self.radius**2
 
-    @property
+    @cached_property
     def beta(self) -> float:
         """Flat inclination [rad]."""
         return math.radians(self.angle)
 
-    @property
+    @cached_property
     def v_normal(self) -> float:
         """Approach speed along the normal, v cos(beta) [m/s], > 0."""
         return self.speed * math.cos(self.beta)
 
-    @property
+    @cached_property
     def v_tangent(self) -> float:
         """Approach speed along the flat, v sin(beta) [m/s], >= 0 (exactly 0 at 0 deg)."""
         return 0.0 if self.angle == 0 else self.speed * math.sin(self.beta)
 
-    @property
+    @cached_property
     def g_normal(self) -> float:
         """Gravity component pressing the ball into the flat, g cos(beta) [m/s^2]."""
         return self.gravity * math.cos(self.beta)
 
-    @property
+    @cached_property
     def g_tangent(self) -> float:
         """Gravity component along the flat (down-slope = +t), g sin(beta) [m/s^2]."""
         return 0.0 if self.angle == 0 else self.gravity * math.sin(self.beta)

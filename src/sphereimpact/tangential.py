@@ -19,11 +19,12 @@ the ball slips again when mu P+ falls below that.
 
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass
 
 import numpy as np
 
-from .dense import is_instant
+from .dense import SMALL, is_instant
 from .events import ImpactError, first_root, roots
 from .normal import NormalMotion
 
@@ -79,6 +80,13 @@ def from_impulse(scene, p, dt, impulse, integral=None):
     return v, omega, p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt + integral / s.mass
 
 
+def _at(f, t) -> np.ndarray:
+    """f at the instants of the array t, one instant at a time for a few (the scalar path is cheaper)."""
+    if t.size <= SMALL:
+        return np.array([f(instant) for instant in t.tolist()], dtype=float)
+    return np.asarray(f(t), dtype=float)
+
+
 class PositiveImpulse:
     """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
 
@@ -96,11 +104,11 @@ class PositiveImpulse:
         cuts = [0.0] + inner + [normal.t_f]
         cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
         mids = 0.5 * (cuts[:-1] + cuts[1:])
-        positive = np.asarray(normal.force(mids), dtype=float) > 0 if mids.size else np.zeros(0, bool)
+        positive = _at(normal.force, mids) > 0
         self._a, self._b = cuts[:-1][positive], cuts[1:][positive]
         self.intervals = list(zip(self._a.tolist(), self._b.tolist()))
-        self._ja, self._jb = normal.impulse(self._a), normal.impulse(self._b)
-        self._ka, self._kb = normal.impulse_integral(self._a), normal.impulse_integral(self._b)
+        self._ja, self._jb = _at(normal.impulse, self._a), _at(normal.impulse, self._b)
+        self._ka, self._kb = _at(normal.impulse_integral, self._a), _at(normal.impulse_integral, self._b)
         gained = self._jb - self._ja  # J+ gained over each interval
         self._before = np.concatenate([[0.0], np.cumsum(gained)])  # J+ at each interval's start, and at the end
         # K+ at each interval's start: the previous intervals' pieces plus the constant stretches between them
@@ -127,6 +135,13 @@ class PositiveImpulse:
 
     def integral(self, t):
         """K+(t) = integral of J+ from 0 to t [N s^2]."""
+        if is_instant(t) and len(self.intervals) == 1:  # one instant, one pushing interval: plain floats
+            (a, b), t = self.intervals[0], float(t)
+            if t <= a:
+                return 0.0
+            c, ja = min(t, b), float(self._ja[0])  # the array path's arithmetic, in its order
+            inside = -ja * (c - a) + float(self._n.impulse_integral(c)) - float(self._ka[0])
+            return inside + (float(self._jb[0]) - ja) * max(t - b, 0.0)
         t = np.asarray(t, dtype=float)
         if not self._a.size:
             return np.zeros_like(t)
@@ -168,7 +183,8 @@ class TangentialMotion:
         while True:
             grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
             if phase.mode == "sliding":
-                t_switch = first_root(lambda t, p=phase: self._slip(p, t), grid, direction=-1)
+                t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): self._slip(p, t, j0), grid,
+                                      direction=-1)
             elif self._hold > 0:
                 t_switch = first_root(lambda t: mu * np.maximum(normal.force(t), 0.0) - self._hold,
                                       grid, direction=-1)
@@ -190,9 +206,9 @@ class TangentialMotion:
         self.switches = len(self.phases) - 1
 
     def _evaluate(self, p: Phase, t):
-        """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p."""
+        """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p (floats for one instant)."""
         s = self.scene
-        t = np.asarray(t, dtype=float)
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         dt = t - p.t0
         if p.mode == "rolling":
             accel = s.g_tangent / (1.0 + s.inertia_factor)
@@ -202,16 +218,26 @@ class TangentialMotion:
         dk = self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt
         return from_impulse(s, p, dt, -s.mu * (self.jp(t) - j0), -s.mu * dk)
 
-    def _slip(self, p: Phase, t):
-        """Slip velocity v_t - omega R [m/s] at t in sliding phase p (the velocities only: no K+)."""
+    def _slip(self, p: Phase, t, j0: float | None = None):
+        """Slip velocity v_t - omega R [m/s] at t in sliding phase p (the velocities only: no K+; a float for
+        one instant, which is how the root search calls it).  ``j0`` is J+ at the phase's start, if known."""
         s = self.scene
-        t = np.asarray(t, dtype=float)
-        v, omega = from_impulse(s, p, t - p.t0, -s.mu * (self.jp(t) - self.jp(p.t0)))
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
+        j0 = self.jp(p.t0) if j0 is None else j0
+        v, omega = from_impulse(s, p, t - p.t0, -s.mu * (self.jp(t) - j0))
         return v - omega * s.radius
 
     def at(self, t):
-        """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]."""
-        return by_phase(self.phases, t, self._evaluate, (3,))
+        """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]
+        (shape (3, len(t)))."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        if t.size > SMALL:
+            return by_phase(self.phases, t, self._evaluate, (3,))
+        out, starts = np.empty((3, t.size)), [p.t0 for p in self.phases]
+        for j, instant in enumerate(t.tolist()):  # a few instants (the outcome's): plain floats, same values
+            which = min(max(bisect.bisect_right(starts, instant) - 1, 0), len(self.phases) - 1)
+            out[:, j] = self._evaluate(self.phases[which], instant)
+        return out
 
     def force(self, t):
         """Friction force F on the ball along the flat [N] at t [s]: -mu P+ sliding, the holding force rolling."""
