@@ -151,3 +151,40 @@ def test_cli_sweep_writes_one_row_per_scene(tmp_path):
 def test_cli_sweep_bad_input_exits_2(args, message, tmp_path, capsys):
     assert run(["sweep", *args, "--out", str(tmp_path / "s.csv")]) == 2
     assert message in capsys.readouterr().err
+
+
+def _stiff_mix():
+    """Chapter-ball scenes plus two that creep back under the penetration criterion (zeta 64 and 30)."""
+    base = Scene()
+    b_of = lambda zeta: zeta * 2 * np.sqrt(base.k * base.mass)  # noqa: E731
+    easy = grid(angle=np.arange(0, 90, 10.0), speed=[1.0, 3.0, 9.0]).assign(b=base.b, separation="penetration")
+    stiff = pd.DataFrame({"angle": [30.0, 45.0], "speed": [3.0, 6.0], "b": [b_of(64.0), b_of(30.0)],
+                          "separation": "penetration"})
+    return pd.concat([easy, stiff], ignore_index=True)
+
+
+def test_slow_lanes_go_to_the_single_impact_path():
+    """The lanes pay per step until their slowest lane ends: one zeta = 64 creep took 3.4 s there against
+    11 ms alone.  The cost model sends such scenes alone, keeps a crowd of them in lanes (where the per-step
+    cost is shared), and leaves ordinary scenes in lanes."""
+    from sphereimpact.sweep.engine import _costly, _dimensionless, _lane_candidates, _lane_limits, scene_table
+
+    def costly(scenes):
+        frame = scene_table(scenes)
+        d = _dimensionless(frame)
+        candidates = _lane_candidates(frame, d)
+        return _costly(d, candidates, _lane_limits(d, candidates, CONTRACT), CONTRACT)
+
+    mixed = costly(_stiff_mix())
+    assert mixed[-2:].all() and not mixed[:-2].any()
+    zeta_10 = Scene().with_(b=10 * 2 * np.sqrt(Scene().k * Scene().mass)).b
+    crowd = grid(angle=np.linspace(0, 80, 50), speed=np.linspace(1, 10, 40)).assign(b=zeta_10, separation="penetration")
+    assert not costly(crowd).any()  # 2000 lanes of ~1000 steps: cheaper together than 2000 impacts alone
+
+
+def test_a_slow_lane_sent_alone_keeps_shards_equal_and_meets_the_contract():
+    scenes = _stiff_mix()
+    whole = sweep(scenes)
+    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    assert pd.concat(shards, ignore_index=True).equals(whole)
+    assert_contract(whole.iloc[-3:], sample=3)

@@ -245,6 +245,29 @@ def step_size(zeta, lam, x, y, target: float):
     return np.minimum(base, ramp)
 
 
+def estimated_contact_time(zeta, lam, separation: str) -> np.ndarray:
+    """About how long each contact lasts, tau_f (for the engine's choice of path, never for accuracy).
+
+    About pi when under-damped; over-damped (zeta > 1), about pi / sqrt(zeta) under the force criterion,
+    and pi + 1.9 sqrt(zeta lam) under the penetration criterion, where the contact creeps back to delta = 0
+    (fitted to the modified law at zeta 1-100, lam 4-74: 59 at zeta 64, lam 15 against 61.6 estimated).
+    """
+    zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
+    over = np.maximum(zeta, 1.0)
+    creep = np.pi + 1.9 * np.sqrt(over * lam) if separation == "penetration" else np.pi / np.sqrt(over)
+    return np.where(zeta > 1, creep, np.pi)
+
+
+def estimated_steps(zeta, lam, separation: str, target: float) -> np.ndarray:
+    """About how many steps each lane takes: :func:`step_size` bounds them by the damping,
+    unit / max(1, 2 zeta), over :func:`estimated_contact_time`, plus the ramp band's (within a factor 2.6
+    of the steps taken at zeta 0.01-100, lam 4-74, both criteria: 21 040 at zeta 64, lam 15, penetration,
+    against 21 942 estimated)."""
+    unit = min(STEP_CONSTANT * target ** 0.125, MAX_UNIT_STEP)
+    tau_f = estimated_contact_time(zeta, lam, separation)
+    return tau_f * np.maximum(1.0, 2.0 * np.asarray(zeta, dtype=float)) / unit + 30.0
+
+
 def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8) -> dict:
     """Integrate every lane to separation.
 

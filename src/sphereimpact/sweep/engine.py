@@ -14,7 +14,9 @@ Each scene takes the cheapest path that its law declares and that is exact for i
    fixes the dimensionless normal motion, so the single-impact integrator solves one scene per distinct
    family (and gamma and criterion) and the others are scaled from it;
 5. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
-   (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene.
+   (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene; so too the scenes the
+   lanes would solve at more cost than alone (a cost model on the estimated steps: an over-damped creep
+   under the penetration criterion, where one slow lane makes every step of its batch pay).
 
 Tangential velocity, spin and regime follow from the normal impulse as in the
 single-impact core.  Results do not depend on the chunk size: every lane is
@@ -54,6 +56,13 @@ SIMILARITY_MIN = 2000
 #: without bound (an over-damped creep back to delta = 0 under the penetration criterion), so such scenes
 #: are solved one by one.
 LANES_ZETA_MAX = 100.0
+#: Cost model that chooses between the batched lanes and the single-impact path (measured on eq. 4.2 at
+#: target 1e-8 on a 2-core machine): a batched step costs LANE_STEP_COST [s] however many lanes it carries,
+#: plus LANE_COST per lane (one lane of 21 040 steps took 3.4 s, a thousand took 8.8 s); one impact solved
+#: alone costs SINGLE_COST plus SINGLE_EVAL_COST per evaluation (2.2-2.7 us, then its outcome).  Only the
+#: choice of path depends on it, never a result's accuracy.
+LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
+SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
 
 
 def scene_table(scenes) -> pd.DataFrame:
@@ -116,6 +125,49 @@ def _beyond_lanes(d: dict) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         wild = ~(np.isfinite(d["zeta"]) & np.isfinite(d["lam"]) & np.isfinite(d["w"]) & np.isfinite(d["gamma"]))
         return (d["kernel"] != None) & (wild | (d["zeta"] > LANES_ZETA_MAX))  # noqa: E711  (object array)
+
+
+def _lane_candidates(frame: pd.DataFrame, d: dict) -> np.ndarray:
+    """Scenes the batched lanes would integrate (a kernel, not the closed form's, not solved one by one)."""
+    closed_form = d["closed"] & (d["gamma"] == 0)
+    return (d["kernel"] != None) & ~closed_form & ~(_one_by_one(frame) | _beyond_lanes(d))  # noqa: E711
+
+
+def _lane_limits(d: dict, candidates: np.ndarray, target: float) -> dict:
+    """Per criterion, the most estimated steps a lane may take before the single-impact path is cheaper for it.
+
+    The lanes' cost is paid per step until the slowest lane ends (:data:`LANE_STEP_COST`), so a few slow
+    lanes (an over-damped creep under the penetration criterion: 3.4 s for one scene at zeta 64 that
+    ``simulate`` solves in 11 ms) can cost more than all the others.  The scenes are ordered by estimated
+    steps (:func:`batch.estimated_steps`) and the slowest move to the single path while that lowers the
+    estimated total.  Computed on the whole sweep (``span``) and applied per scene, so shards and chunk
+    sizes do not change which path a scene takes.
+    """
+    limits = {}
+    for separation in SEPARATION_CRITERIA:
+        mine = np.flatnonzero(candidates & (d["separation"] == separation))
+        if not mine.size:
+            continue
+        zeta, lam = d["zeta"][mine], d["lam"][mine]
+        steps = batch.estimated_steps(zeta, lam, separation, target)
+        evaluations = 400.0 + 100.0 * batch.estimated_contact_time(zeta, lam, separation)
+        order = np.argsort(-steps, kind="stable")
+        steps, alone = steps[order], SINGLE_COST + SINGLE_EVAL_COST * evaluations[order]
+        # total cost when the k slowest go alone (k = 0 .. n): theirs, plus the lanes' from the k-th on
+        total = (np.concatenate([[0.0], np.cumsum(alone)]) + np.append(steps, 0.0) * LANE_STEP_COST
+                 + np.append(np.cumsum(steps[::-1])[::-1], 0.0) * LANE_COST)
+        best = int(np.argmin(total))
+        limits[separation] = float(steps[best]) if best < steps.size else -np.inf
+    return limits
+
+
+def _costly(d: dict, candidates: np.ndarray, limits: dict, target: float) -> np.ndarray:
+    """Candidates whose estimated steps exceed their criterion's limit (:func:`_lane_limits`)."""
+    costly = np.zeros(candidates.size, bool)
+    for separation, limit in limits.items():
+        mine = np.flatnonzero(candidates & (d["separation"] == separation))
+        costly[mine] = batch.estimated_steps(d["zeta"][mine], d["lam"][mine], separation, target) > limit
+    return costly
 
 
 def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
@@ -282,7 +334,11 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
     regime = np.full(n, "none", dtype=object)
     d_all = _dimensionless(frame)
-    single = _one_by_one(frame) | _beyond_lanes(d_all)
+    whole = frame if span is None else scene_table(span)
+    d_whole = d_all if span is None else _dimensionless(whole)
+    limits = _lane_limits(d_whole, _lane_candidates(whole, d_whole), target)
+    single = _one_by_one(frame) | _beyond_lanes(d_all) | _costly(d_all, _lane_candidates(frame, d_all), limits,
+                                                                   target)
     singles = np.flatnonzero(single)
     for done, i in enumerate(singles, 1):  # stick-slip with re-slip, compliance, extremes: the single-impact path
         with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
@@ -304,9 +360,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         if span is None:
             d_span = d
         else:
-            whole = scene_table(span)
-            d_whole = _dimensionless(whole)
-            keep = ~(_one_by_one(whole) | _beyond_lanes(d_whole))
+            keep = ~(_one_by_one(whole) | _beyond_lanes(d_whole)
+                     | _costly(d_whole, _lane_candidates(whole, d_whole), limits, target))
             d_span = {key: values[keep] for key, values in d_whole.items()}
         dim = _normal_outputs(d, d_span, target, chunk_size, progress, part)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
