@@ -1,0 +1,46 @@
+"""Event location helpers against scipy: the plain-float Brent minimiser takes scipy's steps."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from sphereimpact.events import extremum, minimise
+
+FUNCTIONS = {
+    "smooth": (lambda t: -math.sin(t), 1.2, 1.9),
+    "quartic": (lambda t: (t - 0.3) ** 4 + 0.1 * t, -1.0, 2.0),
+    "edge": (lambda t: t * t, 0.5, 3.0),  # minimum at the left end
+    "kink": (lambda t: abs(t - 0.77), 0.0, 1.0),
+    "flat": (lambda t: 1.0, 0.0, 1.0),
+    "force-like": (lambda t: -(math.exp(-3 * t) * math.sin(7 * t)), 0.0, 0.5),
+}
+
+
+@pytest.mark.parametrize("name", FUNCTIONS)
+@pytest.mark.parametrize("xatol", [1e-5, 1e-14])
+def test_minimise_takes_scipys_steps(name, xatol):
+    f, a, b = FUNCTIONS[name]
+    ours, theirs = [], []
+    x, fx = minimise(lambda t: ours.append(t) or f(t), a, b, xatol)
+    res = minimize_scalar(lambda t: theirs.append(float(t)) or f(t), bounds=(a, b), method="bounded",
+                          options={"xatol": xatol})
+    assert ours == theirs and x == float(res.x) and fx == float(res.fun)
+
+
+def test_minimise_stops_after_maxfun_evaluations_as_scipy_does():
+    ours, theirs = [], []
+    minimise(lambda t: ours.append(t) or math.sin(1 / (t + 1e-3)), 0.0, 1.0, 1e-300, maxfun=5)
+    minimize_scalar(lambda t: theirs.append(float(t)) or math.sin(1 / (t + 1e-3)), bounds=(0.0, 1.0),
+                    method="bounded", options={"xatol": 1e-300, "maxiter": 5})
+    assert len(ours) == 5 and ours == theirs
+
+
+def test_extremum_refines_the_peak_of_a_sampled_function():
+    """A peak between grid points is found to the function's round-off (value) and ~1e-8 in t."""
+    grid = np.linspace(0.0, 1.0, 11)
+    t, value = extremum(lambda t: np.sin(3 * np.asarray(t)), grid, "max")
+    assert value == pytest.approx(1.0, abs=1e-15) and t == pytest.approx(math.pi / 6, abs=1e-7)
+    t, value = extremum(lambda t: np.sin(3 * np.asarray(t)), grid, "min")
+    assert (t, value) == (0.0, 0.0)  # the end point
