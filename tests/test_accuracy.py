@@ -39,7 +39,9 @@ def capped(scene):
 KNOWN = {
     # none today: over-damped, the force criterion's t_f carries 4 zeta^2 x the state's error, and the
     # tolerances are divided by that (sphereimpact.normal.conditioned_tolerances: zeta = 3 missed by 2e-9
-    # to 7e-9 before); lam = 20, zeta = 0.01 missed the COR by 2.2e-9 until the restitution restarts with
+    # to 7e-9 before); where they reach their floor, steps are bounded too (conditioned_step: zeta 30-100
+    # missed t_f by up to 2.2e-8 before, with the root on the interpolant), and the root is corrected on
+    # the landed state; lam = 20, zeta = 0.01 missed the COR by 2.2e-9 until the restitution restarts with
     # bounded steps also when maximum compression is inside the ramp band.
 }
 
@@ -50,10 +52,13 @@ def _case(lam, zeta, separation, gravity):
     return pytest.param(lam, zeta, separation, gravity, marks=marks)
 
 
+#: zeta up to 100, the contract's edge (the force criterion's t_f is the ill-conditioned output there);
+#: over-damped under the penetration criterion at zeta 3 (a creep whose capped reference costs seconds
+#: beyond it; zeta 1.5-10 measured at 5.7e-10 at worst).
 GRID = [_case(lam, zeta, separation, gravity)
         for lam in (3.0, 20.0, 75.0, 150.0)
-        for zeta in (0.01, 0.5, 3.0, 10.0)
-        for separation in ("force", "penetration") if not (separation == "penetration" and zeta >= 1)
+        for zeta in (0.01, 0.5, 3.0, 10.0, 30.0, 100.0)
+        for separation in ("force", "penetration") if not (separation == "penetration" and zeta > 3)
         for gravity in (0.0,)] + [_case(75.0, 0.056, separation, 9.80665) for separation in ("force", "penetration")]
 
 
