@@ -1,6 +1,8 @@
-"""The one-ball interpolant in lam: its tension onset, its accuracy between nodes, its fallback."""
+"""The one-ball interpolant in lam and the family interpolant of kernel-less laws: tension onset, accuracy
+between nodes, fallback, shards."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from sphereimpact import Scene
@@ -59,3 +61,53 @@ def test_failed_check_falls_back_to_integration(monkeypatch):
     monkeypatch.undo()
     direct = sweep(scenes)  # 1800 scenes: below SIMILARITY_MIN, integrated directly
     assert np.array_equal(fallback["cor"].to_numpy(), direct["cor"].to_numpy())
+
+
+LAW_BALLS = {"linear-hunt-crossley": Scene(model="linear-hunt-crossley", k=6.0e4, chi=0.05),
+             "hunt-crossley": Scene(model="hunt-crossley", k=8.8e5, chi=0.05)}
+
+
+@pytest.mark.parametrize("separation", ["force", "penetration"])
+@pytest.mark.parametrize("model", LAW_BALLS)
+def test_family_interpolant_matches_direct_solves_between_nodes(model, separation):
+    """A law without a batched kernel, interpolated in chi v_n over the chapter ball's 0.5-30 m/s: against
+    the single-impact integrator at random chi v_n, in the sweep's error measure."""
+    from sphereimpact import SolverOptions
+
+    ball = LAW_BALLS[model]
+    lo, hi = 0.05 * 0.5, 0.05 * 30.0
+    interp = similarity.FamilyInterpolant(ball, lo, hi, separation, 1e-8)
+    q = np.exp(np.random.default_rng(8).uniform(np.log(lo), np.log(hi), 12))
+    tight = SolverOptions(rtol=1e-12, atol=1e-12)
+    rows = [similarity.dimensionless_motion(ball.with_(speed=ball.speed * x / ball.family["chi_v"],
+                                                       separation=separation), tight) for x in q]
+    ref = {k: np.array([row[k] for row in rows]) for k in similarity.OUTPUTS}
+    assert similarity._errors(interp(q), ref, similarity.OUTPUTS) < 1e-9
+    assert interp.nodes <= 129
+
+
+def test_family_interpolant_needs_a_number_proportional_to_the_speed():
+    """kelvin-voigt's family (zeta) does not move with the speed: no interpolant, the sweep solves per family."""
+    with pytest.raises(similarity.InterpolationError, match="not proportional to the approach speed"):
+        similarity.FamilyInterpolant(Scene(model="kelvin-voigt"), 0.01, 0.1, "force", 1e-8)
+
+
+@pytest.mark.filterwarnings("ignore::sphereimpact.BeyondRadiusWarning")  # 30 m/s compresses past R here
+def test_family_interpolated_sweep_keeps_shards_equal_and_meets_the_contract(monkeypatch):
+    from sphereimpact import SolverOptions, simulate
+    from sphereimpact.numerics.reference import relative_errors
+    from sphereimpact.sweep import engine
+
+    scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.0)).assign(
+        model="linear-hunt-crossley", k=6.0e4, chi=0.05)
+    built = []
+    monkeypatch.setattr(engine, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
+    whole = sweep(scenes)
+    assert len(built) == 1  # 450 distinct chi v_n >= FAMILY_MIN: one interpolant
+    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    assert pd.concat(shards, ignore_index=True).equals(whole)
+    keys = ["t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t"]
+    for row in whole.iloc[::37].to_dict("records"):
+        scene = engine.scene_of({k: row[k] for k in engine.SCENE_COLUMNS})
+        ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12)).to_dict()
+        assert max(relative_errors(row, ref, scene, keys).values()) <= 1e-8

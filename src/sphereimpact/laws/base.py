@@ -106,7 +106,8 @@ class ContactLaw:
         The batched-lanes kernel of :mod:`sphereimpact.sweep.batch` that integrates this law (one of its
         ``KERNELS``, reading the family's ``zeta`` and, for ``modified``, ``lam``), or None: then sweeps
         solve one scene per similarity family with the single-impact integrator, which is exact for
-        every law.
+        every law, or interpolate in the family's last number between such solves where many scenes
+        differ only in it and it is proportional to the approach speed (:mod:`sphereimpact.sweep.engine`).
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.

@@ -117,8 +117,9 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
     million : bool
         Also time a 10^6-scene one-ball sweep.
     laws : sequence of str
-        Laws of :data:`LAW_SCENES` to time on a one-ball angle x speed sweep each (the path the engine
-        takes for them: per similarity family, or batched lanes if the law has a kernel).
+        Laws of :data:`LAW_SCENES` to time on the one-ball angle x speed sweep each (the path the engine
+        takes for them: interpolation in their family's number, per family, or batched lanes if the law
+        has a kernel).
     """
     rng = np.random.default_rng(1)
     varied = pd.DataFrame({"angle": rng.uniform(0, 89, lanes), "speed": rng.uniform(0.5, 30, lanes),
@@ -132,9 +133,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         measure("angle x speed, one ball, kelvin-voigt (closed form)", one_ball.assign(model="kelvin-voigt"), None,
                 **options),
     ]
-    small = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.0))
-    for law in laws:
-        rows.append(measure(f"angle x speed, one ball, {law}", small.assign(model=law, **LAW_SCENES[law]), None,
+    for law in laws:  # the modified law's one-ball grid: a law without a kernel is interpolated in chi v_n
+        rows.append(measure(f"angle x speed, one ball, {law}", one_ball.assign(model=law, **LAW_SCENES[law]), None,
                             **options))
     if million:
         rows.append(measure("10^6 scenes, modified, angle x speed",

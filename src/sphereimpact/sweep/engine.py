@@ -11,8 +11,12 @@ Each scene takes the cheapest path that its law declares and that is exact for i
 3. other scenes of a law with a batched kernel, without tangential gravity: the batched integrator
    (:mod:`.batch`), in chunks;
 4. a law without a kernel, without tangential gravity: its similarity family (``ContactLaw.family``)
-   fixes the dimensionless normal motion, so the single-impact integrator solves one scene per distinct
-   family (and gamma and criterion) and the others are scaled from it;
+   fixes the dimensionless normal motion.  Without gravity, where at least FAMILY_MIN scenes share all
+   but the family's last number (and the criterion), and that number is proportional to the approach
+   speed (chi v_n of the Hunt-Crossley laws), a Chebyshev interpolant in it, built like the one in lam
+   from single-impact solves and checked (:class:`.similarity.FamilyInterpolant`); otherwise the
+   single-impact integrator solves one scene per distinct family (and gamma and criterion) and the
+   others are scaled from it;
 5. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
    (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene; so too the scenes the
    lanes would solve at more cost than alone (a cost model on the estimated steps: an over-damped creep
@@ -34,13 +38,11 @@ import pandas as pd
 
 from ..events import ImpactError
 from ..laws import LAWS, PARAMETER_NAMES
-from ..normal import IntegratedNormal
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns
 from ..solve import BeyondRadiusWarning, simulate
-from ..tangential import PositiveImpulse
 from . import batch, closed
-from .similarity import InterpolationError, LambdaInterpolant
+from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
 
 #: Scene parameters, with the single-impact defaults for missing columns.
 SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
@@ -51,6 +53,10 @@ SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega
 #: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each (measured for the
 #: chapter's ball: 43 ms against 47 ms at 2000 scenes, 42 against 29 ms at 1000).
 SIMILARITY_MIN = 2000
+#: Fewest distinct values of a kernel-less law's last family number (scenes sharing its other numbers and
+#: the criterion) for which interpolating in it beats solving each family: a build solves 33 to 129 nodes
+#: one by one (chi v_n of the chapter's ball from 0.5 to 30 m/s: 65 plus a tension piece).
+FAMILY_MIN = 200
 #: Largest damping ratio the batched lanes, the similarity path and the closed form take (the accepted
 #: domain's edge, where their contract is tested); beyond it a lane's steps, bounded by the damping, grow
 #: without bound (an over-damped creep back to delta = 0 under the penetration criterion), so such scenes
@@ -227,14 +233,48 @@ def _interpolants(d: dict, target: float) -> dict:
     return interpolants
 
 
-def _normal_outputs(d: dict, span: dict, target: float, chunk_size: int, progress, frame: pd.DataFrame) -> dict:
+def _family_groups(d: dict) -> dict:
+    """(model, the family's other numbers, criterion) -> indices of the kernel-less weightless scenes of
+    ``d`` with a positive last family number, the one :class:`FamilyInterpolant` interpolates in."""
+    groups: dict = {}
+    for i in np.flatnonzero((d["kernel"] == None) & (d["gamma"] == 0)):  # noqa: E711  (object array)
+        family = d["family"][i]
+        if len(family) > 1 and family[-1] > 0:
+            groups.setdefault((*family[:-1], d["separation"][i]), []).append(i)
+    return groups
+
+
+def _family_interpolants(span: dict, span_frame: pd.DataFrame, target: float) -> dict:
+    """Group key (see :func:`_family_groups`) -> FamilyInterpolant, for the span's groups with at least
+    FAMILY_MIN distinct numbers, built from the group's first scene in the span and its whole range."""
+    built = {}
+    for key, rows in _family_groups(span).items():
+        q = np.array([span["family"][i][-1] for i in rows])
+        if np.unique(q).size < FAMILY_MIN:
+            continue
+        try:
+            built[key] = FamilyInterpolant(scene_of(span_frame.iloc[rows[0]].to_dict()), float(q.min()),
+                                           float(q.max()), key[-1], target)
+        except InterpolationError:  # such a group is solved family by family
+            continue
+    return built
+
+
+def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float, chunk_size: int, progress,
+                    frame: pd.DataFrame) -> dict:
     """Dimensionless normal outputs of the scenes ``frame`` (``d`` as :func:`_dimensionless` gives them),
-    interpolants built on the scenes ``span``."""
+    interpolants built on the scenes ``span`` (whose table is ``span_frame``)."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(zeta.size, bool)
-    by_family = np.flatnonzero(d["kernel"] == None)  # noqa: E711  (elementwise on an object array)
+    family_interpolants = _family_interpolants(span, span_frame, target)
+    for key, rows in _family_groups(d).items():
+        if key in family_interpolants:
+            rows = np.array(rows)
+            _put(out, rows, family_interpolants[key](np.array([d["family"][i][-1] for i in rows])))
+            todo[rows] = False
+    by_family = np.flatnonzero((d["kernel"] == None) & todo)  # noqa: E711  (elementwise on an object array)
     if by_family.size:
         _put(out, by_family, _family_outputs(frame.iloc[by_family], d["family"][by_family],
                                              d["gamma"][by_family], target))
@@ -274,17 +314,8 @@ def _family_outputs(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, 
     first: dict = {}
     for i, key in enumerate(keys):
         first.setdefault(key, i)
-    solved = {key: _dimensionless_motion(scene_of(frame.iloc[i].to_dict()), options) for key, i in first.items()}
+    solved = {key: dimensionless_motion(scene_of(frame.iloc[i].to_dict()), options) for key, i in first.items()}
     return {name: np.array([solved[key][name] for key in keys]) for name in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
-
-
-def _dimensionless_motion(scene: Scene, options: SolverOptions) -> dict:
-    """tau_m, x_m, tau_f, y_f and y_p (1 - J+ / (m v_n), J+ the impulse of max(P, 0)) of one scene."""
-    normal = IntegratedNormal(scene, options)
-    w, v = scene.frequency, scene.v_normal
-    positive = float(PositiveImpulse(normal)(normal.t_f))
-    return {"tau_m": normal.t_m * w, "x_m": normal.delta_m * w / v, "tau_f": normal.t_f * w,
-            "y_f": float(normal.state(normal.t_f)[1]) / v, "y_p": 1.0 - positive / (scene.mass * v)}
 
 
 def _put(out: dict, where, values: dict) -> None:
@@ -358,12 +389,12 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         part = frame[rest]
         d = {key: values[rest] for key, values in d_all.items()}
         if span is None:
-            d_span = d
+            d_span, span_part = d, part
         else:
             keep = ~(_one_by_one(whole) | _beyond_lanes(d_whole)
                      | _costly(d_whole, _lane_candidates(whole, d_whole), limits, target))
-            d_span = {key: values[keep] for key, values in d_whole.items()}
-        dim = _normal_outputs(d, d_span, target, chunk_size, progress, part)
+            d_span, span_part = {key: values[keep] for key, values in d_whole.items()}, whole[keep]
+        dim = _normal_outputs(d, d_span, span_part, target, chunk_size, progress, part)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
         alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
