@@ -36,6 +36,19 @@ CLI = [
     (["simulate", "--speed", "fast"], 2, "argument --speed: expected a number"),
     (["simulate", "--separation", "sometimes"], 2, "separation must be one of force, penetration"),
     (["simulate", "--speed", "1e4", "--strict"], 2, "maximum compression delta_m = 14.3 m exceeds the radius"),
+    (["simulate", "--speed", "1e300", "--angle", "60"], 2,
+     "speed must be below 1.341e+154 m/s (its square overflows double precision); got 1e+300"),
+    (["simulate", "--diameter", "1e300"], 2, "diameter must be below 1.341e+154 m"),
+    (["simulate", "--mass", "1e300", "--speed", "1e10"], 2, "mass and speed: the kinetic energy m v^2 overflows"),
+    (["simulate", "--mass", "2.62e181", "--speed", "8.54e-252"], 2,
+     "the contact's acceleration scale v_n / T = 0 is outside double precision's normal range"),
+    (["simulate", "--model", "hertz", "--k", "2.49e-66", "--mass", "1.84e-75", "--speed", "6.75e-206"], 2,
+     "the contact time T = nan is outside double precision's normal range"),
+    (["simulate", "--b", "1.86e252", "--model", "kelvin-voigt", "--separation", "penetration", "--angle", "66"], 2,
+     "slow rate omega_n / (2 zeta) underflows double precision"),
+    (["simulate", "--diameter", "5.91e126", "--k", "1.68e-96", "--b", "2.14e82", "--angle", "4.8", "--gravity",
+      "2e-201", "--model", "kelvin-voigt"], 2, "the computation left double precision"),
+    (["sweep", "--speed", "1e300", "--out", "OUT"], 2, "speed must be below 1.341e+154 m/s"),
     (["fly"], 2, "invalid choice: 'fly'"),
     ([], 2, "the following arguments are required: command"),
     (["sweep", "--angle", "-10:10:1", "--out", "OUT"], 2,
@@ -286,3 +299,15 @@ def test_damping_that_stops_the_ball_at_first_touch_is_named():
     refusal names the damping number instead of only blaming the tolerance."""
     with pytest.raises(ImpactError, match=r"chi_v = 3e\+300.*stops the ball within round-off"):
         simulate(Scene(model="hunt-crossley", modulus=1e7, chi=1e300))
+
+
+def test_a_ramp_that_underflows_is_an_elastic_contact():
+    """lam = c v_n / (omega_n R) underflows to 0 (2e-221 m/s on a 1e135 m ball): the ramp is 0 throughout,
+    so eq. 4.2 is undamped, COR 1 (the band restart divided by lam before)."""
+    out = simulate(Scene(speed=2.11e-221, diameter=1.36e135))
+    assert out.cor == pytest.approx(1.0, abs=1e-9)
+
+
+def test_a_sweep_row_whose_scales_leave_double_precision_is_named():
+    with pytest.raises(ValueError, match=r"acceleration scale v_n / T = 0 .* \(row 1\)"):
+        sweep({"mass": [1.0, 2.62e181], "speed": [3.0, 8.54e-252], "angle": [10.0, 0.64]})

@@ -79,6 +79,9 @@ class ClosedFormNormal(NormalMotion):
             root = math.sqrt(zeta * zeta - 1.0)
             self._under, self._freq = False, w * root
             self._slow = -w / (zeta + root)
+            if not self._slow < 0.0:  # w / (2 zeta) underflowed
+                raise ImpactError(f"the over-damped contact's slow rate omega_n / (2 zeta) underflows double "
+                                  f"precision (zeta = {zeta:.3g}): outside what the model computes")
             t_scan = 60.0 / -self._slow
         if self._offset == 0.0:  # without gravity the events are in closed form too
             self.t_m, self.t_f = self._events()

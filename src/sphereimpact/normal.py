@@ -287,6 +287,8 @@ class IntegratedNormal(NormalMotion):
 
         ramp_rate = scene.law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale  # u = lam x in the ramp band
+        if lam == 0.0:  # underflowed: the ramp is 0 throughout (an elastic contact), no band to resolve
+            lam = None
         events = [max_compression, separation]
         if lam is not None:
             def band_exit(tau, z):  # falls through 0 once in restitution inside the band

@@ -100,6 +100,55 @@ def _check(name: str, value, allowed: str, ok) -> float:
     return number
 
 
+#: sqrt of the largest double: the largest speed or diameter whose square is finite.
+SQUARE_LIMIT = math.sqrt(np.finfo(float).max)
+
+
+def magnitude_problem(mass, speed, diameter) -> str | None:
+    """Why squares of these (arrays, or numbers) would overflow double precision, naming the parameters and
+    the first bad row, or None.  The outputs hold v^2, R^2, m v^2 and I = alpha m R^2 (energies, spin):
+    beyond double precision they are inf or NaN, never a result."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        m, v, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, speed, diameter)))
+        checks = (("speed", v * v, f"speed must be below {SQUARE_LIMIT:.4g} m/s (its square overflows double "
+                                   "precision)", v),
+                  ("diameter", d * d, f"diameter must be below {SQUARE_LIMIT:.4g} m (its square overflows "
+                                      "double precision)", d),
+                  ("mass, speed", m * v * v, "mass and speed: the kinetic energy m v^2 overflows double precision "
+                                             "(lower either)", None),
+                  ("mass, diameter", m * (0.5 * d) * (0.5 * d), "mass and diameter: the moment of inertia "
+                                                                "alpha m R^2 overflows double precision (lower "
+                                                                "either)", None))
+        for _, square, message, value in checks:
+            bad = ~np.isfinite(square)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                row = f" (row {i})" if m.size > 1 else ""
+                got = f"; got {float(value[i])!r}" if value is not None else \
+                    f"; got mass {float(m[i])!r}, speed {float(v[i])!r}, diameter {float(d[i])!r}"
+                return message + got + row
+    return None
+
+
+def scale_problem(mass, v_normal, frequency, law, rows=None) -> str | None:
+    """Which of the contact's scales leaves double precision's normal range (arrays or numbers; the first
+    bad row named, as ``rows`` numbers them if given), or None.  The motion is solved in x = delta / (v_n T), y = delta_dot / v_n, tau = t / T,
+    with forces in units of m v_n / T (T = 1 / frequency, the law's contact time)."""
+    with np.errstate(all="ignore"):
+        m, v, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, v_normal, frequency)))
+        scales = {"contact time T": 1.0 / w, "contact's deflection scale v_n T": v / w,
+                  "contact's acceleration scale v_n / T": w * v, "contact's force scale m v_n / T": m * w * v}
+        for what, value in scales.items():
+            bad = ~(np.isfinite(value) & (value >= np.finfo(float).tiny))
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                uses = ", ".join(["mass", "speed", "angle", *law.parameter_names])
+                row = f" (row {i if rows is None else int(rows[i])})" if value.size > 1 or rows is not None else ""
+                return (f"the {what} = {float(value[i]):.3g} is outside double precision's normal range "
+                        f"(it follows from {uses}){row}: outside what the model computes")
+    return None
+
+
 def _check_choice(name: str, value, choices) -> None:
     if value not in choices:
         raise ValueError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
@@ -225,6 +274,10 @@ def check_columns(columns: dict) -> dict:
         else:
             raise ValueError(f"unknown scene parameter {name!r}; expected one of "
                              f"{', '.join([*RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
+    if all(name in columns for name in ("mass", "speed", "diameter")):
+        problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])
+        if problem:
+            raise ValueError(problem)
     if "model" not in columns or "diameter" not in columns:
         return {}
     models = np.asarray(columns["model"], dtype=object).ravel()
@@ -309,6 +362,9 @@ class Scene:
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
             object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
+        problem = magnitude_problem(self.mass, self.speed, self.diameter)
+        if problem:
+            raise ValueError(problem)
         _check_choice("model", self.model, tuple(LAWS))
         _check_choice("separation", self.separation, SEPARATION_CRITERIA)
         given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
@@ -317,6 +373,7 @@ class Scene:
         for name in PARAMETER_NAMES:
             value = float(values[name])
             object.__setattr__(self, name, None if math.isnan(value) else value)
+        self._check_scales()
         weight = self.mass * self.g_normal  # pressing the ball into the flat [N]
         if weight > 0 and float(self.force(self.radius, 0.0)) < weight:  # the spring alone cannot hold it at R
             raise ValueError(f"gravity: the ball's weight alone compresses the contact beyond its radius "
@@ -324,6 +381,16 @@ class Scene:
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
         self._resolve_kappa()
+
+    def _check_scales(self) -> None:
+        with np.errstate(all="ignore"):
+            try:
+                w = np.asarray(self.law.frequency(self), dtype=float)
+            except ArithmeticError:  # Python floats raise where numpy returns 0 or inf
+                w = np.nan
+        problem = scale_problem(self.mass, self.v_normal, w, self.law)
+        if problem:
+            raise ValueError(problem)
 
     def _resolve_kappa(self) -> None:
         """Check the tangential model against the law and set ``kappa`` from whichever way it was given."""

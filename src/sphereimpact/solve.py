@@ -138,19 +138,25 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                         f"got {type(options).__name__}")
     if body not in BODIES:
         raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
+    if body == "planar" and scene.tangential != "rigid":
+        raise ValueError(f"body 'planar' has the rigid tangential contact only; tangential "
+                         f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
+                         "not depend on friction)")
     start = time.perf_counter()
-    if body == "reduced":
-        motion = ReducedMotion(normal_motion(scene, options), options)
-    else:
-        from .planar import PlanarMotion
+    try:
+        if body == "reduced":
+            motion = ReducedMotion(normal_motion(scene, options), options)
+        else:
+            from .planar import PlanarMotion
 
-        if scene.tangential != "rigid":
-            raise ValueError(f"body 'planar' has the rigid tangential contact only; tangential "
-                             f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
-                             "not depend on friction)")
-
-        motion = PlanarMotion(scene, options)
-    outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+            motion = PlanarMotion(scene, options)
+        outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    except ImpactError:
+        raise
+    except (ArithmeticError, RuntimeError) as err:  # a safety net: arithmetic that left double precision
+        raise ImpactError(f"the computation left double precision ({type(err).__name__}: {err}; "
+                          f"{describe_family(scene)}criterion '{scene.separation}'): the scene lies outside what "
+                          "the model computes") from None
     bad = [key for key, value in outcome.to_dict().items() if isinstance(value, float) and not math.isfinite(value)]
     if bad:  # never a NaN in a result
         raise ImpactError(f"no finite {', '.join(bad)} ({describe_family(scene)}criterion '{scene.separation}'): "

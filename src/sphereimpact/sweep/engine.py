@@ -39,7 +39,8 @@ import pandas as pd
 from ..events import ImpactError
 from ..laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..scene import SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns
+from ..scene import (SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns,
+                     scale_problem)
 from ..solve import BeyondRadiusWarning, simulate
 from . import batch, closed
 from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
@@ -201,16 +202,21 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
             raise ValueError(f"model {model!r} declares closed form {law.closed_form!r}, which the sweep does not "
                              f"have ({closed.CLOSED_FORM})")
         view = _law_view(frame.iloc[rows], v_n[rows])
-        w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
-        numbers = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
-                   for name, value in law.family(view).items()}
+        with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
+            w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
+            numbers = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
+                       for name, value in law.family(view).items()}
+        problem = scale_problem(view.mass, v_n[rows], w[rows], law, rows)
+        if problem:
+            raise ValueError(problem)
         closed_form[rows], kernel[rows] = law.closed_form, law.kernel
         if law.kernel is not None:  # the batched kernels read zeta and (modified) lam
             zeta[rows] = numbers["zeta"]
             lam[rows] = numbers.get("lam", 0.0)
         family[rows] = [(model, *values) for values in zip(*numbers.values())] if numbers else [(model,)] * rows.size
-    return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
-            "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),
+    with np.errstate(all="ignore"):  # w v_n is a normal double (scale_problem), gravity may be 0
+        gamma = frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n)
+    return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam, "gamma": gamma,
             "modified": kernel == "modified", "closed": closed_form == closed.CLOSED_FORM, "kernel": kernel,
             "family": family, "separation": frame["separation"].to_numpy()}
 
