@@ -355,7 +355,8 @@ class IntegratedNormal(NormalMotion):
         # interpolant: that interpolant is one order lower and its error is not controlled.  Read at t_f it
         # erred by 1.4e-7 on the COR past a Hertz spring's C^1 continuation (Hunt-Crossley, chi v_n = 0.925,
         # rtol 1e-10), and by 7.4e-10 (against 5e-11 on t_f) on a smooth linear Hunt-Crossley contact.  The
-        # last step is integrated again from its start, in one step (12 evaluations) of its known length.
+        # last step is integrated again from its start, in one step of its known length (16 evaluations with
+        # its dense output).
         # The root itself was found on that interpolant.  Where the separation function is a small
         # difference of large terms (over-damped under the force criterion, P = x + 2 zeta y r) its error
         # moved t_f by 2.2e-8 at zeta 100, lam 150: Newton's method on the landed state corrects it, with the

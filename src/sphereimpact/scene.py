@@ -110,16 +110,13 @@ def magnitude_problem(mass, speed, diameter) -> str | None:
     beyond double precision they are inf or NaN, never a result."""
     with np.errstate(over="ignore", invalid="ignore"):
         m, v, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, speed, diameter)))
-        checks = (("speed", v * v, f"speed must be below {SQUARE_LIMIT:.4g} m/s (its square overflows double "
-                                   "precision)", v),
-                  ("diameter", d * d, f"diameter must be below {SQUARE_LIMIT:.4g} m (its square overflows "
-                                      "double precision)", d),
-                  ("mass, speed", m * v * v, "mass and speed: the kinetic energy m v^2 overflows double precision "
-                                             "(lower either)", None),
-                  ("mass, diameter", m * (0.5 * d) * (0.5 * d), "mass and diameter: the moment of inertia "
-                                                                "alpha m R^2 overflows double precision (lower "
-                                                                "either)", None))
-        for _, square, message, value in checks:
+        checks = ((v * v, f"speed must be below {SQUARE_LIMIT:.4g} m/s (its square overflows double precision)", v),
+                  (d * d, f"diameter must be below {SQUARE_LIMIT:.4g} m (its square overflows double precision)", d),
+                  (m * v * v, "mass and speed: the kinetic energy m v^2 overflows double precision (lower either)",
+                   None),
+                  (m * (0.5 * d) * (0.5 * d), "mass and diameter: the moment of inertia alpha m R^2 overflows double "
+                                              "precision (lower either)", None))
+        for square, message, value in checks:
             bad = ~np.isfinite(square)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
@@ -132,8 +129,9 @@ def magnitude_problem(mass, speed, diameter) -> str | None:
 
 def scale_problem(mass, v_normal, frequency, law, rows=None) -> str | None:
     """Which of the contact's scales leaves double precision's normal range (arrays or numbers; the first
-    bad row named, as ``rows`` numbers them if given), or None.  The motion is solved in x = delta / (v_n T), y = delta_dot / v_n, tau = t / T,
-    with forces in units of m v_n / T (T = 1 / frequency, the law's contact time)."""
+    bad row named, as ``rows`` numbers them if given), or None.  The motion is solved in
+    x = delta / (v_n T), y = delta_dot / v_n, tau = t / T, with forces in units of m v_n / T
+    (T = 1 / frequency, the law's contact time)."""
     with np.errstate(all="ignore"):
         m, v, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, v_normal, frequency)))
         scales = {"contact time T": 1.0 / w, "contact's deflection scale v_n T": v / w,

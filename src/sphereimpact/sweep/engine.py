@@ -214,9 +214,8 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
             zeta[rows] = numbers["zeta"]
             lam[rows] = numbers.get("lam", 0.0)
         family[rows] = [(model, *values) for values in zip(*numbers.values())] if numbers else [(model,)] * rows.size
-    with np.errstate(all="ignore"):  # w v_n is a normal double (scale_problem), gravity may be 0
-        gamma = frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n)
-    return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam, "gamma": gamma,
+    return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
+            "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),  # w v_n: normal (scale_problem)
             "modified": kernel == "modified", "closed": closed_form == closed.CLOSED_FORM, "kernel": kernel,
             "family": family, "separation": frame["separation"].to_numpy()}
 
