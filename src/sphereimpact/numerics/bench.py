@@ -15,7 +15,7 @@ from ..scene import Scene, SolverOptions
 from ..solve import simulate
 from .handwritten import handwritten
 from .reference import reference, worst_error
-from .timing import median_seconds
+from .timing import interleaved_seconds
 from .workprecision import TARGET
 
 #: Tolerances tried for a per-scene contender, loosest first: the first whose error meets the one it is
@@ -33,10 +33,12 @@ LAW_SCENES = {
 }
 
 
-def per_call_seconds(call, repeats: int) -> float:
-    """Median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call]
-    (the sweep benchmark's protocol: garbage collector off while timed)."""
-    return median_seconds(lambda: [call() for _ in range(BATCH)], repeats) / BATCH
+def per_call_seconds(calls: dict, repeats: int) -> dict:
+    """Name -> median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call],
+    the contenders ``calls`` (name -> callable) timed in turn within each run (:func:`interleaved_seconds`;
+    garbage collector off while timed)."""
+    batches = {name: (lambda call=call: [call() for _ in range(BATCH)]) for name, call in calls.items()}
+    return {name: seconds / BATCH for name, seconds in interleaved_seconds(batches, repeats).items()}
 
 
 def bench_scenes(chapter: dict[str, Scene], domain: bool = True, laws=tuple(LAW_SCENES)) -> dict[str, Scene]:
@@ -73,8 +75,9 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
             hand_error = worst_error(hand, ref, scene)
             if hand_error <= sim_error:
                 break
-        sim_time = per_call_seconds(lambda: simulate(scene, default), repeats)
-        hand_time = per_call_seconds(lambda: handwritten(scene, rtol), repeats)
+        timed = per_call_seconds({"simulate": lambda: simulate(scene, default),
+                                  "handwritten": lambda: handwritten(scene, rtol)}, repeats)
+        sim_time, hand_time = timed["simulate"], timed["handwritten"]
         base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed,
                 "repeats": repeats, "batch": BATCH}
         rows.append(base | {"contender": "simulate", "method": out.method, "rtol": out.rtol,
@@ -103,11 +106,11 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
         options = resolve_method(scene, default)
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)
-        times = {"normal": per_call_seconds(lambda: normal_motion(scene, options), repeats),
-                 "tangential": per_call_seconds(lambda: ReducedMotion(normal, options), repeats),
-                 "outcome": per_call_seconds(lambda: Outcome.from_motion(motion, 0.0), repeats),
-                 "simulate": per_call_seconds(lambda: simulate(scene, default), repeats),
-                 "handwritten": per_call_seconds(lambda: handwritten(scene, default.rtol), repeats)}
+        times = per_call_seconds({"normal": lambda: normal_motion(scene, options),
+                                  "tangential": lambda: ReducedMotion(normal, options),
+                                  "outcome": lambda: Outcome.from_motion(motion, 0.0),
+                                  "simulate": lambda: simulate(scene, default),
+                                  "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
         rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"]}
                  for stage, seconds in times.items()]
     return pd.DataFrame(rows)

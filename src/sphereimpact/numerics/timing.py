@@ -20,21 +20,32 @@ def median_time(call, budget: float = 0.3, max_repeats: int = 7) -> tuple[float,
             return statistics.median(times), result
 
 
+def _timed(call) -> float:
+    """Wall time [s] of one call with the cyclic garbage collector off, as :mod:`timeit` does: its passes
+    land at random in one contender or another and moved per-scene timings by up to 1.8x between runs."""
+    gc.collect()
+    gc.disable()
+    try:
+        start = time.perf_counter()
+        call()
+        return time.perf_counter() - start
+    finally:
+        gc.enable()
+
+
 def median_seconds(call, repeats: int) -> float:
     """Median wall time [s] of ``repeats`` complete calls: the one protocol of every contender of the
-    speed benchmarks (``numerics.bench``, ``sweep.bench``).
+    speed benchmarks (``numerics.bench``, ``sweep.bench``), garbage collector off (:func:`_timed`)."""
+    return statistics.median(_timed(call) for _ in range(repeats))
 
-    The cyclic garbage collector is off while a call is timed, as :mod:`timeit` does: its passes land at
-    random in one contender or another and moved per-scene timings by up to 1.8x between runs.
-    """
-    times = []
+
+def interleaved_seconds(calls: dict, repeats: int) -> dict:
+    """Median wall time [s] of each of ``calls`` (name -> callable), the contenders timed in turn within each
+    repeat (protocol of :func:`median_seconds` otherwise): a slow spell of a shared machine then falls on
+    all of them alike.  Timed one after the other, simulate and the script it is compared with once came
+    out 0.94 and 1.48 of each other in two runs a minute apart."""
+    times = {name: [] for name in calls}
     for _ in range(repeats):
-        gc.collect()
-        gc.disable()
-        try:
-            start = time.perf_counter()
-            call()
-            times.append(time.perf_counter() - start)
-        finally:
-            gc.enable()
-    return statistics.median(times)
+        for name, call in calls.items():
+            times[name].append(_timed(call))
+    return {name: statistics.median(values) for name, values in times.items()}
