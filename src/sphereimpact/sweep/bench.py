@@ -9,8 +9,8 @@ is no larger than the engine's (equal accuracy, shown in the same row):
   speed-up the project states is against this one;
 - ``simulate``: the package's single-impact path, which adds histories, force extremes and checks.
 
-One timing protocol for all three: the median of ``repeats`` complete runs (the engine builds its
-interpolants anew in every run; nothing is cached).  A contender that reaches the engine's error at no
+One timing protocol for all three: the median of ``repeats`` complete runs, the three timed in turn within
+each repeat (the engine builds its interpolants anew in every run; nothing is cached).  A contender that reaches the engine's error at no
 tolerance on the ladder is flagged (``<contender>_reached`` False) and timed at the tightest.
 Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).
 """
@@ -26,7 +26,7 @@ import pandas as pd
 from ..numerics.bench import LAW_SCENES, TOLERANCES
 from ..numerics.handwritten import handwritten
 from ..numerics.reference import relative_errors
-from ..numerics.timing import median_seconds
+from ..numerics.timing import interleaved_seconds
 from ..scene import Scene, SolverOptions
 from ..solve import BeyondRadiusWarning, simulate
 from .engine import SCENE_COLUMNS, grid, scene_of, sweep
@@ -49,21 +49,20 @@ def _worst(outputs, refs, scenes) -> float:
     return max(max(relative_errors(o, r, s, KEYS).values()) for o, r, s in zip(outputs, refs, scenes))
 
 
-def per_scene(solve, scenes: list[Scene], refs: list[dict], error: float, repeats: int) -> dict:
-    """The loosest tolerance at which ``solve`` meets ``error`` on ``scenes``, its worst error and its time.
+def per_scene(solve, scenes: list[Scene], refs: list[dict], error: float) -> dict:
+    """The loosest tolerance at which ``solve`` meets ``error`` on ``scenes``, and its worst error there.
 
     Returns
     -------
     dict
         ``rtol``, ``error`` (worst on the sample), ``reached`` (False: no tolerance met ``error``; timed at
-        the tightest), ``seconds`` (per scene, median of ``repeats`` complete runs over the sample).
+        the tightest).
     """
     for rtol in TOLERANCES:
         worst = _worst([solve(s, rtol) for s in scenes], refs, scenes)
         if worst <= error:
             break
-    seconds = median_seconds(lambda: [solve(s, rtol) for s in scenes], repeats) / len(scenes)
-    return {"rtol": rtol, "error": worst, "reached": bool(worst <= error), "seconds": seconds}
+    return {"rtol": rtol, "error": worst, "reached": bool(worst <= error)}
 
 
 def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sample_size: int = 60,
@@ -87,18 +86,23 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
     del table  # a large table held while the per-scene contenders are timed slowed them unevenly
     refs = [simulate(s, REFERENCE).to_dict() for s in sample]
     error = _worst(outputs, refs, sample)
-    seconds = median_seconds(lambda: sweep(scenes), repeats)
+    chosen = {label: per_scene(solve, sample, refs, max(error, TOLERANCES[-1])) for label, solve in CONTENDERS.items()}
+    # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
+    calls = {"engine": lambda: sweep(scenes)} | {
+        label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
+        for label, solve in CONTENDERS.items()}
+    seconds = interleaved_seconds(calls, repeats)
     tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
     sweep(scenes)
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    throughput = n / seconds
-    row = {"sweep": name, "scenes": n, "seconds": seconds, "throughput": throughput, "worst_error": error,
+    throughput = n / seconds["engine"]
+    row = {"sweep": name, "scenes": n, "seconds": seconds["engine"], "throughput": throughput, "worst_error": error,
            "repeats": repeats, "sample": len(sample)}
-    for label, solve in CONTENDERS.items():
-        got = per_scene(solve, sample, refs, max(error, TOLERANCES[-1]), repeats)
+    for label, got in chosen.items():
+        per = seconds[label] / len(sample)
         row |= {f"{label}_rtol": got["rtol"], f"{label}_error": got["error"], f"{label}_reached": got["reached"],
-                f"{label}_throughput": 1.0 / got["seconds"], f"speedup_over_{label}": throughput * got["seconds"]}
+                f"{label}_throughput": 1.0 / per, f"speedup_over_{label}": throughput * per}
     return row | {"target_speedup": target_speedup, "peak_memory_mb": peak / 2**20}
 
 
