@@ -52,7 +52,8 @@ def _case(lam, zeta, separation, gravity):
     return pytest.param(lam, zeta, separation, gravity, marks=marks)
 
 
-#: lam over the accepted k and speed (1e3-1e9 N/m, 0.1-30 m/s) and zeta up to 100, the contract's edge (the force criterion's t_f is the ill-conditioned output there);
+#: lam over the accepted k and speed (1e3-1e9 N/m, 0.1-30 m/s) and zeta up to 100, the contract's edge
+#: (the force criterion's t_f is the ill-conditioned output there);
 #: over-damped under the penetration criterion at zeta 3 up to lam 150 (a creep whose capped reference
 #: costs seconds beyond; zeta 1.5-10 and lam 3-1150 measured at 5.7e-10 at worst).
 GRID = [_case(lam, zeta, separation, gravity)
