@@ -167,13 +167,11 @@ def test_slow_lanes_go_to_the_single_impact_path():
     """The lanes pay per step until their slowest lane ends: one zeta = 64 creep took 3.4 s there against
     11 ms alone.  The cost model sends such scenes alone, keeps a crowd of them in lanes (where the per-step
     cost is shared), and leaves ordinary scenes in lanes."""
-    from sphereimpact.sweep.engine import _costly, _dimensionless, _lane_candidates, _lane_limits, scene_table
+    from sphereimpact.sweep.engine import _dimensionless, _solved_alone, scene_table
 
     def costly(scenes):
         frame = scene_table(scenes)
-        d = _dimensionless(frame)
-        candidates = _lane_candidates(frame, d)
-        return _costly(d, candidates, _lane_limits(d, candidates, CONTRACT), CONTRACT)
+        return _solved_alone(frame, _dimensionless(frame), CONTRACT)[0]
 
     mixed = costly(_stiff_mix())
     assert mixed[-2:].all() and not mixed[:-2].any()

@@ -134,47 +134,47 @@ def _beyond_lanes(d: dict) -> np.ndarray:
         return (d["kernel"] != None) & (wild | (d["zeta"] > LANES_ZETA_MAX))  # noqa: E711  (object array)
 
 
-def _lane_candidates(frame: pd.DataFrame, d: dict) -> np.ndarray:
-    """Scenes the batched lanes would integrate (a kernel, not the closed form's, not solved one by one)."""
-    closed_form = d["closed"] & (d["gamma"] == 0)
-    return (d["kernel"] != None) & ~closed_form & ~(_one_by_one(frame) | _beyond_lanes(d))  # noqa: E711
-
-
-def _lane_limits(d: dict, candidates: np.ndarray, target: float) -> dict:
-    """Per criterion, the most estimated steps a lane may take before the single-impact path is cheaper for it.
+def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
+    """The most estimated steps a lane may take before the single-impact path is cheaper for it, given each
+    lane's estimated steps and cost alone [s] (one criterion).
 
     The lanes' cost is paid per step until the slowest lane ends (:data:`LANE_STEP_COST`), so a few slow
     lanes (an over-damped creep under the penetration criterion: 3.4 s for one scene at zeta 64 that
     ``simulate`` solves in 11 ms) can cost more than all the others.  The scenes are ordered by estimated
-    steps (:func:`batch.estimated_steps`) and the slowest move to the single path while that lowers the
-    estimated total.  Computed on the whole sweep (``span``) and applied per scene, so shards and chunk
-    sizes do not change which path a scene takes.
+    steps and the slowest move to the single path while that lowers the estimated total.
     """
-    limits = {}
+    order = np.argsort(-steps, kind="stable")
+    steps, alone = steps[order], alone[order]
+    # total cost when the k slowest go alone (k = 0 .. n): theirs, plus the lanes' from the k-th on
+    total = (np.concatenate([[0.0], np.cumsum(alone)]) + np.append(steps, 0.0) * LANE_STEP_COST
+             + np.append(np.cumsum(steps[::-1])[::-1], 0.0) * LANE_COST)
+    best = int(np.argmin(total))
+    return float(steps[best]) if best < steps.size else -np.inf
+
+
+def _solved_alone(frame: pd.DataFrame, d: dict, target: float, limits: dict | None = None) -> tuple[np.ndarray, dict]:
+    """(scenes solved one by one, the lane limit per criterion).
+
+    One by one: :func:`_one_by_one` and :func:`_beyond_lanes` scenes, and the scenes the batched lanes would
+    integrate (a kernel, not the closed form's) whose estimated steps (:func:`batch.estimated_steps`)
+    exceed their criterion's limit (:func:`_lane_limit`).  The limits are computed on these scenes unless
+    ``limits`` is given: a shard takes the whole sweep's (``span``), so shards and chunk sizes do not change
+    which path a scene takes.
+    """
+    alone = _one_by_one(frame) | _beyond_lanes(d)
+    lanes = (d["kernel"] != None) & ~(d["closed"] & (d["gamma"] == 0)) & ~alone  # noqa: E711  (object array)
+    computed = {}
     for separation in SEPARATION_CRITERIA:
-        mine = np.flatnonzero(candidates & (d["separation"] == separation))
+        mine = np.flatnonzero(lanes & (d["separation"] == separation))
         if not mine.size:
             continue
         zeta, lam = d["zeta"][mine], d["lam"][mine]
         steps = batch.estimated_steps(zeta, lam, separation, target)
-        evaluations = 400.0 + 100.0 * batch.estimated_contact_time(zeta, lam, separation)
-        order = np.argsort(-steps, kind="stable")
-        steps, alone = steps[order], SINGLE_COST + SINGLE_EVAL_COST * evaluations[order]
-        # total cost when the k slowest go alone (k = 0 .. n): theirs, plus the lanes' from the k-th on
-        total = (np.concatenate([[0.0], np.cumsum(alone)]) + np.append(steps, 0.0) * LANE_STEP_COST
-                 + np.append(np.cumsum(steps[::-1])[::-1], 0.0) * LANE_COST)
-        best = int(np.argmin(total))
-        limits[separation] = float(steps[best]) if best < steps.size else -np.inf
-    return limits
-
-
-def _costly(d: dict, candidates: np.ndarray, limits: dict, target: float) -> np.ndarray:
-    """Candidates whose estimated steps exceed their criterion's limit (:func:`_lane_limits`)."""
-    costly = np.zeros(candidates.size, bool)
-    for separation, limit in limits.items():
-        mine = np.flatnonzero(candidates & (d["separation"] == separation))
-        costly[mine] = batch.estimated_steps(d["zeta"][mine], d["lam"][mine], separation, target) > limit
-    return costly
+        if limits is None:
+            evaluations = 400.0 + 100.0 * batch.estimated_contact_time(zeta, lam, separation)
+            computed[separation] = _lane_limit(steps, SINGLE_COST + SINGLE_EVAL_COST * evaluations)
+        alone[mine] |= steps > (computed if limits is None else limits).get(separation, np.inf)
+    return alone, computed if limits is None else limits
 
 
 def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
@@ -375,9 +375,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     d_all = _dimensionless(frame)
     whole = frame if span is None else scene_table(span)
     d_whole = d_all if span is None else _dimensionless(whole)
-    limits = _lane_limits(d_whole, _lane_candidates(whole, d_whole), target)
-    single = _one_by_one(frame) | _beyond_lanes(d_all) | _costly(d_all, _lane_candidates(frame, d_all), limits,
-                                                                   target)
+    alone_whole, limits = _solved_alone(whole, d_whole, target)
+    single = alone_whole if span is None else _solved_alone(frame, d_all, target, limits)[0]
     singles = np.flatnonzero(single)
     for done, i in enumerate(singles, 1):  # stick-slip with re-slip, compliance, extremes: the single-impact path
         with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
@@ -399,8 +398,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         if span is None:
             d_span, span_part = d, part
         else:
-            keep = ~(_one_by_one(whole) | _beyond_lanes(d_whole)
-                     | _costly(d_whole, _lane_candidates(whole, d_whole), limits, target))
+            keep = ~alone_whole
             d_span, span_part = {key: values[keep] for key, values in d_whole.items()}, whole[keep]
         dim = _normal_outputs(d, d_span, span_part, target, chunk_size, progress, part)
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
