@@ -19,7 +19,6 @@ the ball slips again when mu P+ falls below that.
 
 from __future__ import annotations
 
-import bisect
 from dataclasses import dataclass
 
 import numpy as np
@@ -233,10 +232,9 @@ class TangentialMotion:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         if t.size > SMALL:
             return by_phase(self.phases, t, self._evaluate, (3,))
-        out, starts = np.empty((3, t.size)), [p.t0 for p in self.phases]
-        for j, instant in enumerate(t.tolist()):  # a few instants (the outcome's): plain floats, same values
-            which = min(max(bisect.bisect_right(starts, instant) - 1, 0), len(self.phases) - 1)
-            out[:, j] = self._evaluate(self.phases[which], instant)
+        out = np.empty((3, t.size))
+        for j, (instant, which) in enumerate(zip(t.tolist(), phase_index(self.phases, t).tolist())):
+            out[:, j] = self._evaluate(self.phases[which], instant)  # a few instants: plain floats, same values
         return out
 
     def force(self, t):
