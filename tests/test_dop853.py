@@ -101,7 +101,8 @@ def test_join_matches_scipys_concatenation_to_the_bit():
     first = solve_ivp(modified, (0.0, 1.0), [0.0, 1.0], method="DOP853", rtol=1e-9, atol=1e-9, dense_output=True)
     later = solve_ivp(modified, (1.0, 3.0), first.y[:, -1], method="DOP853", rtol=1e-9, atol=1e-9, dense_output=True)
     joined = fast_solution(first.sol).join(fast_solution(later.sol))
-    scipy = OdeSolution(np.concatenate([first.sol.ts[:-1], later.sol.ts]), first.sol.interpolants + later.sol.interpolants)
+    scipy = OdeSolution(np.concatenate([first.sol.ts[:-1], later.sol.ts]),
+                        first.sol.interpolants + later.sol.interpolants)
     t = np.linspace(0.0, 3.0, 601)
     assert np.array_equal(joined(t), scipy(t))
 

@@ -10,8 +10,9 @@ is no larger than the engine's (equal accuracy, shown in the same row):
 - ``simulate``: the package's single-impact path, which adds histories, force extremes and checks.
 
 One timing protocol for all three: the median of ``repeats`` complete runs, the three timed in turn within
-each repeat (the engine builds its interpolants anew in every run; nothing is cached).  A contender that reaches the engine's error at no
-tolerance on the ladder is flagged (``<contender>_reached`` False) and timed at the tightest.
+each repeat (the engine builds its interpolants anew in every run; nothing is cached).  A contender that
+reaches the engine's error at no tolerance on the ladder is flagged (``<contender>_reached`` False) and
+timed at the tightest.
 Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).
 """
 
