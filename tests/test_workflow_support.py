@@ -36,7 +36,7 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         "sphereimpact/events.py", "laws/__init__.py", "laws/base.py", "laws/linear.py", "laws/hertz.py",
         "sphereimpact/outcome.py", "sphereimpact/scene.py",
         "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/tangential.py",
-            "sphereimpact/compliance.py", "sphereimpact/dop853.py", "sphereimpact/dense.py",
+            "sphereimpact/compliance.py", "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
         "sphereimpact/planar.py"}
 
 

@@ -138,7 +138,8 @@ def _parser() -> argparse.ArgumentParser:
              f"(default: {_D.gravity})")
     add("--method", default=_O.method, metavar="NAME",
         help="integrator: " + ", ".join(METHODS) + " (default auto: the law's closed form where it has one, "
-             "else DOP853-scalar; 'closed' is the exact solution, kelvin-voigt only)")
+             "else the Taylor method where it has a series (eq. 4.2, linear-hunt-crossley), else DOP853-scalar; "
+             "'closed' is the exact solution, kelvin-voigt only)")
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")

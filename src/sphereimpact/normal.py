@@ -20,7 +20,7 @@ import math
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
-from . import dop853
+from . import dop853, taylor
 from .dense import StackedDOP853, fast_solution, is_instant
 from .events import ImpactError
 from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions, ivp_method
@@ -55,6 +55,8 @@ MULTISTEP = ("BDF", "LSODA")
 #: slowest measured scene, takes 9.4e3); an over-damped contact held until delta = 0 needs about
 #: zeta^2 evaluations to return, if it ever does (eq. 4.1 never does for zeta >= 1).
 MAX_NFEV = 1_000_000
+#: The Taylor method's local tolerance per unit of min(rtol, atol) (see :class:`TaylorNormal`).
+TAYLOR_TOL_FACTOR = 0.01
 
 
 class _Budget(Exception):
@@ -408,6 +410,75 @@ class IntegratedNormal(NormalMotion):
 
     def state(self, t):
         if is_instant(t) and isinstance(self._sol, StackedDOP853):  # one instant, in plain floats
+            x, y = self._sol.single(float(t) * self._w)
+            return x * self._d_scale, y * self._v
+        z = self._sol(np.asarray(t, dtype=float) * self._w)
+        return z[0] * self._d_scale, z[1] * self._v
+
+
+class TaylorNormal(NormalMotion):
+    """Normal motion integrated by the Taylor-series method (:mod:`sphereimpact.taylor`), for a law with a
+    ``series``.
+
+    The local tolerance is TAYLOR_TOL_FACTOR x min(rtol, atol), those tightened where the outputs are
+    ill-conditioned (:func:`conditioned_tolerances`).
+
+    Raises
+    ------
+    ValueError
+        The law has no series.
+    ImpactError
+        Maximum compression or separation not found, or more steps than the budget allows.
+    taylor.SeriesOverflowError
+        The series or the force leaves double precision (``simulate`` then reports it, or under ``auto``
+        integrates with DOP853-scalar instead).
+    """
+
+    def __init__(self, scene: Scene, options: SolverOptions):
+        law = scene.law
+        if law.series is None:
+            raise ValueError(f"method 'taylor' needs a law with a series; model {scene.model!r} has none")
+        self.scene = scene
+        w, v = scene.frequency, scene.v_normal
+        d_scale, gamma = v / w, scene.g_normal / (w * v)
+        sep = scalar_separation_function(scene) if law.scalar is not None else separation_function(scene)
+
+        def separation(x, y):
+            return float(sep(x * d_scale, y * v))
+
+        rtol, atol = conditioned_tolerances(scene, options)
+        ramp_rate = law.ramp_rate
+        lam = None if ramp_rate is None else ramp_rate(scene) * d_scale
+        numbers = {name: float(value) for name, value in scene.family.items()}
+        try:
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                sol = taylor.solve(law.series, numbers, gamma, TAYLOR_TOL_FACTOR * min(rtol, atol),
+                                   horizon(scene) * w, separation, lam or None, options.max_step * w)
+        except taylor.StepBudgetError:
+            raise ImpactError(f"no separation within {taylor.MAX_STEPS} Taylor steps ({describe_family(scene)}"
+                              f"criterion '{scene.separation}'): the contact is too stiff or too slow to end") from None
+        except (OverflowError, ZeroDivisionError):
+            raise taylor.SeriesOverflowError(f"the contact force overflows ({describe_family(scene)}method "
+                                             "taylor)") from None
+        if sol["tau_f"] is None:
+            if sol["tau_m"] is None:
+                raise ImpactError(f"maximum compression not found ({describe_family(scene)}method taylor): the "
+                                  "damping stops the ball within round-off of first touch, or an event was missed")
+            raise ImpactError(no_separation_message(scene, horizon(scene)))
+        check_rebound(scene, options, sol["state_f"][1] * v)
+        self._sol, self._w, self._d_scale, self._v = sol["dense"], w, d_scale, v
+        self.t_m, self.t_f = sol["tau_m"] / w, sol["tau_f"] / w
+        steps = sol["dense"].ts / w
+        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
+        grid = (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+        self.grid = np.append(grid[grid < self.t_f], self.t_f)
+        # nfev: the force's Taylor coefficients computed, one per order and step (each the work of about one
+        # right-hand-side call), so the work-precision chart compares like with like
+        self.stats = {"method": "taylor", "rtol": options.rtol, "atol": options.atol,
+                      "nfev": sol["dense"].steps * sol["order"]}
+
+    def state(self, t):
+        if is_instant(t):  # one instant, in plain floats
             x, y = self._sol.single(float(t) * self._w)
             return x * self._d_scale, y * self._v
         z = self._sol(np.asarray(t, dtype=float) * self._w)

@@ -38,8 +38,8 @@ class PlanarMotion:
     """
 
     def __init__(self, scene: Scene, options: SolverOptions):
-        if options.method == "closed":
-            raise ValueError("method 'closed' is only available for the reduced model")
+        if options.method in ("closed", "taylor"):
+            raise ValueError(f"method {options.method!r} is only available for the reduced model")
         self.scene = scene
         beta = scene.beta
         self._n = np.array([math.sin(beta), math.cos(beta)])

@@ -48,12 +48,15 @@ def kappa_from_poisson(nu):
     return 2.0 * (1.0 - nu) / (2.0 - nu)
 
 
-#: Integration methods: ``auto`` (the default) is the law's closed form where it has one, else
-#: ``DOP853-scalar``; ``closed`` is the exact linear solution (kelvin-voigt only); ``DOP853-scalar`` is
-#: scipy's DOP853 run in plain floats (:mod:`sphereimpact.dop853`: the same steps, 2-3x cheaper) on a law
-#: with a scalar formula; the others are :func:`scipy.integrate.solve_ivp` methods.
-METHODS = ("auto", "closed", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
-#: What ``auto`` integrates with when the law has no closed form (chosen from the work-precision study).
+#: Integration methods: ``auto`` (the default) is the law's closed form where it has one, else ``taylor``
+#: where the law has a series and the damping ratio is within the accuracy contract's (<= 100), else
+#: ``DOP853-scalar``; ``closed`` is the exact linear solution (kelvin-voigt only); ``taylor`` is the
+#: Taylor-series method (:mod:`sphereimpact.taylor`, laws with a ``series``); ``DOP853-scalar`` is scipy's
+#: DOP853 run in plain floats (:mod:`sphereimpact.dop853`: the same steps, 2-3x cheaper) on a law with a
+#: scalar formula; the others are :func:`scipy.integrate.solve_ivp` methods.
+METHODS = ("auto", "closed", "taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: What ``auto`` integrates with when the law has neither a closed form nor a series (chosen from the
+#: work-precision study).
 DEFAULT_INTEGRATOR = "DOP853-scalar"
 
 
@@ -561,15 +564,16 @@ class SolverOptions:
     ----------
     method : str
         One of :data:`METHODS`.  ``auto``: the law's closed form if it has one (kelvin-voigt: exact, and
-        the cheapest), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
+        the cheapest), else the Taylor method if it has a series (eq. 4.2, linear Hunt-Crossley; zeta up
+        to 100), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
     rtol, atol : float
         Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`, rtol in [1e-13, 1e-2] and
         atol in [1e-16, 1e-2].
         ``atol`` applies to the dimensionless state (delta scaled by v_n/omega_n,
         delta_dot by v_n), so one value suits every ball and speed; the state
-        is O(1), so atol = rtol.  The default integrator (DOP853-scalar, 1e-10) is the cheapest
-        setting meeting 1e-9 on every output in the work-precision study
-        (``results/work_precision.csv``, notebook ``numerics``); DOP853-scalar takes DOP853's steps, in
+        is O(1), so atol = rtol.  The default (1e-10) meets 1e-9 on every output in the work-precision
+        study with each integrator (``results/work_precision.csv``, notebook ``numerics``); the Taylor
+        method bounds its local error by 0.01 min(rtol, atol); DOP853-scalar takes DOP853's steps, in
         plain floats, for laws with a scalar formula, and is scipy's DOP853 for any other law or body.
     max_step : float
         Largest step [s]; ``inf`` lets the method choose.

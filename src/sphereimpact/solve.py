@@ -22,9 +22,10 @@ from .closed import CLOSED_FORMS
 from .compliance import CompliantTangential
 from .events import ImpactError
 from .laws import LAWS
-from .normal import IntegratedNormal, NormalMotion, describe_family
+from .normal import CONDITIONED_ZETA_MAX, IntegratedNormal, NormalMotion, TaylorNormal, describe_family
 from .outcome import Outcome
 from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
+from .taylor import SeriesOverflowError
 from .tangential import TangentialMotion
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
@@ -76,17 +77,23 @@ class ReducedMotion:
 
 
 def resolve_method(scene: Scene, options: SolverOptions) -> SolverOptions:
-    """``options`` with ``auto`` made concrete: the law's closed form if it has one, else
-    :data:`~sphereimpact.scene.DEFAULT_INTEGRATOR`."""
+    """``options`` with ``auto`` made concrete: the law's closed form if it has one, else the Taylor method
+    if the law has a series and the scene lies in the accuracy contract's domain (damping ratio up to
+    :data:`~sphereimpact.normal.CONDITIONED_ZETA_MAX`; beyond it an explicit method creeps either way and
+    the Runge-Kutta path is the one measured there), else :data:`~sphereimpact.scene.DEFAULT_INTEGRATOR`."""
     if options.method != "auto":
         return options
-    closed = scene.law.closed_form is not None and scene.law.closed_form in CLOSED_FORMS
-    return replace(options, method="closed" if closed else DEFAULT_INTEGRATOR)
+    if scene.law.closed_form is not None and scene.law.closed_form in CLOSED_FORMS:
+        return replace(options, method="closed")
+    if scene.law.series is not None and scene.family.get("zeta", 0.0) <= CONDITIONED_ZETA_MAX:
+        return replace(options, method="taylor")
+    return replace(options, method=DEFAULT_INTEGRATOR)
 
 
 def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
     """The normal motion of ``scene``: its law's closed form for ``method='closed'`` (or ``auto`` on a law
     that has one), else integrated."""
+    automatic = options.method == "auto"
     options = resolve_method(scene, options)
     if options.method == "closed":
         if scene.law.closed_form is None:
@@ -96,6 +103,15 @@ def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
             raise ValueError(f"model {scene.model!r} declares closed form {scene.law.closed_form!r}, which is not "
                              f"one of {', '.join(CLOSED_FORMS)}")
         return CLOSED_FORMS[scene.law.closed_form](scene)
+    if options.method == "taylor":
+        try:
+            return TaylorNormal(scene, options)
+        except SeriesOverflowError:
+            if not automatic:
+                raise
+            # e.g. lam = 5e299 (a ball of diameter 1e-300): the series overflows where the Runge-Kutta
+            # stages, which never form lam^k, do not
+            return IntegratedNormal(scene, replace(options, method=DEFAULT_INTEGRATOR))
     return IntegratedNormal(scene, options)
 
 

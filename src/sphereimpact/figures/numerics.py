@@ -8,8 +8,8 @@ import pandas as pd
 
 from .style import RC, save
 
-COLORS = {"DOP853-scalar": "tab:olive", "RK23": "tab:blue", "RK45": "tab:orange", "DOP853": "tab:green",
-          "Radau": "tab:red", "BDF": "tab:purple", "LSODA": "tab:brown", "closed": "black"}
+COLORS = {"taylor": "tab:pink", "DOP853-scalar": "tab:olive", "RK23": "tab:blue", "RK45": "tab:orange",
+          "DOP853": "tab:green", "Radau": "tab:red", "BDF": "tab:purple", "LSODA": "tab:brown", "closed": "black"}
 BODY_STYLE = {"reduced": "-", "planar": "--"}
 
 

@@ -120,6 +120,13 @@ class ContactLaw:
         ``rate(delta, delta_dot, delta_ddot, p) -> dP/dt`` [N/s] inside contact, the chain rule of the
         force.  Tangential compliance needs it to tell when a slipping contact sticks again (the Coulomb
         cap mu P moves with P).  None: :func:`force_rate` differentiates ``continued`` numerically.
+    series : callable or None
+        ``series(x, y, numbers, gamma, order) -> (xs, ys)``: the Taylor coefficients, orders 0 to
+        ``order`` (lists of floats), of the dimensionless normal motion x' = y, y' = -P_hat(x, y) + gamma
+        through the point (x, y), ``numbers`` being the law's ``family`` (floats).  Only for a law whose
+        P_hat is analytic in x >= 0 and y (a recurrence on its series exists): then the Taylor method
+        (:mod:`sphereimpact.taylor`) integrates it.  None: the law has no series, and ``auto`` takes the
+        Runge-Kutta integrator.
     """
 
     name: str
@@ -138,6 +145,7 @@ class ContactLaw:
     ramp_rate: Callable | None = None
     scalar: Callable | None = None
     rate: Callable | None = None
+    series: Callable | None = None
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]

@@ -14,6 +14,7 @@ delta is the (negative) displacement of the centre; with delta as compression bo
 from __future__ import annotations
 
 import math
+from operator import mul
 
 import numpy as np
 
@@ -63,6 +64,17 @@ def kelvin_voigt_scalar(delta: float, delta_dot: float, p) -> float:
 def kelvin_voigt_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot + b delta_ddot [N/s]."""
     return p.k * np.asarray(delta_dot, dtype=float) + p.b * np.asarray(delta_ddot, dtype=float)
+
+
+def kelvin_voigt_series(x: float, y: float, numbers: dict, gamma: float, order: int) -> tuple[list, list]:
+    """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -(x + 2 zeta y) + gamma, the
+    dimensionless eq. 4.1 (see :attr:`~sphereimpact.laws.ContactLaw.series`)."""
+    two_zeta = 2.0 * float(numbers["zeta"])
+    xs, ys = [x], [y]
+    for k in range(order):
+        xs.append(ys[k] / (k + 1))
+        ys.append(((gamma if k == 0 else 0.0) - xs[k] - two_zeta * ys[k]) / (k + 1))
+    return xs, ys
 
 
 # --- eq. 4.2 ------------------------------------------------------------------------------------------
@@ -130,6 +142,26 @@ def modified_rate(delta, delta_dot, delta_ddot, p):
                                      + delta_dot * delta_dot * (p.ramp / p.radius) * np.exp(-u))
 
 
+def modified_series(x: float, y: float, numbers: dict, gamma: float, order: int) -> tuple[list, list]:
+    """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -(x + 2 zeta y (1 - E)) + gamma,
+    E = exp(-lam x), the dimensionless eq. 4.2 (see :attr:`~sphereimpact.laws.ContactLaw.series`).
+
+    E' = -lam y E, so with c_k = sum_i y_i E_(k-i) (the series of y E): E_(k+1) = -lam c_k / (k + 1), and
+    the damping term's series is y_0 (1 - E_0) at order 0 (1 - E_0 by expm1: no cancellation near x = 0)
+    and y_k - c_k above.  One convolution per order.
+    """
+    two_zeta, lam = 2.0 * float(numbers["zeta"]), float(numbers["lam"])
+    xs, ys, es = [x], [y], [math.exp(-lam * x)]
+    ramp = -math.expm1(-lam * x)
+    for k in range(order):
+        c = sum(map(mul, ys, reversed(es)))
+        damping = ys[0] * ramp if k == 0 else ys[k] - c
+        xs.append(ys[k] / (k + 1))
+        ys.append(((gamma if k == 0 else 0.0) - xs[k] - two_zeta * damping) / (k + 1))
+        es.append(-lam * c / (k + 1))
+    return xs, ys
+
+
 # --- Hunt-Crossley damping on a linear spring ---------------------------------------------------------
 def linear_hunt_crossley_force(delta, delta_dot, p):
     """P = k delta (1 + chi delta_dot) [N] for delta > 0: starts from zero, pulls where delta_dot < -1/chi."""
@@ -152,6 +184,19 @@ def linear_hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot (1 + chi delta_dot) + k delta chi delta_ddot [N/s]."""
     delta, delta_dot = _arrays(delta, delta_dot)
     return p.k * (delta_dot * (1.0 + p.chi * delta_dot) + delta * p.chi * np.asarray(delta_ddot, dtype=float))
+
+
+def linear_hunt_crossley_series(x: float, y: float, numbers: dict, gamma: float,
+                                order: int) -> tuple[list, list]:
+    """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -x (1 + q y) + gamma, q = chi v_n
+    (see :attr:`~sphereimpact.laws.ContactLaw.series`): one convolution (x y) per order."""
+    q = float(numbers["chi_v"])
+    xs, ys = [x], [y]
+    for k in range(order):
+        xy = sum(map(mul, xs, reversed(ys)))
+        xs.append(ys[k] / (k + 1))
+        ys.append(((gamma if k == 0 else 0.0) - xs[k] - q * xy) / (k + 1))
+    return xs, ys
 
 
 def hunt_crossley_relations() -> dict:
@@ -179,7 +224,7 @@ LAWS.register(ContactLaw(
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt", scalar=kelvin_voigt_scalar,
-    rate=kelvin_voigt_rate))
+    rate=kelvin_voigt_rate, series=kelvin_voigt_series))
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
@@ -187,7 +232,7 @@ LAWS.register(ContactLaw(
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
-    rate=modified_rate))
+    rate=modified_rate, series=modified_series))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
@@ -195,4 +240,4 @@ LAWS.register(ContactLaw(
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     damping="chi", cor_relations=hunt_crossley_relations(), scalar=linear_hunt_crossley_scalar,
-    rate=linear_hunt_crossley_rate))
+    rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series))

@@ -57,7 +57,7 @@ def bench_scenes(chapter: dict[str, Scene], domain: bool = True, laws=tuple(LAW_
 
 def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     """Two rows per scene: ``simulate`` (default options: ``method`` says what ``auto`` took, the closed form
-    with rtol 0 or DOP853-scalar) and the hand-written script at equal accuracy.
+    with rtol 0, taylor or DOP853-scalar) and the hand-written script at equal accuracy.
 
     Columns: ``scene``, ``model``, ``angle``, ``speed``, ``contender``, ``method``, ``rtol``, ``error``
     (worst relative error over t_m, delta_m, t_f, COR, omega_f, v_E,t), ``reached`` (False: no tolerance

@@ -108,7 +108,7 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
 def reference(scene: Scene) -> Reference:
     """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at 32 digits bounded by 22
     digits (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded by its distance from
-    rtol 1e-12 (a second implementation beside the package's default DOP853-scalar, not an exact one)."""
+    rtol 1e-12 (a second implementation beside the package's DOP853-scalar, not an exact one)."""
     if scene.model == "kelvin-voigt":
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")

@@ -52,9 +52,11 @@ def solver_options(config: dict) -> SolverOptions:
 
 
 def options_for(config: dict, scene: Scene) -> SolverOptions:
-    """The configured options, except that ``closed`` is used only where the law has a closed form."""
+    """The configured options, except that ``closed`` is used only where the law has a closed form, and
+    ``taylor`` only where it has a series."""
     options = solver_options(config)
-    if options.method == "closed" and scene.law.closed_form is None:
+    if (options.method == "closed" and scene.law.closed_form is None) or (
+            options.method == "taylor" and scene.law.series is None):
         return SolverOptions(method="DOP853-scalar", rtol=options.rtol, atol=options.atol)
     return options
 

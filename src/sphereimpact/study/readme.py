@@ -99,7 +99,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     repeats = int(sweeps["repeats"].iloc[0])
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options (method `auto`: the law's closed "
-        "form where it has one, else DOP853-scalar, scipy's DOP853 in plain floats) against the hand-written "
+        "form where it has one, else the Taylor method where it has a series, else DOP853-scalar, scipy's DOP853 "
+        "in plain floats) against the hand-written "
         "script (one `solve_ivp` call, scalar right-hand side, the two events, no dense output) at the loosest "
         "tolerance whose error is no larger than `simulate`'s. Error: the worst relative error over t_m, δ_m, "
         "t_f, COR, ω_f and v_E,t against the closed form, the 32-digit Taylor reference (eq. 4.2) or scipy's "

@@ -1,0 +1,202 @@
+"""The Taylor-series method for the dimensionless normal motion: method ``taylor``.
+
+For a law whose dimensionless force P_hat(x, y) is analytic (eq. 4.1, eq. 4.2, linear Hunt-Crossley), the
+Taylor coefficients of the solution through any point follow from a recurrence (the law's ``series``:
+for eq. 4.2 one convolution per order, since E = exp(-lam x) obeys E' = -lam y E).  A step is then one
+evaluation of that recurrence to order p, in plain floats, and
+
+- its size comes from the last two coefficients: h = min_k (tol / |c_k|)^(1/k), k = p - 1, p (Jorba &
+  Zou, "A software package for the numerical integration of ODEs by means of high-order Taylor methods",
+  Experimental Mathematics 14, 2005), with p = ceil(-ln(tol) / 2) + 1, their optimal order;
+- its dense output is the polynomial itself, of the method's full order (a Runge-Kutta interpolant is one
+  order lower, without error control), so events are roots of polynomials and the state at separation
+  is read where the root is, with no landing step;
+- the ramp's switch-on is in the coefficients (the series of E is computed, not estimated), but the
+  last-coefficient rule assumes they decay, and E's terms E_0 (lam |y| h)^k / k! grow up to
+  k ~ lam |y| h: where E_0 is small, a loose tolerance let steps cross the ramp band in one go (COR off by
+  2e-6 at lam = 70 for every rtol from 1e-5 to 1e-7).  Inside the band (lam x < BAND_EDGE) steps are
+  therefore at most p / (e lam |y|), where those terms decay from the first order on, and a step that
+  would enter the band from outside ends at its edge.
+
+On eq. 4.2 it takes 15 to 30 steps of 17 orders where DOP853 takes about 25 steps of 12 evaluations and a
+landing, at a third of the cost in Python (``results/work_precision.csv`` and ``results/bench.csv``).
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .dense import is_instant
+
+#: lam x at which the ramp band starts: exp(-37) = 8.5e-17, below round-off of 1 - exp(-lam x).
+BAND_EDGE = 37.0
+#: Most steps one motion may take: a bound on the cost of any input (about 2 s).
+MAX_STEPS = 100_000
+#: Orders used: at least ORDER_MIN (loose tolerances), at most ORDER_MAX.
+ORDER_MIN, ORDER_MAX = 8, 24
+EPS = float(np.finfo(float).eps)
+
+
+class StepBudgetError(RuntimeError):
+    """The motion needed more than MAX_STEPS steps."""
+
+
+class SeriesOverflowError(ArithmeticError):
+    """The series' coefficients left double precision (a rate such as lam beyond about 1e12)."""
+
+
+def order_for(tol: float) -> int:
+    """Jorba and Zou's optimal order for a local tolerance ``tol``: ceil(-ln(tol) / 2) + 1, clipped."""
+    return min(max(math.ceil(-0.5 * math.log(tol)) + 1, ORDER_MIN), ORDER_MAX)
+
+
+def horner(coefficients, s: float) -> float:
+    """sum_k c_k s^k by Horner's rule, in floats."""
+    value = 0.0
+    for c in reversed(coefficients):
+        value = value * s + c
+    return value
+
+
+def step_size(xs, ys, tol: float) -> float:
+    """min over the last two orders k of (tol / max(|x_k|, |y_k|))^(1 / k) (inf if both vanish)."""
+    h = math.inf
+    for k in (len(xs) - 2, len(xs) - 1):
+        size = max(abs(xs[k]), abs(ys[k]))
+        if size > 0.0:
+            h = min(h, (tol / size) ** (1.0 / k))
+    return h
+
+
+class TaylorDense:
+    """The polynomial pieces of a Taylor solution: state (x, y) at any tau on [ts[0], ts[-1]].
+
+    Parameters
+    ----------
+    starts : list of float
+        Each step's start tau_i (ascending).
+    ends : list of float
+        Each step's end (the last one may be cut at a terminal event).
+    xs, ys : list of lists
+        Each step's Taylor coefficients in powers of (tau - tau_i).
+    """
+
+    def __init__(self, starts, ends, xs, ys):
+        self._starts, self._xs, self._ys = list(starts), list(xs), list(ys)
+        self.ts = np.array([starts[0], *ends], dtype=float)
+        self._ends = list(ends)
+        self._last = len(starts) - 1
+        width = max(len(c) for c in xs)
+        self._cx = np.zeros((len(xs), width))
+        self._cy = np.zeros((len(ys), width))
+        for i, (cx, cy) in enumerate(zip(xs, ys)):
+            self._cx[i, :len(cx)], self._cy[i, :len(cy)] = cx, cy
+
+    @property
+    def steps(self) -> int:
+        return self._last + 1
+
+    def single(self, tau: float) -> list:
+        """[x, y] at one instant, in floats (an instant on a step boundary takes the earlier step)."""
+        i = min(max(bisect.bisect_left(self._ends, tau), 0), self._last)
+        s = tau - self._starts[i]
+        return [horner(self._xs[i], s), horner(self._ys[i], s)]
+
+    def __call__(self, tau):
+        """The state at tau: shape (2,) for a scalar, (2, len(tau)) for an array."""
+        if is_instant(tau):
+            return np.array(self.single(float(tau)))
+        tau = np.asarray(tau, dtype=float)
+        i = np.clip(np.searchsorted(self.ts, tau, side="left") - 1, 0, self._last)
+        s = tau - self.ts[i]
+        x, y = np.zeros(tau.shape), np.zeros(tau.shape)
+        for k in range(self._cx.shape[1] - 1, -1, -1):
+            x = x * s + self._cx[i, k]
+            y = y * s + self._cy[i, k]
+        return np.array([x, y])
+
+
+def _root(f, a: float, b: float) -> float:
+    return brentq(f, a, b, xtol=1e-300, rtol=4 * EPS, maxiter=200)
+
+
+def solve(series, numbers: dict, gamma: float, tol: float, end: float, separation, lam: float | None = None,
+          max_step: float = math.inf) -> dict:
+    """Integrate x' = y, y' = -P_hat + gamma from (0, 1) until separation, by the Taylor method.
+
+    Parameters
+    ----------
+    series : callable
+        The law's ``series`` (see :class:`sphereimpact.laws.ContactLaw`).
+    numbers : dict
+        The law's family numbers, as floats.
+    gamma : float
+        Dimensionless gravity along the normal.
+    tol : float
+        Local error bound per step on the O(1) state.
+    end : float
+        Dimensionless horizon: no separation before it ends the search.
+    separation : callable
+        ``separation(x, y)`` whose fall through zero (from > 0 to <= 0) ends contact.
+    lam : float or None
+        The ramp's rate in x (u = lam x), for a law with a ramp: steps entering its band end at its edge.
+    max_step : float
+        Largest step.
+
+    Returns
+    -------
+    dict
+        ``dense`` (:class:`TaylorDense`), ``tau_m`` and ``tau_f`` (None where not found), ``x_m``,
+        ``state_f`` ([x, y] at tau_f), ``order``.
+
+    Raises
+    ------
+    StepBudgetError
+        More than MAX_STEPS steps.
+    SeriesOverflowError
+        The coefficients are not finite.
+    """
+    order = order_for(tol)
+    tau, x, y = 0.0, 0.0, 1.0
+    starts, ends, xs_all, ys_all = [], [], [], []
+    tau_m = x_m = tau_f = state_f = None
+    g = separation(x, y)
+    edge = None if lam is None else BAND_EDGE / lam
+    band_step = None if lam is None else order / (math.e * lam)
+    band_top = None if lam is None else edge * (1.0 + 1e-9)
+    while tau < end:
+        if len(starts) >= MAX_STEPS:
+            raise StepBudgetError(f"more than {MAX_STEPS} steps")
+        xs, ys = series(x, y, numbers, gamma, order)
+        if not math.isfinite(xs[-2] + ys[-2] + xs[-1] + ys[-1]):  # an inf or nan reaches the top orders
+            raise SeriesOverflowError(f"Taylor coefficients overflow at tau = {tau:.6g}")
+        h = min(step_size(xs, ys, tol), max_step, end - tau)
+        if edge is not None and x <= band_top and y != 0.0:  # in the band (a landing may end a hair above)
+            h = min(h, band_step / abs(y))
+        x_end = horner(xs, h)
+        if edge is not None and y < 0.0 and x > edge >= x_end:  # entering the ramp band: stop at its edge
+            h = _root(lambda s: horner(xs, s) - edge, 0.0, h)
+            x_end = horner(xs, h)
+        y_end = horner(ys, h)
+        starts.append(tau)
+        xs_all.append(xs)
+        ys_all.append(ys)
+        if tau_m is None and y > 0.0 >= y_end:
+            s = _root(lambda s: horner(ys, s), 0.0, h)
+            tau_m, x_m = tau + s, horner(xs, s)
+        g_end = separation(x_end, y_end)
+        if tau_m is not None and g > 0.0 >= g_end:
+            s = _root(lambda s: separation(horner(xs, s), horner(ys, s)), 0.0, h)
+            if tau_m > tau + s:  # max compression after separation in the same step: not a contact
+                break
+            tau_f, state_f = tau + s, [horner(xs, s), horner(ys, s)]
+            ends.append(tau_f)
+            break
+        ends.append(tau + h)
+        tau, x, y, g = tau + h, x_end, y_end, g_end
+    dense = TaylorDense(starts, ends, xs_all, ys_all)
+    return {"dense": dense, "tau_m": tau_m, "x_m": x_m, "tau_f": tau_f, "state_f": state_f, "order": order}
