@@ -573,7 +573,7 @@ class SolverOptions:
         delta_dot by v_n), so one value suits every ball and speed; the state
         is O(1), so atol = rtol.  The default (1e-10) meets 1e-9 on every output in the work-precision
         study with each integrator (``results/work_precision.csv``, notebook ``numerics``); the Taylor
-        method bounds its local error by 0.01 min(rtol, atol); DOP853-scalar takes DOP853's steps, in
+        method bounds each step's truncation error by min(rtol, atol); DOP853-scalar takes DOP853's steps, in
         plain floats, for laws with a scalar formula, and is scipy's DOP853 for any other law or body.
     max_step : float
         Largest step [s]; ``inf`` lets the method choose.

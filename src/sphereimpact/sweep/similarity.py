@@ -36,8 +36,8 @@ from numpy.polynomial.chebyshev import chebval
 from scipy.fft import dct
 from scipy.optimize import brentq
 
-from ..normal import IntegratedNormal
 from ..scene import Scene, SolverOptions
+from ..solve import normal_motion
 from ..tangential import PositiveImpulse
 from . import batch
 
@@ -252,8 +252,8 @@ class LambdaInterpolant(_Pieces):
 
 def dimensionless_motion(scene: Scene, options: SolverOptions) -> dict:
     """tau_m, x_m, tau_f, y_f and y_p (1 - J+ / (m v_n), J+ the impulse of max(P, 0)) of one scene, by the
-    single-impact integrator."""
-    normal = IntegratedNormal(scene, options)
+    single-impact path's normal motion (``options.method`` as ``simulate`` resolves it)."""
+    normal = normal_motion(scene, options)
     w, v = scene.frequency, scene.v_normal
     positive = float(PositiveImpulse(normal)(normal.t_f))
     return {"tau_m": normal.t_m * w, "x_m": normal.delta_m * w / v, "tau_f": normal.t_f * w,
