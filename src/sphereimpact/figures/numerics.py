@@ -30,7 +30,9 @@ def work_precision_figure(csv_path: str, outputs, model: str = "modified", targe
                     if body == "closed" and x == "nfev":
                         continue
                     axes[row, col].loglog(line[x] * (1e3 if x == "time" else 1), line["error"], label=label, **style)
-            for row, x in enumerate(("median wall time per impact [ms]", "right-hand-side evaluations (nfev)")):
+            labels = ("median wall time per impact [ms]",
+                      "right-hand-side evaluations (nfev; taylor: series coefficients)")
+            for row, x in enumerate(labels):
                 ax = axes[row, col]
                 ax.axhline(target, color="gray", linewidth=0.8, linestyle=":")
                 ax.set(xlabel=x, ylabel="worst relative error", title=f"{case}, {model} law")
