@@ -120,3 +120,37 @@ def test_the_method_is_refused_where_it_does_not_apply():
 
 def test_order_follows_the_tolerance():
     assert [order_for(t) for t in (1e-3, 1e-8, 1e-12, 1e-16, 1e-30)] == [8, 11, 15, 20, 24]
+
+
+@pytest.mark.filterwarnings("ignore::sphereimpact.BeyondRadiusWarning")
+def test_random_realistic_scenes_meet_the_contract_by_the_series():
+    """25 random balls and impacts (k 1e3-1e9 N/m, m 0.01-5 kg, D 5-200 mm, 0.1-30 m/s, 0-89 deg, both
+    criteria, gravity on or off) of the two laws auto integrates by their series, against the capped
+    second method: 1e-9 on every output.  (Measured on 374 such scenes: worst 3.7e-10.)"""
+    rng = np.random.default_rng(20261122)
+    checked = 0
+    while checked < 25:
+        model = "modified" if rng.random() < 0.75 else "linear-hunt-crossley"
+        damping = {"b": 10 ** rng.uniform(-1, 3.5)} if model == "modified" else {"chi": 10 ** rng.uniform(-2, 0.5)}
+        try:
+            scene = Scene(model=model, k=10 ** rng.uniform(3, 9), mass=10 ** rng.uniform(-2, 0.7),
+                          diameter=10 ** rng.uniform(-2.3, -0.7), angle=rng.uniform(0, 89),
+                          speed=10 ** rng.uniform(-1, math.log10(30)), mu=rng.uniform(0.05, 1.2),
+                          separation=str(rng.choice(["force", "penetration"])),
+                          gravity=float(rng.choice([0.0, 9.80665])), **damping)
+        except ValueError:  # e.g. the weight alone compresses beyond the radius: refused, not a scene
+            continue
+        zeta = scene.family.get("zeta", 0.0)
+        if zeta > 100 or (scene.separation == "penetration" and zeta > 3):  # outside the contract's domain
+            continue
+        try:
+            ref = capped(scene)
+        except ImpactError:  # no separation (weight holds an over-damped ball): the default must say so too
+            with pytest.raises(ImpactError, match="no separation"):
+                simulate(scene)
+            continue
+        got = simulate(scene)
+        assert got.method == "taylor"
+        errors = relative_errors(got.to_dict(), ref.to_dict(), scene)
+        assert max(errors.values()) <= 1e-9, (scene, errors)
+        checked += 1

@@ -14,12 +14,13 @@ evaluation of that recurrence to order p, in plain floats, and
 - the ramp's switch-on is in the coefficients (the series of E is computed, not estimated), but the
   last-coefficient rule assumes they decay, and E's terms E_0 (lam |y| h)^k / k! grow up to
   k ~ lam |y| h: where E_0 is small, a loose tolerance let steps cross the ramp band in one go (COR off by
-  2e-6 at lam = 70 for every rtol from 1e-5 to 1e-7).  Inside the band (lam x < BAND_EDGE) steps are
+  2e-6 at lam = 70 for every local tolerance from 1e-7 to 1e-9).  Inside the band (lam x < BAND_EDGE) steps are
   therefore at most p / (e lam |y|), where those terms decay from the first order on, and a step that
   would enter the band from outside ends at its edge.
 
-On eq. 4.2 it takes 15 to 30 steps of 17 orders where DOP853 takes about 25 steps of 12 evaluations and a
-landing, at a third of the cost in Python (``results/work_precision.csv`` and ``results/bench.csv``).
+On eq. 4.2 at the default tolerance (1e-10: order 13) it takes 14 to 24 steps where DOP853 takes about 25
+steps of 12 evaluations and a landing; one impact costs a third as much (``results/work_precision.csv``
+and ``results/bench.csv``).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .dense import is_instant
+from .events import ImpactError
 
 #: lam x at which the ramp band starts: exp(-37) = 8.5e-17, below round-off of 1 - exp(-lam x).
 BAND_EDGE = 37.0
@@ -150,8 +152,8 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
     Returns
     -------
     dict
-        ``dense`` (:class:`TaylorDense`), ``tau_m`` and ``tau_f`` (None where not found), ``x_m``,
-        ``state_f`` ([x, y] at tau_f), ``order``.
+        ``dense`` (:class:`TaylorDense`), ``tau_m`` and ``tau_f`` (None where not found), ``state_f``
+        ([x, y] at tau_f), ``order``.
 
     Raises
     ------
@@ -159,11 +161,13 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
         More than MAX_STEPS steps.
     SeriesOverflowError
         The coefficients are not finite.
+    ImpactError
+        Separation before maximum compression.
     """
     order = order_for(tol)
     tau, x, y = 0.0, 0.0, 1.0
     starts, ends, xs_all, ys_all = [], [], [], []
-    tau_m = x_m = tau_f = state_f = None
+    tau_m = tau_f = state_f = None
     g = separation(x, y)
     edge = None if lam is None else BAND_EDGE / lam
     band_step = None if lam is None else order / (math.e * lam)
@@ -187,16 +191,17 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
         ys_all.append(ys)
         if tau_m is None and y > 0.0 >= y_end:
             s = _root(lambda s: horner(ys, s), 0.0, h)
-            tau_m, x_m = tau + s, horner(xs, s)
+            tau_m = tau + s
         g_end = separation(x_end, y_end)
         if tau_m is not None and g > 0.0 >= g_end:
             s = _root(lambda s: separation(horner(xs, s), horner(ys, s)), 0.0, h)
-            if tau_m > tau + s:  # max compression after separation in the same step: not a contact
-                break
+            if tau_m > tau + s:
+                raise ImpactError("separation found before maximum compression (method taylor): the damping "
+                                  "stops the ball within round-off of first touch (beyond what the solver resolves)")
             tau_f, state_f = tau + s, [horner(xs, s), horner(ys, s)]
             ends.append(tau_f)
             break
         ends.append(tau + h)
         tau, x, y, g = tau + h, x_end, y_end, g_end
     dense = TaylorDense(starts, ends, xs_all, ys_all)
-    return {"dense": dense, "tau_m": tau_m, "x_m": x_m, "tau_f": tau_f, "state_f": state_f, "order": order}
+    return {"dense": dense, "tau_m": tau_m, "tau_f": tau_f, "state_f": state_f, "order": order}
