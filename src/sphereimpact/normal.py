@@ -110,6 +110,13 @@ class NormalMotion:
         return float(self.state(self.t_m)[0])
 
 
+def substep_grid(steps: np.ndarray) -> np.ndarray:
+    """Each step of ``steps`` (its boundaries, ascending) split into SUBSTEPS equal parts: sample times fine
+    enough to bracket every event, the last boundary left out."""
+    fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
+    return (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+
+
 def separation_function(scene: Scene):
     """The function of (delta, delta_dot) whose fall through zero ends contact.
 
@@ -195,21 +202,23 @@ RTOL_FLOOR, ATOL_FLOOR = 1e-13, 1e-16
 CONDITIONED_ZETA_MAX = 100.0
 
 
-def conditioned_tolerances(scene: Scene, options: SolverOptions, floor: float = RTOL_FLOOR) -> tuple[float, float]:
+def conditioned_tolerances(scene: Scene, options: SolverOptions, floor: float = RTOL_FLOOR,
+                           power: int = 1) -> tuple[float, float]:
     """(rtol, atol) for the integration: the options', tightened where the outputs are ill-conditioned.
 
     Over-damped (zeta > 1) under the force criterion, contact ends where P = k delta + b delta_dot r falls
     to zero while its two terms are about 4 zeta^2 times larger than their difference (on the slow mode,
     P / (k delta) ~ (r1 / omega_n)^2 ~ 1 / (4 zeta^2)), so t_f carries about 4 zeta^2 times the state's
     error (measured: 2e-9 to 7e-9 at zeta = 3 and rtol 1e-10).  There the tolerances are divided by 4
-    zeta^2, down to ``floor`` (1e-13, what DOP853 honours; the Taylor method goes down to 1e-16), up to
-    zeta = :data:`CONDITIONED_ZETA_MAX`: only such scenes pay, by about (4 zeta^2)^(1/8) in steps (1.6x at
-    zeta = 3).  The outcome reports the tolerances asked for.
+    zeta^2 (to the ``power``: the Taylor method needs 2, see :class:`TaylorNormal`), down to ``floor``
+    (1e-13, what DOP853 honours; the Taylor method goes down to 1e-16), up to zeta =
+    :data:`CONDITIONED_ZETA_MAX`: only such scenes pay, by about (4 zeta^2)^(1/8) in steps (1.6x at zeta = 3).
+    The outcome reports the tolerances asked for.
     """
     zeta = scene.family.get("zeta")
     if scene.separation != "force" or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
         return options.rtol, options.atol
-    scale = 1.0 / (4.0 * zeta * zeta)
+    scale = (4.0 * zeta * zeta) ** -power
     return max(options.rtol * scale, floor), max(options.atol * scale, ATOL_FLOOR)
 
 
@@ -396,9 +405,7 @@ class IntegratedNormal(NormalMotion):
         self._sol, self._w, self._d_scale, self._v = dense, w, d_scale, v
         self.t_m = float(t_m[0]) / w
         self.t_f = tau_f / w
-        steps = steps / w
-        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
-        grid = (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+        grid = substep_grid(steps / w)
         self.grid = np.append(grid[grid < self.t_f], self.t_f)
         self.stats = {"method": method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
 
@@ -450,10 +457,8 @@ class TaylorNormal(NormalMotion):
         def separation(x, y):
             return float(sep(x * d_scale, y * v))
 
-        rtol, atol = conditioned_tolerances(scene, options, floor=ATOL_FLOOR)
-        if rtol < options.rtol:  # ill-conditioned t_f: the series' error reaches it more than DOP853's does
-            scale = rtol / options.rtol
-            rtol, atol = max(rtol * scale, ATOL_FLOOR), max(atol * scale, ATOL_FLOOR)
+        # ill-conditioned t_f: the series' error reaches it more than DOP853's does (see above)
+        rtol, atol = conditioned_tolerances(scene, options, floor=ATOL_FLOOR, power=2)
         ramp_rate = law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale
         numbers = {name: float(value) for name, value in scene.family.items()}
@@ -475,9 +480,7 @@ class TaylorNormal(NormalMotion):
         check_rebound(scene, options, sol["state_f"][1] * v)
         self._sol, self._w, self._d_scale, self._v = sol["dense"], w, d_scale, v
         self.t_m, self.t_f = sol["tau_m"] / w, sol["tau_f"] / w
-        steps = sol["dense"].ts / w
-        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
-        grid = (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+        grid = substep_grid(sol["dense"].ts / w)
         self.grid = np.append(grid[grid < self.t_f], self.t_f)
         # nfev: the force's Taylor coefficients computed, one per order and step (each the work of about one
         # right-hand-side call), so the work-precision chart compares like with like

@@ -22,7 +22,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .events import ImpactError
-from .normal import SUBSTEPS, check_rebound, horizon, no_separation_message, separation_function
+from .normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from .scene import Scene, SolverOptions, ivp_method
 from .tangential import MAX_PHASES, phase_index
 
@@ -81,8 +81,7 @@ class PlanarMotion:
         self.regime = mode if scene.has_tangential_motion else "none"
         self.switches = len(self._segments) - 1 if scene.has_tangential_motion else 0
         steps = np.concatenate([seg[3] for seg in self._segments])
-        fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
-        grid = np.unique((steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel())
+        grid = np.unique(substep_grid(steps))
         self.grid = np.append(grid[(grid >= 0) & (grid < self.t_f)], self.t_f)
         self.stats = {"method": self._options["method"], "rtol": options.rtol, "atol": options.atol,
                       "nfev": int(nfev)}

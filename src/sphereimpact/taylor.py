@@ -84,7 +84,7 @@ class TaylorDense:
     ends : list of float
         Each step's end (the last one may be cut at a terminal event).
     xs, ys : list of lists
-        Each step's Taylor coefficients in powers of (tau - tau_i).
+        Each step's Taylor coefficients in powers of (tau - tau_i), as many for every step (one order).
     """
 
     def __init__(self, starts, ends, xs, ys):
@@ -92,11 +92,7 @@ class TaylorDense:
         self.ts = np.array([starts[0], *ends], dtype=float)
         self._ends = list(ends)
         self._last = len(starts) - 1
-        width = max(len(c) for c in xs)
-        self._cx = np.zeros((len(xs), width))
-        self._cy = np.zeros((len(ys), width))
-        for i, (cx, cy) in enumerate(zip(xs, ys)):
-            self._cx[i, :len(cx)], self._cy[i, :len(cy)] = cx, cy
+        self._cx, self._cy = np.array(xs, dtype=float), np.array(ys, dtype=float)  # (steps, order + 1)
 
     @property
     def steps(self) -> int:
@@ -104,7 +100,7 @@ class TaylorDense:
 
     def single(self, tau: float) -> list:
         """[x, y] at one instant, in floats (an instant on a step boundary takes the earlier step)."""
-        i = min(max(bisect.bisect_left(self._ends, tau), 0), self._last)
+        i = min(bisect.bisect_left(self._ends, tau), self._last)
         s = tau - self._starts[i]
         return [horner(self._xs[i], s), horner(self._ys[i], s)]
 

@@ -252,11 +252,12 @@ def _family_groups(d: dict) -> dict:
     return groups
 
 
-def _family_interpolants(span: dict, span_frame: pd.DataFrame, target: float) -> dict:
-    """Group key (see :func:`_family_groups`) -> FamilyInterpolant, for the span's groups with at least
-    FAMILY_MIN distinct numbers, built from the group's first scene in the span and its whole range."""
+def _family_interpolants(span: dict, span_frame: pd.DataFrame, groups: dict, target: float) -> dict:
+    """Group key (see :func:`_family_groups`) -> FamilyInterpolant, for the span's ``groups`` (its
+    :func:`_family_groups`) with at least FAMILY_MIN distinct numbers, built from the group's first scene in
+    the span and its whole range."""
     built = {}
-    for key, rows in _family_groups(span).items():
+    for key, rows in groups.items():
         q = np.array([span["family"][i][-1] for i in rows])
         if np.unique(q).size < FAMILY_MIN:
             continue
@@ -276,8 +277,10 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
     interpolants = _interpolants(span, target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(zeta.size, bool)
-    family_interpolants = _family_interpolants(span, span_frame, target)
-    for key, rows in _family_groups(d).items():
+    groups = _family_groups(d)
+    span_groups = groups if span is d else _family_groups(span)  # one pass when the scenes are the span
+    family_interpolants = _family_interpolants(span, span_frame, span_groups, target)
+    for key, rows in groups.items():
         if key in family_interpolants:
             rows = np.array(rows)
             _put(out, rows, family_interpolants[key](np.array([d["family"][i][-1] for i in rows])))
