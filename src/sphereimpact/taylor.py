@@ -14,9 +14,11 @@ evaluation of that recurrence to order p, in plain floats, and
 - the ramp's switch-on is in the coefficients (the series of E is computed, not estimated), but the
   last-coefficient rule assumes they decay, and E's terms E_0 (lam |y| h)^k / k! grow up to
   k ~ lam |y| h: where E_0 is small, a loose tolerance let steps cross the ramp band in one go (COR off by
-  2e-6 at lam = 70 for every local tolerance from 1e-7 to 1e-9).  Inside the band (lam x < BAND_EDGE) steps are
-  therefore at most p / (e lam |y|), where those terms decay from the first order on, and a step that
-  would enter the band from outside ends at its edge.
+  2e-6 at lam = 70 for every local tolerance from 1e-7 to 1e-9).  Inside the band (lam x < BAND_EDGE) a step
+  therefore changes lam x by at most p / e, where those terms decay from the first order on
+  (:func:`band_limit`), and a step that would enter the band from outside ends at its edge, also one that
+  starts still compressing (y > 0) just outside it: at orders from 16 up such a step crossed the maximum
+  and half the band at once (COR off by 1e-9 to 3e-4 at lam 40-60, where x_m lies just outside the band).
 
 On eq. 4.2 at the default tolerance (1e-10: order 13) it takes 14 to 24 steps where DOP853 takes about 25
 steps of 12 evaluations and a landing; one impact costs a third as much (``results/work_precision.csv``
@@ -62,6 +64,17 @@ def horner(coefficients, s: float) -> float:
     for c in reversed(coefficients):
         value = value * s + c
     return value
+
+
+def band_limit(order: int, lam, y, dy):
+    """Longest step inside the ramp band: lam |x(s) - x(0)| <= order / e, bounded by |y| s + |dy| s^2 / 2.
+
+    A bound on |y| alone (order / (e lam |y|)) fails near maximum compression, where y ~ 0 at the step's
+    start but not at its end: with x_m at the band's edge (lam ~ 37) some orders lost 1e-10 in the COR at a
+    local tolerance of 1e-12.  Floats or arrays; ``dy`` is y' at the step's start.
+    """
+    reach = order / (math.e * lam)
+    return 2.0 * reach / (abs(y) + (y * y + 2.0 * abs(dy) * reach) ** 0.5)
 
 
 def step_size(xs, ys, tol: float) -> float:
@@ -166,7 +179,6 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
     tau_m = tau_f = state_f = None
     g = separation(x, y)
     edge = None if lam is None else BAND_EDGE / lam
-    band_step = None if lam is None else order / (math.e * lam)
     band_top = None if lam is None else edge * (1.0 + 1e-9)
     while tau < end:
         if len(starts) >= MAX_STEPS:
@@ -175,10 +187,10 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
         if not math.isfinite(xs[-2] + ys[-2] + xs[-1] + ys[-1]):  # an inf or nan reaches the top orders
             raise SeriesOverflowError(f"Taylor coefficients overflow at tau = {tau:.6g}")
         h = min(step_size(xs, ys, tol), max_step, end - tau)
-        if edge is not None and x <= band_top and y != 0.0:  # in the band (a landing may end a hair above)
-            h = min(h, band_step / abs(y))
+        if edge is not None and x <= band_top:  # in the band (a landing may end a hair above)
+            h = min(h, band_limit(order, lam, y, ys[1]))
         x_end = horner(xs, h)
-        if edge is not None and y < 0.0 and x > edge >= x_end:  # entering the ramp band: stop at its edge
+        if edge is not None and x > band_top and edge >= x_end:  # entering the ramp band: stop at its edge
             h = _root(lambda s: horner(xs, s) - edge, 0.0, h)
             x_end = horner(xs, h)
         y_end = horner(ys, h)
