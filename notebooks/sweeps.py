@@ -146,8 +146,12 @@ for _, row in bench.iterrows():
                      f"{row.handwritten_rtol:.0e}{reached}); peak memory {row.peak_memory_mb:.0f} MB"))
 
 # %% [markdown]
-# The one-ball sweep's time includes building its interpolant on every call (nothing is cached): one batched
-# solve of Chebyshev nodes over the whole λ range, which also locates the tension onset, and one more on the
-# tension side of it. On a few thousand scenes that build is most of the time; on a million it is amortised.
+# Every sweep's time includes building its interpolant on every call (nothing is cached). The one-ball sweep
+# interpolates in λ alone: one batched solve of Chebyshev nodes over the whole λ range, which also locates the
+# tension onset, and one more on the tension side of it. The many-ball sweep (k, b and m drawn per scene, so
+# each scene has its own ζ and λ) interpolates on the (ζ, λ) plane: some 1500 nodes in one call of the
+# batched Taylor lanes, a piece for the penetration criterion's outputs over the whole rectangle and one for
+# the end where the force pulls, continued analytically past δ = 0 so that it needs no cut along the tension
+# onset. On a few thousand scenes the build is most of the time; on a million it is amortised.
 # The input and output tables are held whole, so the peak memory of a large sweep grows with its size; the
 # integration's own working memory is bounded by the chunk size.

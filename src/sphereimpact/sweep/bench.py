@@ -118,7 +118,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
     sample : int
         Scenes of each sweep on which the per-scene contenders are timed.
     lanes : int
-        Random scenes of the per-lane sweep (k, b, m, angle and speed drawn per scene).
+        Random scenes of the many-ball sweep (k, b, m, angle and speed drawn per scene: the engine's (zeta, lam)
+        plane).
     million : bool
         Also time a 10^6-scene one-ball sweep.
     laws : sequence of str
@@ -134,7 +135,7 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
     options = {"sample_size": sample, "repeats": repeats}
     rows = [
         # target: 1000x, the contact-laws issue's (the batched integrator's own target was 300x)
-        measure("k, b, m per lane (batched integrator)", varied, 1000, **options),
+        measure("k, b, m per scene, modified ((zeta, lam) plane)", varied, 1000, **options),
         measure("angle x speed, one ball, modified (similarity)", one_ball, 1000, **options),
         measure("angle x speed, one ball, kelvin-voigt (closed form)", one_ball.assign(model="kelvin-voigt"), None,
                 **options),

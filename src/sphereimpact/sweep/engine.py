@@ -8,16 +8,21 @@ Each scene takes the cheapest path that its law declares and that is exact for i
 2. a law on the ``modified`` kernel without gravity, many scenes sharing zeta and criterion (one ball):
    Chebyshev interpolation in lam over the whole sweep's range, checked against the integrator
    (:mod:`.similarity`);
-3. other scenes of a law with a batched kernel, without tangential gravity: the batched integrator
-   (:mod:`.batch`), in chunks;
-4. a law without a kernel, without tangential gravity: its similarity family (``ContactLaw.family``)
+3. the other scenes of the ``modified`` kernel without gravity, at least PLANE_MIN of them with zeta up to
+   :data:`.plane.ZETA_MAX` (many balls: k, b, m, D drawn per scene): one Chebyshev interpolant in
+   (zeta, lam) over the whole sweep's rectangle, its nodes solved by the batched Taylor lanes
+   (:mod:`.plane`);
+4. other scenes of a law with a batched kernel, without tangential gravity, in chunks: eq. 4.2 without
+   gravity up to critical damping on the batched Taylor lanes (:mod:`.series_lanes`), the rest on the
+   batched Runge-Kutta lanes (:mod:`.batch`);
+5. a law without a kernel, without tangential gravity: its similarity family (``ContactLaw.family``)
    fixes the dimensionless normal motion.  Without gravity, where at least FAMILY_MIN scenes share all
    but the family's last number (and the criterion), and that number is proportional to the approach
    speed (chi v_n of the Hunt-Crossley laws), a Chebyshev interpolant in it, built like the one in lam
    from single-impact solves and checked (:class:`.similarity.FamilyInterpolant`); otherwise the
    single-impact integrator solves one scene per distinct family (and gamma and criterion) and the
    others are scaled from it;
-5. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
+6. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
    (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene; so too the scenes the
    lanes would solve at more cost than alone (a cost model on the estimated steps: an over-damped creep
    under the penetration criterion, where one slow lane makes every step of its batch pay).
@@ -42,7 +47,7 @@ from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take range
 from ..scene import (SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns,
                      scale_problem)
 from ..solve import BeyondRadiusWarning, simulate
-from . import batch, closed
+from . import batch, closed, plane, series_lanes
 from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
 
 #: Scene parameters, with the single-impact defaults for missing columns.
@@ -51,9 +56,14 @@ DEFAULTS = {f.name: f.default for f in fields(Scene)}
 #: Outputs of a sweep, as ``sphereimpact simulate`` names them.
 SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor", "regime",
                  "beyond_radius")
+#: The regime column's values, by index.
+REGIMES = np.array(["none", "sliding", "rolling"], dtype=object)
 #: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each (measured for the
 #: chapter's ball: 43 ms against 47 ms at 2000 scenes, 42 against 29 ms at 1000).
 SIMILARITY_MIN = 2000
+#: Fewest scenes (of one criterion) for which the (zeta, lam) plane beats the Taylor lanes (measured on
+#: random balls, whole sweeps: 17.8 against 16.4 ms at 2000 scenes, 21.3 against 24.9 ms at 4000).
+PLANE_MIN = 3000
 #: Fewest distinct values of a kernel-less law's last family number (scenes sharing its other numbers and
 #: the criterion) for which interpolating in it beats solving each family: a build solves 33 to 129 nodes
 #: one by one (chi v_n of the chapter's ball from 0.5 to 30 m/s: 65 plus a tension piece).
@@ -63,6 +73,10 @@ FAMILY_MIN = 200
 #: without bound (an over-damped creep back to delta = 0 under the penetration criterion), so such scenes
 #: are solved one by one.
 LANES_ZETA_MAX = 100.0
+#: Largest lam of eq. 4.2 on the Runge-Kutta lanes: from 1e5 up they lost up to 6e-5 in the COR (lam = 1e6,
+#: penetration criterion, against scipy's DOP853 and the Taylor lanes), so such scenes with gravity or
+#: beyond critical damping are solved one by one.
+LANES_LAM_MAX = 1e4
 #: Cost model that chooses between the batched lanes and the single-impact path (measured on eq. 4.2 at
 #: target 1e-8 on a 2-core machine): a batched step costs LANE_STEP_COST [s] however many lanes it carries,
 #: plus LANE_COST per lane (one lane of 21 040 steps took 3.4 s, a thousand took 8.8 s); one impact solved
@@ -84,15 +98,19 @@ def scene_table(scenes) -> pd.DataFrame:
     if unknown:
         raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
     n = len(given)
-    columns = {name: given[name].to_numpy() if name in given else np.full(n, DEFAULTS[name])
+    columns = {name: given[name].to_numpy() if name in given
+               else _objects(n, DEFAULTS[name]) if name in TEXT_FIELDS else np.full(n, DEFAULTS[name])
                for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
     laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
     columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
     for name in ("modulus", *TANGENTIAL_PARAMETERS):
         columns.setdefault(name, np.full(n, np.nan))
-    frame = pd.DataFrame({name: columns[name] if name in TEXT_FIELDS
+    # text as object columns: pandas' string dtype costs 0.8 ms per 20 000 rows to build, the rest of a sweep's
+    # overhead together about as much
+    frame = pd.DataFrame({name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
                           else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
-    for i in np.flatnonzero(_compliant(frame) | frame[list(TANGENTIAL_PARAMETERS)].notna().any(axis=1).to_numpy()):
+    tangential = np.column_stack([frame[name].to_numpy() for name in TANGENTIAL_PARAMETERS])
+    for i in np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1)):
         try:  # the tangential model's parameters depend on the law: checked as the Scene checks them
             scene = scene_of(frame.iloc[i].to_dict())
         except ValueError as err:
@@ -101,9 +119,16 @@ def scene_table(scenes) -> pd.DataFrame:
     return frame
 
 
+def _objects(n: int, value) -> np.ndarray:
+    """An object array of n references to ``value`` (np.full fills object arrays 20x slower)."""
+    out = np.empty(n, dtype=object)
+    out[:] = value
+    return out
+
+
 def _compliant(frame: pd.DataFrame) -> np.ndarray:
     """Scenes with a compliant tangential contact (solved scene by scene)."""
-    return (frame["tangential"] != "rigid").to_numpy()
+    return frame["tangential"].to_numpy() != "rigid"  # numpy's comparison: pandas' is 4x slower
 
 
 def scene_of(row: dict) -> Scene:
@@ -122,16 +147,26 @@ def scene_of(row: dict) -> Scene:
 def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
     """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
     compliant tangential contact at an angle (its tangential motion is integrated)."""
-    return (((frame["gravity"] > 0) | _compliant(frame)) & (frame["angle"] > 0)).to_numpy()
+    return ((frame["gravity"].to_numpy() > 0) | _compliant(frame)) & (frame["angle"].to_numpy() > 0)
+
+
+def _series_lanes(d: dict) -> np.ndarray:
+    """Scenes the batched Taylor lanes take (:mod:`.series_lanes`): eq. 4.2 without gravity up to critical
+    damping and lam 1e12 (their tested domain; faster than the Runge-Kutta lanes, and right at large lam)."""
+    with np.errstate(invalid="ignore"):
+        return (d["modified"] & (d["gamma"] == 0) & (d["zeta"] > 0) & (d["zeta"] <= series_lanes.ZETA_MAX)
+                & (d["lam"] <= series_lanes.LAM_MAX) & np.isfinite(d["w"]))
 
 
 def _beyond_lanes(d: dict) -> np.ndarray:
     """Scenes of a batched kernel or closed form that those paths cannot bound: damping beyond
-    :data:`LANES_ZETA_MAX` or dimensionless numbers that are not finite (e.g. mass 1e-300, b 1e300).  They
-    go to the single-impact path, whose cost is bounded (:data:`sphereimpact.normal.MAX_NFEV`)."""
+    :data:`LANES_ZETA_MAX`, dimensionless numbers that are not finite (e.g. mass 1e-300, b 1e300), or lam
+    beyond :data:`LANES_LAM_MAX` on the Runge-Kutta lanes.  They go to the single-impact path, whose cost is
+    bounded (:data:`sphereimpact.normal.MAX_NFEV`)."""
     with np.errstate(invalid="ignore"):
         wild = ~(np.isfinite(d["zeta"]) & np.isfinite(d["lam"]) & np.isfinite(d["w"]) & np.isfinite(d["gamma"]))
-        return (d["kernel"] != None) & (wild | (d["zeta"] > LANES_ZETA_MAX))  # noqa: E711  (object array)
+        sharp = d["modified"] & (d["lam"] > LANES_LAM_MAX) & ~_series_lanes(d)
+        return d["batched"] & (wild | (d["zeta"] > LANES_ZETA_MAX) | sharp)
 
 
 def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
@@ -155,17 +190,17 @@ def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
 def _solved_alone(frame: pd.DataFrame, d: dict, target: float, limits: dict | None = None) -> tuple[np.ndarray, dict]:
     """(scenes solved one by one, the lane limit per criterion).
 
-    One by one: :func:`_one_by_one` and :func:`_beyond_lanes` scenes, and the scenes the batched lanes would
-    integrate (a kernel, not the closed form's) whose estimated steps (:func:`batch.estimated_steps`)
-    exceed their criterion's limit (:func:`_lane_limit`).  The limits are computed on these scenes unless
-    ``limits`` is given: a shard takes the whole sweep's (``span``), so shards and chunk sizes do not change
-    which path a scene takes.
+    One by one: :func:`_one_by_one` and :func:`_beyond_lanes` scenes, and the scenes the Runge-Kutta lanes
+    would integrate (a kernel, not the closed form's nor the Taylor lanes') whose estimated steps
+    (:func:`batch.estimated_steps`) exceed their criterion's limit (:func:`_lane_limit`).  The limits are
+    computed on these scenes unless ``limits`` is given: a shard takes the whole sweep's (``span``), so shards
+    and chunk sizes do not change which path a scene takes.
     """
     alone = _one_by_one(frame) | _beyond_lanes(d)
-    lanes = (d["kernel"] != None) & ~(d["closed"] & (d["gamma"] == 0)) & ~alone  # noqa: E711  (object array)
+    lanes = d["batched"] & ~(d["closed"] & (d["gamma"] == 0)) & ~_series_lanes(d) & ~alone  # Runge-Kutta lanes
     computed = {}
     for separation in SEPARATION_CRITERIA:
-        mine = np.flatnonzero(lanes & (d["separation"] == separation))
+        mine = np.flatnonzero(lanes & _criterion(d, separation))
         if not mine.size:
             continue
         zeta, lam = d["zeta"][mine], d["lam"][mine]
@@ -185,14 +220,16 @@ def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
 
 def _dimensionless(frame: pd.DataFrame) -> dict:
     """Per scene: w = 1 / T (the law's frequency), v_n, gamma, the kernel's zeta and lam, the law's
-    closed form and kernel, its similarity family (as a hashable key; laws without a kernel only, None
-    otherwise), and the criterion."""
+    closed form and kernel (``batched``: it has one), its similarity family (as a hashable key; laws without a
+    kernel only, None otherwise), and the criterion (``force``: the force criterion's).  The masks are
+    compared once here: an elementwise comparison of an object array costs 0.14 ms per 20 000 scenes."""
     beta = np.radians(frame["angle"].to_numpy())
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
-    closed_form, kernel, family = (np.full(n, None, dtype=object) for _ in range(3))
-    models = frame["model"].to_numpy()
+    closed_form, kernel, family = (_objects(n, None) for _ in range(3))
+    modified, linear = np.zeros(n, bool), np.zeros(n, bool)
+    models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
     for model in dict.fromkeys(models.tolist()):
         rows = np.flatnonzero(models == model)
         law = LAWS[model]
@@ -202,7 +239,7 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
         if law.closed_form is not None and law.closed_form != closed.CLOSED_FORM:
             raise ValueError(f"model {model!r} declares closed form {law.closed_form!r}, which the sweep does not "
                              f"have ({closed.CLOSED_FORM})")
-        view = _law_view(frame.iloc[rows], v_n[rows])
+        view = _law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
         with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
             w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
             numbers = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
@@ -211,6 +248,7 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
         if problem:
             raise ValueError(problem)
         closed_form[rows], kernel[rows] = law.closed_form, law.kernel
+        modified[rows], linear[rows] = law.kernel == "modified", law.closed_form == closed.CLOSED_FORM
         if law.kernel is not None:  # the batched kernels read zeta and (modified) lam
             zeta[rows] = numbers["zeta"]
             lam[rows] = numbers.get("lam", 0.0)
@@ -219,8 +257,13 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
             family[rows] = [(model, *values) for values in keys]
     return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
             "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),  # w v_n: normal (scale_problem)
-            "modified": kernel == "modified", "closed": closed_form == closed.CLOSED_FORM, "kernel": kernel,
-            "family": family, "separation": frame["separation"].to_numpy()}
+            "modified": modified, "closed": linear, "kernel": kernel, "batched": kernel != None,  # noqa: E711
+            "family": family, "separation": separation, "force": separation == "force"}
+
+
+def _criterion(d: dict, separation: str) -> np.ndarray:
+    """Scenes of ``d`` (see :func:`_dimensionless`) under the criterion ``separation``."""
+    return d["force"] if separation == "force" else ~d["force"]
 
 
 def _interpolants(d: dict, target: float) -> dict:
@@ -229,7 +272,7 @@ def _interpolants(d: dict, target: float) -> dict:
     similar = np.flatnonzero(d["modified"] & (d["gamma"] == 0))
     interpolants = {}
     for criterion in SEPARATION_CRITERIA:
-        mine = similar[d["separation"][similar] == criterion]
+        mine = similar[_criterion(d, criterion)[similar]]
         zetas, group, counts = np.unique(d["zeta"][mine], return_inverse=True, return_counts=True)
         for i in np.flatnonzero(counts >= SIMILARITY_MIN):
             lam = d["lam"][mine[group == i]]
@@ -241,11 +284,35 @@ def _interpolants(d: dict, target: float) -> dict:
     return interpolants
 
 
+def _plane_scenes(d: dict, interpolants: dict, separation: str) -> np.ndarray:
+    """Scenes of ``d`` (one criterion) the (zeta, lam) plane may take: the modified kernel without gravity,
+    not taken by a one-ball interpolant, within the plane's zeta and lam ranges."""
+    one_ball = np.isin(d["zeta"], [z for z, criterion in interpolants if criterion == separation])
+    return np.flatnonzero(d["modified"] & (d["gamma"] == 0) & _criterion(d, separation) & ~one_ball
+                          & (d["zeta"] > 0) & (d["zeta"] <= plane.ZETA_MAX)
+                          & (d["lam"] >= plane.LAM_MIN) & (d["lam"] <= plane.LAM_MAX))
+
+
+def _planes(d: dict, interpolants: dict, target: float) -> dict:
+    """separation -> PlaneInterpolant on the span's scenes ``d`` where at least PLANE_MIN may take it."""
+    built = {}
+    for separation in SEPARATION_CRITERIA:
+        mine = _plane_scenes(d, interpolants, separation)
+        if mine.size >= PLANE_MIN:
+            zeta, lam = d["zeta"][mine], d["lam"][mine]
+            try:
+                built[separation] = plane.PlaneInterpolant(zeta.min(), zeta.max(), lam.min(), lam.max(), separation,
+                                                           target)
+            except InterpolationError:  # integrated by the lanes instead
+                continue
+    return built
+
+
 def _family_groups(d: dict) -> dict:
     """(model, the family's other numbers, criterion) -> indices of the kernel-less weightless scenes of
     ``d`` with a positive last family number, the one :class:`FamilyInterpolant` interpolates in."""
     groups: dict = {}
-    for i in np.flatnonzero((d["kernel"] == None) & (d["gamma"] == 0)):  # noqa: E711  (object array)
+    for i in np.flatnonzero(~d["batched"] & (d["gamma"] == 0)):
         family = d["family"][i]
         if len(family) > 1 and family[-1] > 0:
             groups.setdefault((*family[:-1], d["separation"][i]), []).append(i)
@@ -275,6 +342,7 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
     interpolants built on the scenes ``span`` (whose table is ``span_frame``)."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
+    planes = _planes(span, interpolants, target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(zeta.size, bool)
     groups = _family_groups(d)
@@ -285,13 +353,13 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
             rows = np.array(rows)
             _put(out, rows, family_interpolants[key](np.array([d["family"][i][-1] for i in rows])))
             todo[rows] = False
-    by_family = np.flatnonzero((d["kernel"] == None) & todo)  # noqa: E711  (elementwise on an object array)
+    by_family = np.flatnonzero(~d["batched"] & todo)
     if by_family.size:
         _put(out, by_family, _family_outputs(frame.iloc[by_family], d["family"][by_family],
                                              d["gamma"][by_family], target))
         todo[by_family] = False
     for separation in ("force", "penetration"):
-        sep = d["separation"] == separation
+        sep = _criterion(d, separation)
         linear = sep & d["closed"] & (gamma == 0)
         if linear.any():
             _put(out, linear, closed.events(zeta[linear], separation))
@@ -307,10 +375,29 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
                 i = group[start:start + chunk_size]
                 _put(out, i, interpolant(lam[i]))
             todo[group] = False
-        rest = np.flatnonzero(todo & sep)
+        if separation in planes:
+            group = _plane_scenes(d, interpolants, separation)
+            interpolant = planes[separation]
+            outside = group[(zeta[group] < interpolant.zeta_min) | (zeta[group] > interpolant.zeta_max)
+                            | (lam[group] < interpolant.lam_min) | (lam[group] > interpolant.lam_max)]
+            if outside.size:
+                raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} (zeta = "
+                                 f"{zeta[outside[0]]:.6g}, lam = {lam[outside[0]]:.6g}) lies outside the span's plane; "
+                                 "pass the whole sweep as span")
+            for start in range(0, group.size, chunk_size):
+                i = group[start:start + chunk_size]
+                _put(out, i, interpolant(zeta[i], lam[i]))
+            todo[group] = False
+        series = _series_lanes(d)
+        rest = np.concatenate([np.flatnonzero(todo & sep & series), np.flatnonzero(todo & sep & ~series)])
         for start in range(0, rest.size, chunk_size):
             i = rest[start:start + chunk_size]
-            _put(out, i, batch.integrate(zeta[i], lam[i], gamma[i], modified[i], separation, target))
+            taylor, runge_kutta = i[series[i]], i[~series[i]]
+            if taylor.size:
+                _put(out, taylor, series_lanes.integrate(zeta[taylor], lam[taylor], separation, target))
+            if runge_kutta.size:
+                _put(out, runge_kutta, batch.integrate(zeta[runge_kutta], lam[runge_kutta], gamma[runge_kutta],
+                                                       modified[runge_kutta], separation, target))
             if progress:
                 progress(min(start + chunk_size, rest.size), rest.size)
     return out
@@ -374,7 +461,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     frame = scene_table(scenes)
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
-    regime = np.full(n, "none", dtype=object)
+    regime = _objects(n, "none")
     d_all = _dimensionless(frame)
     whole = frame if span is None else scene_table(span)
     d_whole = d_all if span is None else _dimensionless(whole)
@@ -420,7 +507,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                   "ve_n": -dim["y_f"] * v_n, "omega_f": omega, "cor": -dim["y_f"]}
         for key, value in values.items():
             result[key][rest] = value
-        regime[rest] = np.where(v_t == 0, "none", np.where(slides, "sliding", "rolling"))
+        regime[rest] = REGIMES[np.where(v_t == 0, 0, np.where(slides, 1, 2))]
     finite = np.logical_and.reduce([np.isfinite(values) for values in result.values()])
     if not finite.all():  # never a NaN in a table
         i = int(np.flatnonzero(~finite)[0])
@@ -428,8 +515,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
                           "sweep resolves: try `sphereimpact simulate` on that scene")
     beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
-    return pd.concat([frame, pd.DataFrame(result | {"regime": regime, "beyond_radius": beyond})[list(SWEEP_OUTPUTS)]],
-                     axis=1)
+    outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
+    return pd.concat([frame, outputs[list(SWEEP_OUTPUTS)]], axis=1)
 
 
 def grid(**ranges) -> pd.DataFrame:

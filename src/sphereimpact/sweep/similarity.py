@@ -39,7 +39,7 @@ from scipy.optimize import brentq
 from ..scene import Scene, SolverOptions
 from ..solve import normal_motion
 from ..tangential import PositiveImpulse
-from . import batch
+from . import batch, series_lanes
 
 OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 #: Outputs that are smooth across the tension onset under the penetration criterion.
@@ -239,8 +239,10 @@ class LambdaInterpolant(_Pieces):
     """
 
     def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: str, target: float):
-        def solve(u, criterion, node_target):  # the batched lanes, one per node
+        def solve(u, criterion, node_target):  # the batched lanes, one per node: Taylor's up to critical damping
             n = u.size
+            if zeta <= series_lanes.ZETA_MAX:
+                return series_lanes.integrate(np.full(n, zeta), np.exp(u), criterion, node_target)
             return batch.integrate(np.full(n, zeta), np.exp(u), np.zeros(n), np.ones(n, bool), criterion,
                                    node_target)
 

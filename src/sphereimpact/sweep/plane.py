@@ -1,0 +1,249 @@
+"""Two-number similarity: eq. 4.2's weightless normal outputs as functions of (zeta, lam), for sweeps of many balls.
+
+A sweep over k, b, m, D, speed and angle gives every scene its own (zeta, lam), so the one-ball interpolant
+in lam (:class:`.similarity.LambdaInterpolant`) does not apply; but the outputs are still smooth functions of
+the two numbers, and one interpolant on the sweep's rectangle serves every scene.  It has two pieces, each a
+tensor Chebyshev series on Lobatto nodes in zeta and a second number, all nodes solved in one call of the Taylor lanes
+(:mod:`.series_lanes`):
+
+1. ``calm``: the penetration criterion's tau_m, x_m, tau_f and y_f in (zeta, u = log lam), smooth on the whole
+   rectangle.  They give G = 1 + 2 zeta lam y_f, the force's sign as delta -> 0+: the force pulls before
+   delta = 0 iff G < 0, and otherwise both criteria end at delta = 0 with y_p = y_f;
+2. ``tension``: the ``continued`` end's tau_f and y_f (the first root of P_hat / x, continued past delta = 0
+   where the force does not pull before it), in (zeta, v = log(2 zeta lam)).  They equal the force
+   criterion's end wherever the force pulls and are smooth across the onset, so the piece needs no cut
+   along the onset curve, only a lower edge below it: the onset lies at v* = -ln|y_f| (measured
+   v* ~ pi zeta / (1 + 2.8 zeta) within 5 % for zeta 0.003-1), and the piece starts at ONSET_MARGIN v*.
+   A scene that pulls below that edge (none measured) is integrated by the lanes instead.
+
+Each piece is accepted when its last two Chebyshev coefficients in each direction (summed over the other)
+are below a tenth of the target; otherwise that direction's nodes double (nested Lobatto points) and the
+nodes are solved again, up to MAX_NODES per piece (InterpolationError: the caller integrates the scenes).
+Nodes are solved at NODE_FACTOR x the target, as for the one-ball interpolant.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.fft import dctn
+
+from . import series_lanes
+from .similarity import NODE_FACTOR, NODE_TARGET_MIN, InterpolationError, _lobatto
+
+#: Largest zeta the plane takes: towards critical damping the penetration criterion's t_f steepens (x creeps
+#: back to 0) and the calm piece needs ever more nodes in zeta (zeta 0.01 to 0.5, 0.6, 0.8 with lam 1e-3 to
+#: 1e4: 2534, 6682 and 12 102 nodes).  Scenes beyond it take the Taylor lanes.
+ZETA_MAX = 0.5
+#: lam range the plane takes: beyond it the outputs are those of the lam -> 0 or -> inf limits to the target,
+#: and the series' band takes more steps than the interpolant saves.
+LAM_MIN, LAM_MAX = 1e-3, 1e6
+#: The tension piece starts at this fraction of the estimated onset v* = pi zeta / (1 + 2.8 zeta).
+ONSET_MARGIN = 0.8
+#: First nodes of each piece in zeta, and in its second number (u or v) per unit of its width and digit of
+#: the target (odd; at least MIN_NODES): measured on random balls (zeta 0.003-0.37, lam 0.08-383) at 1e-8,
+#: where the calm piece's 13 x 49 and the tension piece's 25 x 33 nodes meet the target (errors 7e-11 and
+#: 1.5e-9; one fewer level in either direction of the tension piece misses it).
+FIRST_ZETA_NODES = {"calm": 13, "tension": 25}
+NODES_PER_DIGIT = 0.64
+MIN_NODES = 9
+#: A piece whose tails miss the target grows by this factor in that direction, up to MAX_NODES nodes.
+GROWTH = 1.5
+MAX_NODES = 8192
+#: Outputs of each piece.
+CALM = ("tau_m", "x_m", "tau_f", "y_f")
+TENSION = ("tau_f", "y_f")
+#: Points evaluated per matrix product (see :meth:`_Tensor.__call__`): measured fastest of 256-16384 on 2 cores
+#: (6.5 ms for 20 000 points; 2048 and up took twice as long, where OpenBLAS starts a second thread).
+EVAL_BLOCK = 1024
+#: A piece is accepted when its tails are below TAIL_FACTOR x target.
+TAIL_FACTOR = 1.0
+#: Trailing rows and columns of coefficients are dropped from the evaluated series while the sum of the
+#: dropped magnitudes (a bound on the change, |T_k| <= 1) stays below TRUNCATE x target.
+TRUNCATE = 0.01
+
+
+def _odd(n: float) -> int:
+    """The odd integer at or above n, at least MIN_NODES."""
+    n = max(math.ceil(n), MIN_NODES)
+    return n + 1 - n % 2
+
+
+def onset_edge(zeta):
+    """The tension piece's lower edge in v = log(2 zeta lam): ONSET_MARGIN x the estimated onset."""
+    zeta = np.asarray(zeta, dtype=float)
+    return ONSET_MARGIN * np.pi * zeta / (1.0 + 2.8 * zeta)
+
+
+def _chebyshev_matrix(t, n: int) -> np.ndarray:
+    """T_0..T_(n-1) at t, shape (n, len(t))."""
+    out = np.empty((n, t.size))
+    out[0] = 1.0
+    if n > 1:
+        out[1] = t
+    two_t = 2.0 * t
+    for k in range(2, n):
+        np.multiply(two_t, out[k - 1], out=out[k])
+        out[k] -= out[k - 2]
+    return out
+
+
+def _kept(size: np.ndarray, budget: float) -> tuple[int, int]:
+    """(rows, columns) of ``size`` (coefficient magnitudes) to keep: trailing rows, then trailing columns, are
+    dropped while the dropped magnitudes sum to at most ``budget`` (half of it for each direction)."""
+    rows = size.shape[0]
+    while rows > 1 and size[rows - 1:].sum() <= 0.5 * budget:
+        rows -= 1
+    dropped, cols = size[rows:].sum(), size.shape[1]
+    while cols > 1 and dropped + size[:rows, cols - 1:].sum() <= budget:
+        cols -= 1
+    return rows, cols
+
+
+class _Tensor:
+    """A tensor Chebyshev series in (a, b) on [a_lo, a_hi] x [0, 1] (b already mapped), of several outputs,
+    interpolating values on the Lobatto grid (values: (n_a, n_b, outputs), both axes from the top down).
+
+    Its tails (the last two coefficients in each direction, summed over the other) estimate how well it
+    resolves each direction; negligible trailing coefficients are dropped (:func:`_kept`).
+    """
+
+    def __init__(self, lo: float, hi: float, values: np.ndarray, target: float):
+        self.lo, self.hi = lo, hi
+        coef = dctn(values, type=1, axes=(0, 1)) / ((values.shape[0] - 1) * (values.shape[1] - 1))
+        coef[[0, -1]] /= 2.0
+        coef[:, [0, -1]] /= 2.0
+        self.tails = (float(np.abs(coef[-2:]).max(axis=2).sum()), float(np.abs(coef[:, -2:]).max(axis=2).sum()))
+        size = np.abs(coef).max(axis=2)
+        rows, cols = _kept(size, TRUNCATE * target)
+        self.coef = np.ascontiguousarray(coef[:rows, :cols].transpose(2, 0, 1))
+
+    def __call__(self, a, b01) -> np.ndarray:
+        """Values at (a, b01), b01 in [0, 1]: shape (outputs, len(a)).
+
+        sum_ij c_ij T_i(a) T_j(b) as (C T_b) summed against T_a: one matrix product for all outputs, in
+        blocks of EVAL_BLOCK points (the last one padded), so that a point's value does not depend on how
+        many are evaluated with it (a BLAS product of another width may round differently).
+        """
+        outputs, n_a, n_b = self.coef.shape
+        flat = self.coef.reshape(outputs * n_a, n_b)
+        out = np.empty((outputs, a.size))
+        for start in range(0, a.size, EVAL_BLOCK):
+            stop = min(start + EVAL_BLOCK, a.size)
+            ta, tb = np.zeros(EVAL_BLOCK), np.zeros(EVAL_BLOCK)
+            ta[:stop - start] = (2.0 * a[start:stop] - (self.lo + self.hi)) / (self.hi - self.lo)
+            tb[:stop - start] = 2.0 * b01[start:stop] - 1.0
+            values = np.einsum("kan,an->kn", (flat @ _chebyshev_matrix(tb, n_b)).reshape(outputs, n_a, -1),
+                               _chebyshev_matrix(ta, n_a))
+            out[:, start:stop] = values[:, :stop - start]
+        return out
+
+
+class PlaneInterpolant:
+    """Normal outputs of eq. 4.2 without gravity as functions of (zeta, lam) on a rectangle.
+
+    Parameters
+    ----------
+    zeta_min, zeta_max : float
+        Damping ratios to cover, in (0, ZETA_MAX].
+    lam_min, lam_max : float
+        lam to cover, in [LAM_MIN, LAM_MAX].
+    separation : {'force', 'penetration'}
+    target : float
+        Accuracy the interpolant must meet (its Chebyshev tails at a tenth of it).
+
+    Attributes
+    ----------
+    zeta_min, zeta_max, lam_min, lam_max : float
+        The rectangle covered (a call outside it would extrapolate).
+    nodes : int
+        Nodes solved for the build (every attempt).
+
+    Raises
+    ------
+    InterpolationError
+        Outside the ranges above, or when a piece needs more than MAX_NODES nodes.
+    """
+
+    def __init__(self, zeta_min: float, zeta_max: float, lam_min: float, lam_max: float, separation: str,
+                 target: float):
+        if not (0 < zeta_min <= zeta_max <= ZETA_MAX and LAM_MIN <= lam_min <= lam_max <= LAM_MAX):
+            raise InterpolationError(f"the (zeta, lam) plane covers zeta in (0, {ZETA_MAX:g}] and lam in "
+                                     f"[{LAM_MIN:g}, {LAM_MAX:g}]; got zeta [{zeta_min:g}, {zeta_max:g}], "
+                                     f"lam [{lam_min:g}, {lam_max:g}]")
+        self.separation, self.target = separation, target
+        self.zeta_min, self.zeta_max, self.lam_min, self.lam_max = zeta_min, zeta_max, lam_min, lam_max
+        self.zeta = (zeta_min, max(zeta_max, zeta_min * (1.0 + 1e-6)))
+        u_lo, u_hi = math.log(lam_min), math.log(lam_max)
+        self.u = (u_lo, max(u_hi, u_lo + 1e-6))
+        self.v_top = max(math.log(2.0 * zeta_max * lam_max), float(onset_edge(zeta_max)) + 1e-6)
+        if math.exp(self.v_top) / (2.0 * zeta_min) > series_lanes.LAM_MAX:  # the tension piece's largest lam
+            raise InterpolationError(f"the (zeta, lam) plane's tension nodes would reach lam "
+                                     f"{math.exp(self.v_top) / (2.0 * zeta_min):.3g}, beyond the Taylor lanes' "
+                                     f"{series_lanes.LAM_MAX:g} (zeta from {zeta_min:g})")
+        node_target = max(NODE_FACTOR * target, NODE_TARGET_MIN)
+        widths = {"calm": self.u[1] - self.u[0], "tension": self.v_top - float(onset_edge(zeta_min))}
+        sizes = {piece: (FIRST_ZETA_NODES[piece], _odd(NODES_PER_DIGIT * math.log10(10.0 / target) * width))
+                 for piece, width in widths.items()}
+        self.nodes = 0
+        while True:
+            if any(math.prod(size) > MAX_NODES for size in sizes.values()):
+                raise InterpolationError(f"the (zeta, lam) plane did not reach {target:g} with {MAX_NODES} nodes "
+                                         f"per piece (zeta in [{zeta_min:g}, {zeta_max:g}], lam in "
+                                         f"[{lam_min:g}, {lam_max:g}])")
+            grids = {piece: self._grid(piece, *size) for piece, size in sizes.items()}
+            zeta = np.concatenate([g[0].ravel() for g in grids.values()])
+            lam = np.concatenate([g[1].ravel() for g in grids.values()])
+            split = grids["calm"][0].size
+            ends = np.where(np.arange(zeta.size) < split, "penetration", "continued")
+            solved = series_lanes.integrate(zeta, lam, ends, node_target)
+            self.nodes += zeta.size
+            self.calm = _Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"]) for k in CALM], -1),
+                                target)
+            self.tension = _Tensor(*self.zeta, np.stack([solved[k][split:].reshape(sizes["tension"])
+                                                         for k in TENSION], -1), target)
+            grown = {piece: tuple(_odd(GROWTH * n) if tail > TAIL_FACTOR * target else n
+                                  for n, tail in zip(sizes[piece], getattr(self, piece).tails))
+                     for piece in sizes}
+            if grown == sizes:
+                return
+            sizes = grown
+
+    def _grid(self, piece: str, n_zeta: int, n_other: int) -> tuple[np.ndarray, np.ndarray]:
+        """(zeta, lam) of a piece's Lobatto grid, shape (n_zeta, n_other): the calm piece in (zeta, u), the
+        tension piece in (zeta, v) from its edge to v_top (s in [0, 1] between them)."""
+        zeta = _lobatto(*self.zeta, n_zeta)[:, None]
+        s = _lobatto(0.0, 1.0, n_other)[None, :]
+        if piece == "calm":
+            lam = np.exp(self.u[0] + s * (self.u[1] - self.u[0]))
+        else:
+            edge = onset_edge(zeta)
+            lam = np.exp(edge + s * (self.v_top - edge)) / (2.0 * zeta)
+        return np.broadcast_arrays(zeta, lam)
+
+    def __call__(self, zeta, lam) -> dict:
+        """tau_m, x_m, tau_f, y_f and y_p at each (zeta, lam) of the rectangle."""
+        zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
+        calm = self.calm(zeta, (np.log(lam) - self.u[0]) / (self.u[1] - self.u[0]))
+        out = dict(zip(CALM, calm))
+        out["y_p"] = out["y_f"].copy()
+        pulls = np.flatnonzero(1.0 + 2.0 * zeta * lam * out["y_f"] < 0)
+        if pulls.size:
+            z = zeta[pulls]
+            edge = onset_edge(z)
+            s = (np.log(2.0 * z * lam[pulls]) - edge) / (self.v_top - edge)
+            rest = {k: np.empty(pulls.size) for k in TENSION}
+            inside = s >= 0
+            if inside.any():
+                for k, values in zip(TENSION, self.tension(z[inside], s[inside])):
+                    rest[k][inside] = values
+            if not inside.all():  # pulls below the piece's edge: integrated
+                alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], "force",
+                                               max(NODE_FACTOR * self.target, NODE_TARGET_MIN))
+                for k in TENSION:
+                    rest[k][~inside] = alone[k]
+            out["y_p"][pulls] = rest["y_f"]
+            if self.separation == "force":
+                out["tau_f"][pulls], out["y_f"][pulls] = rest["tau_f"], rest["y_f"]
+        return out
