@@ -3,8 +3,8 @@
 A sweep over k, b, m, D, speed and angle gives every scene its own (zeta, lam), so the one-ball interpolant
 in lam (:class:`.similarity.LambdaInterpolant`) does not apply; but the outputs are still smooth functions of
 the two numbers, and one interpolant on the sweep's rectangle serves every scene.  It has two pieces, each a
-tensor Chebyshev series on Lobatto nodes in zeta and a second number, all nodes solved in one call of the Taylor lanes
-(:mod:`.series_lanes`):
+tensor Chebyshev series on Lobatto nodes in zeta and a second number, all nodes solved in one call of the
+Taylor lanes (:mod:`.series_lanes`):
 
 1. ``calm``: the penetration criterion's tau_m, x_m, tau_f and y_f in (zeta, u = log lam), smooth on the whole
    rectangle.  They give G = 1 + 2 zeta lam y_f, the force's sign as delta -> 0+: the force pulls before
@@ -16,10 +16,12 @@ tensor Chebyshev series on Lobatto nodes in zeta and a second number, all nodes 
    v* ~ pi zeta / (1 + 2.8 zeta) within 5 % for zeta 0.003-1), and the piece starts at ONSET_MARGIN v*.
    A scene that pulls below that edge (none measured) is integrated by the lanes instead.
 
-Each piece is accepted when its last two Chebyshev coefficients in each direction (summed over the other)
-are below a tenth of the target; otherwise that direction's nodes double (nested Lobatto points) and the
-nodes are solved again, up to MAX_NODES per piece (InterpolationError: the caller integrates the scenes).
-Nodes are solved at NODE_FACTOR x the target, as for the one-ball interpolant.
+Each piece is accepted when its tails, the last two Chebyshev coefficients in each direction (summed over the
+other), are below the target (TAIL_FACTOR): measured, the errors between nodes are 3 to 5 times below the
+tails.  Otherwise that direction's nodes grow by GROWTH and every node is solved again, up to MAX_NODES per
+piece (InterpolationError: the caller integrates the scenes).  Nodes are solved at NODE_FACTOR x the target,
+as for the one-ball interpolant.  The series are evaluated by BLAS products on blocks of a fixed width
+(EVAL_BLOCK), so a scene's value does not depend on the shard or chunk it is evaluated in.
 """
 
 from __future__ import annotations
@@ -36,8 +38,8 @@ from .similarity import NODE_FACTOR, NODE_TARGET_MIN, InterpolationError, _lobat
 #: back to 0) and the calm piece needs ever more nodes in zeta (zeta 0.01 to 0.5, 0.6, 0.8 with lam 1e-3 to
 #: 1e4: 2534, 6682 and 12 102 nodes).  Scenes beyond it take the Taylor lanes.
 ZETA_MAX = 0.5
-#: lam range the plane takes: beyond it the outputs are those of the lam -> 0 or -> inf limits to the target,
-#: and the series' band takes more steps than the interpolant saves.
+#: lam range the plane takes: the range its accuracy is tested on (tests/test_plane.py); beyond it the scenes
+#: take the Taylor lanes.
 LAM_MIN, LAM_MAX = 1e-3, 1e6
 #: The tension piece starts at this fraction of the estimated onset v* = pi zeta / (1 + 2.8 zeta).
 ONSET_MARGIN = 0.8
@@ -57,7 +59,7 @@ TENSION = ("tau_f", "y_f")
 #: Points evaluated per matrix product (see :meth:`_Tensor.__call__`): measured fastest of 256-16384 on 2 cores
 #: (6.5 ms for 20 000 points; 2048 and up took twice as long, where OpenBLAS starts a second thread).
 EVAL_BLOCK = 1024
-#: A piece is accepted when its tails are below TAIL_FACTOR x target.
+#: A piece is accepted when its tails are below TAIL_FACTOR x target (see the module docstring).
 TAIL_FACTOR = 1.0
 #: Trailing rows and columns of coefficients are dropped from the evaluated series while the sum of the
 #: dropped magnitudes (a bound on the change, |T_k| <= 1) stays below TRUNCATE x target.
@@ -151,7 +153,7 @@ class PlaneInterpolant:
         lam to cover, in [LAM_MIN, LAM_MAX].
     separation : {'force', 'penetration'}
     target : float
-        Accuracy the interpolant must meet (its Chebyshev tails at a tenth of it).
+        Accuracy the interpolant must meet (its Chebyshev tails below it, see the module docstring).
 
     Attributes
     ----------
@@ -163,7 +165,8 @@ class PlaneInterpolant:
     Raises
     ------
     InterpolationError
-        Outside the ranges above, or when a piece needs more than MAX_NODES nodes.
+        Outside the ranges above, with tension nodes beyond the Taylor lanes' lam, or when a piece needs more
+        than MAX_NODES nodes.
     """
 
     def __init__(self, zeta_min: float, zeta_max: float, lam_min: float, lam_max: float, separation: str,

@@ -51,9 +51,10 @@ SMOOTH = ("tau_m", "x_m", "tau_f", "y_f")
 NODES_PER_DIGIT = 0.7
 FIRST_NODES = 17
 MAX_NODES = 513
-#: Nodes are solved at NODE_FACTOR x the sweep's target: the fixed step rule's error stays below a fifth
-#: of its target, so node errors stay below target / 50, a fifth of the check's 0.1 target, and
-#: interpolation plus nodes below 0.12 target.
+#: Nodes are solved at NODE_FACTOR x the sweep's target: the Runge-Kutta lanes' error stays below a fifth of
+#: their target, the Taylor lanes' below a third (0.28 at worst: the penetration criterion's t_f near critical
+#: damping, tests/test_series_lanes.py), so node errors stay below target / 30, a third of the check's 0.1
+#: target, and interpolation plus nodes below 0.14 target.
 NODE_FACTOR = 0.1
 NODE_TARGET_MIN = 1e-13
 
