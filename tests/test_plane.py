@@ -7,7 +7,7 @@ import pytest
 
 from sphereimpact import SolverOptions, simulate
 from sphereimpact.numerics.reference import relative_errors
-from sphereimpact.sweep import batch, engine, plane, series_lanes
+from sphereimpact.sweep import batch, engine, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.sweep.similarity import OUTPUTS, InterpolationError, _errors
 
@@ -36,6 +36,18 @@ def test_plane_meets_the_target_between_its_nodes(separation, rectangle):
     zeta, lam = inside(rectangle, 400, seed=1)
     ref = direct(zeta, lam, separation) if rectangle[3] <= 1e4 else series_lanes.integrate(zeta, lam, separation, 1e-12)
     assert _errors(interpolant(zeta, lam), ref, OUTPUTS) < 1e-8
+
+
+@pytest.mark.parametrize("zeta", [0.005, 0.05, 0.2, 0.5, 0.9])
+def test_the_onset_estimate_is_within_five_percent_and_the_edge_below_the_onset(zeta):
+    """v* = log(2 zeta lam*) where the force first pulls before delta = 0, as the one-ball interpolant locates
+    it (G = 1 + 2 zeta lam y_f = 0 on its penetration series)."""
+    lam_star = 1.0 / (2 * zeta)  # v* >= 0: the onset lies above lam = 1 / (2 zeta)
+    (cut,) = similarity.LambdaInterpolant(zeta, lam_star, 10 * lam_star, "force", 1e-8).cuts
+    v_star = cut + np.log(2 * zeta)
+    estimate = plane.onset_edge(zeta) / plane.ONSET_MARGIN
+    assert abs(estimate / v_star - 1) < 0.05
+    assert plane.onset_edge(zeta) < v_star
 
 
 def test_points_pulling_below_the_tension_piece_are_integrated(monkeypatch):

@@ -100,9 +100,10 @@ def peak(zeta, lam):
     return sol.y[:, -1]
 
 
-def test_bad_separation_is_refused():
+def test_bad_separation_is_refused_and_no_lanes_give_empty_outputs():
     with pytest.raises(ValueError, match="separation must be one of"):
         series_lanes.integrate(ZETA[:3], LAM[:3], "sideways", 1e-8)
+    assert all(v.size == 0 for v in series_lanes.integrate(ZETA[:0], LAM[:0], "force", 1e-8).values())
 
 
 def test_a_lane_that_never_separates_is_an_error():
