@@ -245,7 +245,19 @@ def horizon(scene: Scene) -> float:
     return float(scene.law.horizon(scene)) / scene.frequency
 
 
-class IntegratedNormal(NormalMotion):
+class _DimensionlessNormal(NormalMotion):
+    """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
+    y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
+
+    def state(self, t):
+        if is_instant(t) and isinstance(self._sol, (StackedDOP853, taylor.TaylorDense)):  # in plain floats
+            x, y = self._sol.single(float(t) * self._w)
+            return x * self._d_scale, y * self._v
+        z = self._sol(np.asarray(t, dtype=float) * self._w)
+        return z[0] * self._d_scale, z[1] * self._v
+
+
+class IntegratedNormal(_DimensionlessNormal):
     """Normal motion integrated with :func:`scipy.integrate.solve_ivp`.
 
     Parameters
@@ -414,15 +426,8 @@ class IntegratedNormal(NormalMotion):
         if sol.status == -1:
             raise ImpactError(f"solver {method} failed: {sol.message}")
 
-    def state(self, t):
-        if is_instant(t) and isinstance(self._sol, StackedDOP853):  # one instant, in plain floats
-            x, y = self._sol.single(float(t) * self._w)
-            return x * self._d_scale, y * self._v
-        z = self._sol(np.asarray(t, dtype=float) * self._w)
-        return z[0] * self._d_scale, z[1] * self._v
 
-
-class TaylorNormal(NormalMotion):
+class TaylorNormal(_DimensionlessNormal):
     """Normal motion integrated by the Taylor-series method (:mod:`sphereimpact.taylor`), for a law with a
     ``series``.
 
@@ -486,10 +491,3 @@ class TaylorNormal(NormalMotion):
         # right-hand-side call), so the work-precision chart compares like with like
         self.stats = {"method": "taylor", "rtol": options.rtol, "atol": options.atol,
                       "nfev": sol["dense"].steps * sol["order"]}
-
-    def state(self, t):
-        if is_instant(t):  # one instant, in plain floats
-            x, y = self._sol.single(float(t) * self._w)
-            return x * self._d_scale, y * self._v
-        z = self._sol(np.asarray(t, dtype=float) * self._w)
-        return z[0] * self._d_scale, z[1] * self._v

@@ -154,8 +154,7 @@ def _series_lanes(d: dict) -> np.ndarray:
     """Scenes the batched Taylor lanes take (:mod:`.series_lanes`): eq. 4.2 without gravity up to critical
     damping and lam 1e12 (their tested domain; faster than the Runge-Kutta lanes, and right at large lam)."""
     with np.errstate(invalid="ignore"):
-        return (d["modified"] & (d["gamma"] == 0) & (d["zeta"] > 0) & (d["zeta"] <= series_lanes.ZETA_MAX)
-                & (d["lam"] <= series_lanes.LAM_MAX) & np.isfinite(d["w"]))
+        return d["modified"] & (d["gamma"] == 0) & series_lanes.covers(d["zeta"], d["lam"]) & np.isfinite(d["w"])
 
 
 def _beyond_lanes(d: dict) -> np.ndarray:
@@ -293,11 +292,16 @@ def _plane_scenes(d: dict, interpolants: dict, separation: str) -> np.ndarray:
                           & (d["lam"] >= plane.LAM_MIN) & (d["lam"] <= plane.LAM_MAX))
 
 
-def _planes(d: dict, interpolants: dict, target: float) -> dict:
-    """separation -> PlaneInterpolant on the span's scenes ``d`` where at least PLANE_MIN may take it."""
+def _plane_groups(d: dict, interpolants: dict) -> dict:
+    """separation -> :func:`_plane_scenes` of ``d``."""
+    return {separation: _plane_scenes(d, interpolants, separation) for separation in SEPARATION_CRITERIA}
+
+
+def _planes(d: dict, groups: dict, target: float) -> dict:
+    """separation -> PlaneInterpolant on the span's scenes ``d`` where at least PLANE_MIN may take it
+    (``groups``: their :func:`_plane_groups`)."""
     built = {}
-    for separation in SEPARATION_CRITERIA:
-        mine = _plane_scenes(d, interpolants, separation)
+    for separation, mine in groups.items():
         if mine.size >= PLANE_MIN:
             zeta, lam = d["zeta"][mine], d["lam"][mine]
             try:
@@ -342,9 +346,11 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
     interpolants built on the scenes ``span`` (whose table is ``span_frame``)."""
     zeta, lam, gamma, modified = d["zeta"], d["lam"], d["gamma"], d["modified"]
     interpolants = _interpolants(span, target)
-    planes = _planes(span, interpolants, target)
+    plane_groups = _plane_groups(d, interpolants)
+    planes = _planes(span, plane_groups if span is d else _plane_groups(span, interpolants), target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
     todo = np.ones(zeta.size, bool)
+    series = _series_lanes(d)
     groups = _family_groups(d)
     span_groups = groups if span is d else _family_groups(span)  # one pass when the scenes are the span
     family_interpolants = _family_interpolants(span, span_frame, span_groups, target)
@@ -376,7 +382,7 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
                 _put(out, i, interpolant(lam[i]))
             todo[group] = False
         if separation in planes:
-            group = _plane_scenes(d, interpolants, separation)
+            group = plane_groups[separation]
             interpolant = planes[separation]
             outside = group[(zeta[group] < interpolant.zeta_min) | (zeta[group] > interpolant.zeta_max)
                             | (lam[group] < interpolant.lam_min) | (lam[group] > interpolant.lam_max)]
@@ -388,7 +394,6 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
                 i = group[start:start + chunk_size]
                 _put(out, i, interpolant(zeta[i], lam[i]))
             todo[group] = False
-        series = _series_lanes(d)
         rest = np.concatenate([np.flatnonzero(todo & sep & series), np.flatnonzero(todo & sep & ~series)])
         for start in range(0, rest.size, chunk_size):
             i = rest[start:start + chunk_size]

@@ -175,7 +175,7 @@ class PlaneInterpolant:
             raise InterpolationError(f"the (zeta, lam) plane covers zeta in (0, {ZETA_MAX:g}] and lam in "
                                      f"[{LAM_MIN:g}, {LAM_MAX:g}]; got zeta [{zeta_min:g}, {zeta_max:g}], "
                                      f"lam [{lam_min:g}, {lam_max:g}]")
-        self.separation, self.target = separation, target
+        self.separation = separation
         self.zeta_min, self.zeta_max, self.lam_min, self.lam_max = zeta_min, zeta_max, lam_min, lam_max
         self.zeta = (zeta_min, max(zeta_max, zeta_min * (1.0 + 1e-6)))
         u_lo, u_hi = math.log(lam_min), math.log(lam_max)
@@ -185,7 +185,7 @@ class PlaneInterpolant:
             raise InterpolationError(f"the (zeta, lam) plane's tension nodes would reach lam "
                                      f"{math.exp(self.v_top) / (2.0 * zeta_min):.3g}, beyond the Taylor lanes' "
                                      f"{series_lanes.LAM_MAX:g} (zeta from {zeta_min:g})")
-        node_target = max(NODE_FACTOR * target, NODE_TARGET_MIN)
+        self.node_target = node_target = max(NODE_FACTOR * target, NODE_TARGET_MIN)
         widths = {"calm": self.u[1] - self.u[0], "tension": self.v_top - float(onset_edge(zeta_min))}
         sizes = {piece: (FIRST_ZETA_NODES[piece], _odd(NODES_PER_DIGIT * math.log10(10.0 / target) * width))
                  for piece, width in widths.items()}
@@ -242,8 +242,7 @@ class PlaneInterpolant:
                 for k, values in zip(TENSION, self.tension(z[inside], s[inside])):
                     rest[k][inside] = values
             if not inside.all():  # pulls below the piece's edge: integrated
-                alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], "force",
-                                               max(NODE_FACTOR * self.target, NODE_TARGET_MIN))
+                alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], "force", self.node_target)
                 for k in TENSION:
                     rest[k][~inside] = alone[k]
             out["y_p"][pulls] = rest["y_f"]

@@ -39,7 +39,7 @@ from .batch import HORIZON
 
 OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 #: Largest damping ratio and lam the lanes are tested to (tests/test_series_lanes.py; lam up to 1e20 ran
-#: without overflow, 1e50 overflows); the engine and the interpolants give them no more.
+#: without overflow, 1e50 overflows); the engine and the interpolants give them no more (:func:`covers`).
 ZETA_MAX, LAM_MAX = 1.0, 1e12
 #: Local tolerance per unit of the accuracy target (before the damping's factor, see the module docstring):
 #: measured on random (zeta, lam), zeta 0.003-1, lam 0.01-1e4, both criteria, against the Runge-Kutta lanes
@@ -50,6 +50,11 @@ TOLERANCE_MIN = 1e-15
 ROOT_ITERATIONS = 60
 #: An event's Newton iteration stops when its update is below SETTLED x the event time.
 SETTLED = 1e-14
+
+
+def covers(zeta, lam):
+    """Whether the lanes take (zeta, lam): their tested domain, 0 < zeta <= ZETA_MAX and lam <= LAM_MAX."""
+    return (zeta > 0) & (zeta <= ZETA_MAX) & (lam <= LAM_MAX)
 
 
 def _series(x, y, two_zeta, lam, order: int):

@@ -240,9 +240,9 @@ class LambdaInterpolant(_Pieces):
     """
 
     def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: str, target: float):
-        def solve(u, criterion, node_target):  # the batched lanes, one per node: Taylor's up to critical damping
+        def solve(u, criterion, node_target):  # the batched lanes, one per node: Taylor's where they apply
             n = u.size
-            if zeta <= series_lanes.ZETA_MAX:
+            if series_lanes.covers(zeta, lam_max):
                 return series_lanes.integrate(np.full(n, zeta), np.exp(u), criterion, node_target)
             return batch.integrate(np.full(n, zeta), np.exp(u), np.zeros(n), np.ones(n, bool), criterion,
                                    node_target)
