@@ -147,14 +147,14 @@ def test_planar_body_refuses_compliance():
 
 def test_switch_bound_is_an_error_not_a_hang():
     with pytest.raises(ImpactError, match="stick-slip switches"):
-        from sphereimpact import compliance
+        from sphereimpact.tangential import springs
 
-        original = compliance.MAX_PHASES
-        compliance.MAX_PHASES = -10**6  # a bound below any contact
+        original = springs.MAX_PHASES
+        springs.MAX_PHASES = -10**6  # a bound below any contact
         try:
             simulate(Scene(angle=20, tangential="linear", kappa=1.0))
         finally:
-            compliance.MAX_PHASES = original
+            springs.MAX_PHASES = original
 
 
 def test_sweep_solves_compliant_scenes_as_simulate_does():

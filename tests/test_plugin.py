@@ -97,3 +97,61 @@ def test_a_capability_the_sweep_lacks_is_refused_not_borrowed():
             sweep(grid(angle=[0.0]).assign(model="claims-kernel"))
     finally:
         del LAWS["claims-kernel"]
+
+
+# --- a tangential model registered from outside ----------------------------------------------------------
+class _AlwaysSliding:
+    """Toy tangential model: the contact slides throughout under a fraction kappa of Coulomb's friction,
+    F = -kappa mu P+, never gripping; its motion follows from the normal impulse."""
+
+    def __init__(self, normal, options):
+        from sphereimpact.tangential import Phase, PositiveImpulse
+
+        self.normal, self.scene = normal, normal.scene
+        self.jp = PositiveImpulse(normal)
+        self._phase = Phase("sliding", 0.0, normal.t_f, self.scene.v_tangent, 0.0, 0.0)
+        self.t_roll, self.regime, self.switches = None, "sliding", 0
+
+    def at(self, t):
+        from sphereimpact.tangential import from_impulse
+
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        share = -self.scene.kappa * self.scene.mu
+        return np.array(from_impulse(self.scene, self._phase, t, share * self.jp(t), share * self.jp.integral(t)))
+
+    def force(self, t):
+        return -self.scene.kappa * self.scene.mu * np.maximum(self.normal.force(t), 0.0)
+
+
+@pytest.fixture
+def tangential_model():
+    from sphereimpact.tangential import KAPPA, TANGENTIALS, TangentialModel
+
+    model = TANGENTIALS.register(TangentialModel("toy-slide", doc="slides under kappa mu P (test model)",
+                                                 stiffness="F = -kappa mu P", parameters=(KAPPA,), spring=None,
+                                                 motion=_AlwaysSliding))
+    yield model
+    del TANGENTIALS["toy-slide"]
+
+
+def test_a_registered_tangential_model_is_served_by_simulate_sweep_and_cli(tangential_model, capsys):
+    scene = Scene(angle=30.0, tangential="toy-slide", kappa=0.5)
+    out = simulate(scene)
+    impulse = scene.mass * scene.v_normal * (1.0 + out.cor)  # normal impulse: the force never pulls at 30 deg
+    assert out.vc_t == pytest.approx(scene.v_tangent - 0.5 * scene.mu * impulse / scene.mass, rel=1e-9)
+    assert out.omega_f == pytest.approx(0.5 * scene.mu * impulse * scene.radius / scene.inertia, rel=1e-9)
+    assert out.regime == "sliding" and out.switches == 0
+    steep = scene.with_(angle=60.0)  # where the rigid contact slides throughout, half its friction: half its spin
+    assert simulate(steep).omega_f == pytest.approx(0.5 * simulate(steep.with_(tangential="rigid")).omega_f, rel=1e-9)
+    table = sweep(grid(angle=[0.0, 30.0, 60.0]).assign(tangential="toy-slide", kappa=0.5))
+    for row in table.to_dict("records"):
+        one = simulate(Scene(angle=row["angle"], tangential="toy-slide", kappa=0.5))
+        for key in OUTPUTS:
+            assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
+    assert run(["simulate", "--angle", "30", "--tangential", "toy-slide", "--kappa", "0.5", "--json"]) == 0
+    cli = json.loads(capsys.readouterr().out)
+    assert cli["vc_t"] == out.vc_t and cli["omega_f"] == out.omega_f
+    assert run(["simulate", "--angle", "30", "--tangential", "toy-slide", "--poisson", "0.5"]) == 2
+    assert "poisson sets kappa of tangential 'linear' or 'mindlin'" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only"):
+        simulate(scene, body="planar")

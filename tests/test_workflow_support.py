@@ -35,8 +35,9 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         # the package's __init__ imports the public API (solve imports planar inside a function: counted)
         "sphereimpact/events.py", "laws/__init__.py", "laws/base.py", "laws/linear.py", "laws/hertz.py",
         "sphereimpact/outcome.py", "sphereimpact/scene.py",
-        "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/tangential.py",
-            "sphereimpact/compliance.py", "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
+        "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/methods.py",
+        "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py", "tangential/springs.py",
+        "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
         "sphereimpact/planar.py"}
 
 

@@ -19,9 +19,10 @@ from .events import ImpactError
 from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
-from .scene import (ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY,
-                    TANGENTIAL_MODELS, TANGENTIAL_PARAMETERS, TANGENTIAL_RULES, Scene, SolverOptions, check_columns)
+from .scene import ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, SolverOptions, \
+    check_columns
 from .solve import BODIES, BeyondRadiusWarning, simulate
+from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
 _D = Scene()
 _O = SolverOptions()
@@ -30,14 +31,18 @@ _O = SolverOptions()
 UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
          "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N",
          "rebound_angle": "deg", "rebound_angle_contact": "deg", "work_t": "J", "wall_time": "s"}
-#: Help for the tangential contact model's flags.
-TANGENTIAL_HELP = {
-    "tangential": "tangential contact: rigid (the chapter's: slips or rolls), linear (spring k_t = kappa k, "
-                  "linear-spring laws) or mindlin (k_t = 8 G* a, Hertz laws), both capped by mu P",
-    "kappa": f"tangential stiffness ratio k_t / k_n of linear or mindlin, {TANGENTIAL_RULES['kappa'][0]}",
-    "poisson": f"Poisson's ratio of like materials, {TANGENTIAL_RULES['poisson'][0]}, instead of kappa",
-    "shear_modulus": "effective shear modulus G* [Pa] of mindlin, > 0, instead of kappa (kappa = 4 G* / E*)",
-}
+
+
+def _tangential_help() -> dict:
+    """Help for ``--tangential`` and its stiffness flags, built from the registered tangential models."""
+    texts = {"tangential": "tangential contact: " + "; ".join(f"{name} ({model.doc})"
+                                                               for name, model in TANGENTIALS.items())}
+    for p in STIFFNESS:
+        users = ", ".join(TANGENTIALS.taking(p.name))
+        texts[p.name] = f"{p.doc} [{p.unit}], {p.allowed.removeprefix('a finite number ')}: {users}"
+    return texts
+
+
 #: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
 RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
           "gravity": "m/s^2"}
@@ -124,9 +129,10 @@ def _parser() -> argparse.ArgumentParser:
         help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     add("--contact-time", type=_number, default=None, metavar="S",
         help="with --cor: fit the stiffness k too, so that the contact time t_f is S [s]")
-    add("--tangential", choices=TANGENTIAL_MODELS, default=_D.tangential, help=TANGENTIAL_HELP["tangential"])
+    tangential_help = _tangential_help()
+    add("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential, help=tangential_help["tangential"])
     for name in TANGENTIAL_PARAMETERS:
-        add("--" + name.replace("_", "-"), type=_number, default=None, help=TANGENTIAL_HELP[name])
+        add("--" + name.replace("_", "-"), type=_number, default=None, help=tangential_help[name])
     add("--mass", type=_number, default=_D.mass, help="ball mass [kg], > 0")
     add("--diameter", type=_number, default=_D.diameter, help="ball diameter [m], > 0")
     add("--inertia-factor", type=_number, default=_D.inertia_factor,
@@ -167,11 +173,11 @@ def _parser() -> argparse.ArgumentParser:
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
     swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(LAWS))
-    swp.add_argument("--tangential", choices=TANGENTIAL_MODELS, default=_D.tangential,
-                     help=TANGENTIAL_HELP["tangential"] + " (compliant scenes are solved one by one)")
+    swp.add_argument("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential,
+                     help=tangential_help["tangential"] + " (compliant scenes are solved one by one)")
     for name in TANGENTIAL_PARAMETERS:
         swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
-                         help=TANGENTIAL_HELP[name] + ": a value or START:STOP:STEP")
+                         help=tangential_help[name] + ": a value or START:STOP:STEP")
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
     swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
     swp.add_argument("--chunk-size", type=int, default=100_000,

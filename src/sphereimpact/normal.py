@@ -16,6 +16,7 @@ event root finding on the dense output (Brent's method, a few ulp).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
@@ -23,7 +24,10 @@ from scipy.integrate import OdeSolution, solve_ivp
 from . import dop853, taylor
 from .dense import StackedDOP853, fast_solution, is_instant
 from .events import ImpactError
-from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions, ivp_method
+from .methods import DEFAULT_INTEGRATOR, ivp_method
+
+if TYPE_CHECKING:
+    from .scene import Scene, SolverOptions
 
 #: Samples per solver step used when scanning event functions on the dense output.
 SUBSTEPS = 8

@@ -17,6 +17,9 @@ import numpy as np
 
 from .laws import LAWS, PARAMETER_NAMES, hertz_constant, spring_exponent
 from .laws.base import MODULUS
+from .methods import DEFAULT_INTEGRATOR, METHODS, ivp_method  # noqa: F401  (re-exported)
+from .tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
+                         kappa_from_poisson, kappa_from_shear_modulus)
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
@@ -25,46 +28,8 @@ STANDARD_GRAVITY = 9.80665
 #: unilateral contact cannot pull), ``penetration`` when delta returns to 0.
 SEPARATION_CRITERIA = ("force", "penetration")
 
-#: Tangential contact models: ``rigid`` (the chapter's: the contact point slips or rolls), ``linear``
-#: (a tangential spring k_t = kappa k for a linear-spring law) and ``mindlin`` (k_t = 8 G* a for a Hertz
-#: spring), both capped by Coulomb friction (:mod:`sphereimpact.compliance`).
-TANGENTIAL_MODELS = ("rigid", "linear", "mindlin")
-#: The ways to give the tangential stiffness ratio kappa = k_t / k_n: directly, from Poisson's ratio of like
-#: materials (kappa = 2 (1 - nu) / (2 - nu)), or from the effective shear modulus G* (mindlin: kappa = 4 G* / E*).
-TANGENTIAL_PARAMETERS = ("kappa", "poisson", "shear_modulus")
-TANGENTIAL_RULES = {
-    "kappa": ("a finite number > 0 (k_t / k_n; 2 (1 - nu) / (2 - nu) for like materials)", lambda x: x > 0),
-    "poisson": ("a finite number in (-1, 0.5]", lambda x: (x > -1) & (x <= 0.5)),
-    "shear_modulus": ("a finite number > 0 Pa (effective G*)", lambda x: x > 0),
-}
-
-
 #: Scene fields that hold names, not numbers.
 TEXT_FIELDS = ("model", "separation", "tangential")
-
-
-def kappa_from_poisson(nu):
-    """kappa = k_t / k_n = 2 (1 - nu) / (2 - nu) for two bodies of one elastic material (Mindlin 1949)."""
-    return 2.0 * (1.0 - nu) / (2.0 - nu)
-
-
-#: Integration methods: ``auto`` (the default) is the law's closed form where it has one, else ``taylor``
-#: where the law has a series and the damping ratio is within the accuracy contract's (<= 100), else
-#: ``DOP853-scalar``; ``closed`` is the exact linear solution (kelvin-voigt only); ``taylor`` is the
-#: Taylor-series method (:mod:`sphereimpact.taylor`, laws with a ``series``); ``DOP853-scalar`` is scipy's
-#: DOP853 run in plain floats (:mod:`sphereimpact.dop853`: the same steps, 2-3x cheaper) on a law with a
-#: scalar formula; the others are :func:`scipy.integrate.solve_ivp` methods.
-METHODS = ("auto", "closed", "taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
-#: What ``auto`` integrates with when the law has neither a closed form nor a series (chosen from the
-#: work-precision study).
-DEFAULT_INTEGRATOR = "DOP853-scalar"
-
-
-def ivp_method(method: str) -> str:
-    """The :func:`scipy.integrate.solve_ivp` method that runs ``method`` where the float integrator cannot
-    (the planar body, a law without a scalar formula, naive formulations): ``auto`` and ``DOP853-scalar``
-    are DOP853's algorithm."""
-    return "DOP853" if method in ("auto", DEFAULT_INTEGRATOR) else method
 
 
 #: Numeric Scene fields other than the law's parameters: (allowed range as stated in messages, vectorised
@@ -260,7 +225,7 @@ def check_columns(columns: dict) -> dict:
                 i = int(np.flatnonzero(bad)[0])
                 raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in TEXT_FIELDS:
-            choices = {"model": tuple(LAWS), "separation": SEPARATION_CRITERIA, "tangential": TANGENTIAL_MODELS}[name]
+            choices = {"model": tuple(LAWS), "separation": SEPARATION_CRITERIA, "tangential": tuple(TANGENTIALS)}[name]
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
@@ -331,12 +296,13 @@ class Scene:
     separation : str
         ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
     tangential : str
-        Tangential contact model, one of :data:`TANGENTIAL_MODELS`: ``rigid`` (default, the chapter's),
-        ``linear`` (needs a linear-spring law) or ``mindlin`` (needs a Hertz spring, exponent 3/2).
+        Tangential contact model, a key of :data:`sphereimpact.tangential.TANGENTIALS`: ``rigid``
+        (default, the chapter's), ``linear`` (needs a linear-spring law), ``mindlin`` (needs a Hertz spring,
+        exponent 3/2) or a registered one; each declares the law it needs.
     kappa, poisson, shear_modulus : float or None
-        The tangential stiffness of a compliant model, one of three ways: kappa = k_t / k_n [-] > 0;
-        Poisson's ratio nu [-] in (-1, 0.5] of like materials, kappa = 2 (1 - nu) / (2 - nu) (2/3 for
-        rubber); or (``mindlin``) the effective shear modulus G* [Pa], kappa = 4 G* / E* with
+        The tangential stiffness of a compliant model, in one of the ways it accepts: kappa = k_t / k_n [-]
+        > 0; Poisson's ratio nu [-] in (-1, 0.5] of like materials, kappa = 2 (1 - nu) / (2 - nu) (2/3 for
+        rubber); or (Hertz-spring models) the effective shear modulus G* [Pa], kappa = 4 G* / E* with
         E* = 3 k / (4 sqrt(R)).  ``kappa`` then holds the value used.  Refused for ``rigid``.
     """
 
@@ -395,46 +361,42 @@ class Scene:
 
     def _resolve_kappa(self) -> None:
         """Check the tangential model against the law and set ``kappa`` from whichever way it was given."""
-        _check_choice("tangential", self.tangential, TANGENTIAL_MODELS)
+        model = TANGENTIALS.model(self.tangential)
         given = {}
-        for name in TANGENTIAL_PARAMETERS:
-            if getattr(self, name) is not None:
-                allowed, ok = TANGENTIAL_RULES[name]
-                given[name] = _check(name, getattr(self, name), allowed, ok)
-                object.__setattr__(self, name, given[name])
-        if self.tangential == "rigid":
-            if given:
-                raise ValueError(f"{next(iter(given))} is a parameter of the compliant tangential models "
-                                 "(linear, mindlin); this scene's tangential model is 'rigid'")
+        for parameter in STIFFNESS:
+            if getattr(self, parameter.name) is not None:
+                given[parameter.name] = _check(parameter.name, getattr(self, parameter.name), parameter.range_text,
+                                               parameter.ok)
+                object.__setattr__(self, parameter.name, given[parameter.name])
+        unused = [name for name in given if name not in model.parameter_names]
+        if unused and not model.parameters:
+            raise ValueError(f"{unused[0]} is a parameter of the compliant tangential models "
+                             f"({', '.join(TANGENTIALS.taking(unused[0]))}); this scene's tangential model is "
+                             f"{self.tangential!r}")
+        if not model.parameters:
             return
-        law = self.law
-        linear = tuple(name for name, other in LAWS.items() if other.spring == "linear")
-        hertzian = tuple(name for name, other in LAWS.items() if other.spring == "hertz")
-        if self.tangential == "linear" and law.spring != "linear":
-            raise ValueError(f"tangential 'linear' (k_t = kappa k, constant) needs a linear-spring law "
-                             f"({', '.join(linear)}); model {self.model!r} has a Hertz spring: use tangential 'mindlin'")
-        if self.tangential == "mindlin" and (law.spring != "hertz" or spring_exponent(law, self) != 1.5):
-            raise ValueError(f"tangential 'mindlin' (k_t = 8 G* a) needs a Hertz spring k delta^(3/2) "
-                             f"({', '.join(hertzian)}, exponent 1.5); model {self.model!r} has "
-                             + ("a linear spring: use tangential 'linear'" if law.spring == "linear"
-                                else f"exponent {spring_exponent(law, self):g}"))
-        if "shear_modulus" in given and self.tangential != "mindlin":
-            raise ValueError("shear_modulus sets kappa of tangential 'mindlin' (kappa = 4 G* / E*); "
-                             "for 'linear' give kappa or poisson")
+        refusal = model.refusal(self.law, self)
+        if refusal:
+            raise ValueError(refusal)
+        if unused:
+            name = unused[0]
+            taking = " or ".join(f"'{other}'" for other in TANGENTIALS.taking(name))
+            raise ValueError(f"{name} sets kappa of tangential {taking} ({KAPPA_FROM[name]}); for "
+                             f"{self.tangential!r} give {' or '.join(model.parameter_names)}")
         derived = [name for name in ("poisson", "shear_modulus") if name in given]
         if len(derived) > 1:
             raise ValueError("give one of kappa, poisson or shear_modulus, not several")
         if derived:
             name = derived[0]
             value = (kappa_from_poisson(given[name]) if name == "poisson"
-                     else 4.0 * given[name] / (0.75 * self.k / np.sqrt(self.radius)))
+                     else kappa_from_shear_modulus(given[name], self.k, self.radius))
             if "kappa" in given and given["kappa"] != value:  # equal: a scene copied with both
                 raise ValueError(f"give kappa or {name}, not both (kappa from {name} = {value:.6g})")
             object.__setattr__(self, "kappa", float(value))
         elif "kappa" not in given:
+            others = [name for name in model.parameter_names if name != "kappa"]
             raise ValueError(f"kappa is required by tangential {self.tangential!r}: k_t / k_n, > 0 "
-                             "(2 (1 - nu) / (2 - nu) = 0.667 for rubber, nu = 0.5), or give poisson"
-                             + (" or shear_modulus" if self.tangential == "mindlin" else ""))
+                             "(2 (1 - nu) / (2 - nu) = 0.667 for rubber, nu = 0.5), or give " + " or ".join(others))
 
     # Derived quantities (SI) -------------------------------------------------
     # The geometric ones are cached: the post-processing of one impact reads them thousands of times, and
@@ -541,7 +503,7 @@ class Scene:
             changes["modulus"] = None
         if "diameter" in changes and self.modulus is not None and "k" not in changes:
             changes["k"] = None  # k follows the modulus at the new radius
-        if changes.get("tangential", self.tangential) == "rigid":
+        if not TANGENTIALS.model(changes.get("tangential", self.tangential)).parameters:
             changes = {name: None for name in TANGENTIAL_PARAMETERS} | changes
         elif "kappa" not in changes and (self.poisson is not None or self.shear_modulus is not None):
             changes["kappa"] = None  # kappa follows poisson or shear_modulus (and k, R)
@@ -592,3 +554,16 @@ class SolverOptions:
         if not step > 0:  # also refuses nan
             raise ValueError(f"max_step must be a number > 0 s (inf allowed); got {self.max_step!r}")
         object.__setattr__(self, "max_step", step)
+
+
+def __getattr__(name):
+    """Names that moved to :mod:`sphereimpact.tangential`, kept for one release."""
+    moved = {"TANGENTIAL_MODELS": lambda: tuple(TANGENTIALS),
+             "TANGENTIAL_RULES": lambda: {p.name: (p.range_text, p.ok) for p in STIFFNESS}}
+    if name in moved:
+        import warnings
+
+        warnings.warn(f"sphereimpact.scene.{name} is deprecated: use sphereimpact.tangential.TANGENTIALS",
+                      DeprecationWarning, stacklevel=2)
+        return moved[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

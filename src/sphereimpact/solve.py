@@ -19,14 +19,13 @@ from dataclasses import replace
 import numpy as np
 
 from .closed import CLOSED_FORMS
-from .compliance import CompliantTangential
 from .events import ImpactError
 from .laws import LAWS
 from .normal import CONDITIONED_ZETA_MAX, IntegratedNormal, NormalMotion, TaylorNormal, describe_family
 from .outcome import Outcome
 from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
 from .taylor import SeriesOverflowError
-from .tangential import TangentialMotion
+from .tangential import TANGENTIALS
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
 BODIES = ("reduced", "planar")
@@ -39,8 +38,9 @@ class BeyondRadiusWarning(UserWarning):
 class ReducedMotion:
     """Normal motion plus the tangential motion it drives, as one contact motion.
 
-    The tangential motion follows from the normal impulse (``rigid``) or is integrated on the solved normal
-    force (``linear``, ``mindlin``); a normal impact has none.
+    The tangential motion is the scene's tangential model's (:data:`sphereimpact.tangential.TANGENTIALS`):
+    from the normal impulse (``rigid``) or integrated on the solved normal force (the compliant models); a
+    normal impact has none.
     """
 
     def __init__(self, normal: NormalMotion, options: SolverOptions):
@@ -49,10 +49,7 @@ class ReducedMotion:
         if not self.scene.has_tangential_motion:
             self.tangential, self.t_roll, self.regime, self.switches = None, None, "none", 0
             return
-        if self.scene.tangential == "rigid":
-            self.tangential = TangentialMotion(normal)
-        else:
-            self.tangential = CompliantTangential(normal, options)
+        self.tangential = TANGENTIALS[self.scene.tangential].motion(normal, options)
         self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
         self.switches = self.tangential.switches
 
@@ -154,8 +151,9 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                         f"got {type(options).__name__}")
     if body not in BODIES:
         raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
-    if body == "planar" and scene.tangential != "rigid":
-        raise ValueError(f"body 'planar' has the rigid tangential contact only; tangential "
+    if body == "planar" and not TANGENTIALS[scene.tangential].planar:
+        planar = ", ".join(name for name, model in TANGENTIALS.items() if model.planar)
+        raise ValueError(f"body 'planar' has the {planar} tangential contact only; tangential "
                          f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
                          "not depend on friction)")
     start = time.perf_counter()

@@ -6,12 +6,18 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from ..tangential import TANGENTIALS
 from .style import RC, save
-
-#: Line style per tangential model.
-_STYLES = {"rigid": dict(color="0.45", ls="--"), "linear": dict(color="C0", ls="-"), "mindlin": dict(color="C0", ls="-")}
 _PANELS = (("e_t", "tangential COR e_t = v_t'/v_t [-]"), ("omega_rad_s", "rebound spin |ω| [rad/s]"),
            ("rebound_angle_deg", "rebound angle of the centre [deg]"))
+
+
+def _styles(models) -> dict:
+    """Line style per tangential model: a contact without tangential stiffness (the rigid one) as a grey
+    broken line, the compliant ones in colours in the order given."""
+    compliant = [m for m in models if TANGENTIALS.model(m).parameters]
+    return {m: dict(color=f"C{compliant.index(m)}", ls="-") if m in compliant else dict(color="0.45", ls="--")
+            for m in models}
 
 
 def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
@@ -21,9 +27,10 @@ def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
     low = float(summary["min_incidence"].iloc[0])
     with plt.rc_context(RC | {"figure.figsize": (6.4, 8.4)}):
         fig, axes = plt.subplots(3, 1, sharex=True)
+        styles = _styles(curves["model"].unique())
         for ax, (key, label) in zip(axes, _PANELS):
             for model, rows in curves.groupby("model", sort=False):
-                ax.plot(rows["incidence_deg"], rows[key], label=f"{model} tangential contact", **_STYLES[model])
+                ax.plot(rows["incidence_deg"], rows[key], label=f"{model} tangential contact", **styles[model])
             points = data[data["quantity"] == key]
             ax.plot(points["incidence_deg"], points["value"], "o", color="C3", ms=5, label="Kharaz et al. (2001)")
             ax.axvspan(0, low, color="0.92", zorder=0)
@@ -43,8 +50,9 @@ def maw(curves_csv: str, derived_csv: str, outputs) -> None:
     curves, derived = pd.read_csv(curves_csv), pd.read_csv(derived_csv)
     with plt.rc_context(RC):
         fig, ax = plt.subplots()
+        styles = _styles(curves["model"].unique())
         for model, rows in curves.groupby("model", sort=False):
-            ax.plot(rows["psi1"], rows["psi2"], label=f"{model} tangential contact", **_STYLES[model])
+            ax.plot(rows["psi1"], rows["psi2"], label=f"{model} tangential contact", **styles[model])
         ax.plot(derived["psi1"], derived["psi2"], "s", color="C3", ms=5,
                 label="Kharaz et al., from e_t and spin (derived)")
         ax.axhline(0.0, color="0.3", lw=0.6)

@@ -84,7 +84,7 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
                     f"exponent, e.g. {_yaml_number(error.instance)}")
         lines.append(f"config key {key}: {error.message}" + (f" ({hint})" if hint else ""))
     if not lines:
-        lines += _sweep_errors(config, schema) + _law_errors(config)
+        lines += _sweep_errors(config, schema) + _law_errors(config) + _tangential_errors(config)
     return lines
 
 
@@ -107,6 +107,23 @@ def _law_errors(config: dict) -> list[str]:
                 errors.append(f"config key laws.speeds: speed must be > 0 m/s; the range holds {speeds.min():g}")
         except ValueError as err:
             errors.append(f"config key laws.speeds: {err}")
+    return errors
+
+
+def _tangential_errors(config: dict) -> list[str]:
+    """The validation section's tangential models: registered, and able to serve its Hertz-spring law."""
+    from ..tangential import TANGENTIALS
+
+    section = config.get("validation", {})
+    law = LAWS.get(section.get("model"))
+    errors = []
+    for name in section.get("tangential", []):
+        if name not in TANGENTIALS:
+            errors.append(f"config key validation.tangential: {name!r} is not a registered tangential model "
+                          f"({', '.join(TANGENTIALS)})")
+        elif law is not None and TANGENTIALS[name].spring not in (None, law.spring):
+            errors.append(f"config key validation.tangential: {name!r} needs a {TANGENTIALS[name].spring}-spring "
+                          f"law; the validation's model {law.name!r} has a {law.spring} spring")
     return errors
 
 

@@ -22,7 +22,8 @@ import yaml
 
 from ..events import extremum
 from ..numerics.workprecision import TARGET
-from ..scene import STANDARD_GRAVITY, kappa_from_poisson
+from ..scene import STANDARD_GRAVITY
+from ..tangential import kappa_from_poisson
 from ..solve import simulate
 from .config import options_for, scene_for
 from .tables import load_runs, markdown_table

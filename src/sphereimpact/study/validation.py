@@ -21,7 +21,8 @@ import pandas as pd
 
 from ..calibrate import calibrate
 from ..parsing import parse_range
-from ..scene import Scene, kappa_from_poisson
+from ..scene import Scene
+from ..tangential import TANGENTIALS, kappa_from_poisson
 from ..solve import simulate
 from ..sweep.engine import sweep
 from .config import shared_fields
@@ -55,10 +56,10 @@ class Experiment:
     kappa: float
 
     def model(self, tangential: str) -> Scene:
-        """The scene with tangential model ``rigid`` or ``mindlin`` (G* from the materials)."""
-        if tangential == "rigid":
-            return self.scene
-        return self.scene.with_(tangential=tangential, shear_modulus=self.g_star)
+        """The scene with tangential model ``tangential``, its stiffness (if it has one) from the materials' G*."""
+        if "shear_modulus" in TANGENTIALS.model(tangential).parameter_names:
+            return self.scene.with_(tangential=tangential, shear_modulus=self.g_star)
+        return self.scene.with_(tangential=tangential)
 
 
 def effective_moduli(e1: float, nu1: float, e2: float, nu2: float) -> tuple[float, float]:

@@ -23,7 +23,7 @@ Each scene takes the cheapest path that its law declares and that is exact for i
    single-impact integrator solves one scene per distinct family (and gamma and criterion) and the
    others are scaled from it;
 6. gravity on an inclined flat (stick-slip with re-slip as P falls), or a compliant tangential contact
-   (``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene; so too the scenes the
+   (a model not ``batched``: ``linear``, ``mindlin``) at an angle: the single-impact model, scene by scene; so too the scenes the
    lanes would solve at more cost than alone (a cost model on the estimated steps: an over-damped creep
    under the penetration criterion, where one slow lane makes every step of its batch pay).
 
@@ -47,6 +47,7 @@ from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take range
 from ..scene import (SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns,
                      scale_problem)
 from ..solve import BeyondRadiusWarning, simulate
+from ..tangential import TANGENTIALS
 from . import batch, closed, plane, series_lanes
 from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
 
@@ -127,8 +128,13 @@ def _objects(n: int, value) -> np.ndarray:
 
 
 def _compliant(frame: pd.DataFrame) -> np.ndarray:
-    """Scenes with a compliant tangential contact (solved scene by scene)."""
-    return frame["tangential"].to_numpy() != "rigid"  # numpy's comparison: pandas' is 4x slower
+    """Scenes whose tangential model is not ``batched`` (its motion is integrated: solved scene by scene)."""
+    names = frame["tangential"].to_numpy()
+    out = np.ones(names.shape, dtype=bool)
+    for name, model in TANGENTIALS.items():
+        if model.batched:
+            out &= names != name  # numpy's comparison: pandas' is 4x slower
+    return out
 
 
 def scene_of(row: dict) -> Scene:

@@ -23,9 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dense import SMALL, is_instant
-from .events import ImpactError, first_root, roots
-from .normal import NormalMotion
+from ..dense import SMALL, is_instant
+from ..events import ImpactError, first_root, roots
+from ..normal import NormalMotion
+from .base import TANGENTIALS, TangentialModel
 
 #: More mode switches than this in one contact means something is wrong.
 MAX_PHASES = 50
@@ -251,3 +252,8 @@ class TangentialMotion:
         s = self.scene
         v_f = float(self.at(self.normal.t_f)[0, 0])
         return s.mass * (v_f - s.v_tangent - s.g_tangent * self.normal.t_f)
+
+
+RIGID = TANGENTIALS.register(TangentialModel(
+    "rigid", doc="the chapter's: slips or rolls", stiffness="", parameters=(), spring=None,
+    motion=lambda normal, options: TangentialMotion(normal), batched=True, planar=True))

@@ -1,0 +1,21 @@
+"""Tangential contact models: one definition each, in a registry keyed by name.
+
+=========  ================================================================  =====================
+name       tangential force at the contact point                             module
+=========  ================================================================  =====================
+rigid      slips (mu P) or rolls: the chapter's                              :mod:`.rigid`
+linear     spring k_t = kappa k capped by mu P (linear-spring laws)          :mod:`.springs`
+mindlin    Hertz-Mindlin spring k_t = 8 G* a capped by mu P (Hertz laws)     :mod:`.springs`
+=========  ================================================================  =====================
+
+Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register`` (see :mod:`.base`).
+"""
+
+from .base import (KAPPA, KAPPA_FROM, POISSON, SHEAR_MODULUS, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, TangentialModel,
+                   kappa_from_poisson, kappa_from_shear_modulus)
+from .rigid import MAX_PHASES, Phase, PositiveImpulse, TangentialMotion, by_phase, from_impulse, phase_index
+from .springs import CompliantTangential
+
+__all__ = ["CompliantTangential", "KAPPA", "KAPPA_FROM", "MAX_PHASES", "POISSON", "Phase", "PositiveImpulse", "SHEAR_MODULUS",
+           "STIFFNESS", "TANGENTIALS", "TANGENTIAL_PARAMETERS", "TangentialModel", "TangentialMotion", "by_phase",
+           "from_impulse", "kappa_from_poisson", "kappa_from_shear_modulus", "phase_index"]

@@ -1,0 +1,148 @@
+"""What a tangential contact model is: one object that declares its parameters, what it needs of the normal
+law, and the motion it produces.
+
+The shape is the contact laws' (:mod:`sphereimpact.laws`) and LAMMPS's tangential sub-models: one definition
+per model, chosen by name (``Scene.tangential``, ``--tangential``), every layer asking the definition.
+Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register``.
+
+The tangential stiffness of a compliant model is one number, kappa = k_t / k_n, the ratio of the tangential
+to the normal contact stiffness; a model declares which ways to give it it accepts (:data:`STIFFNESS`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+from ..laws.base import Parameter, spring_exponent
+
+#: The tangential stiffness, three ways: kappa directly, Poisson's ratio of like materials, or (for a Hertz
+#: spring) the effective shear modulus.  One table for the Scene's checks, the sweep's and the help texts.
+KAPPA = Parameter("kappa", "-", "tangential stiffness ratio k_t / k_n",
+                  "a finite number > 0 (k_t / k_n; 2 (1 - nu) / (2 - nu) for like materials)", lambda x: x > 0)
+POISSON = Parameter("poisson", "-", "Poisson's ratio nu of like materials, kappa = 2 (1 - nu) / (2 - nu)",
+                    "a finite number in (-1, 0.5]", lambda x: (x > -1) & (x <= 0.5))
+SHEAR_MODULUS = Parameter("shear_modulus", "Pa", "effective shear modulus G* of a Hertz contact, kappa = 4 G* / E*",
+                          "a finite number > 0", lambda x: x > 0)
+STIFFNESS = (KAPPA, POISSON, SHEAR_MODULUS)
+#: How each other way of giving kappa sets it, for messages.
+KAPPA_FROM = {"poisson": "kappa = 2 (1 - nu) / (2 - nu)", "shear_modulus": "kappa = 4 G* / E*"}
+#: Every tangential parameter a Scene can carry.
+TANGENTIAL_PARAMETERS = tuple(p.name for p in STIFFNESS)
+
+
+def kappa_from_poisson(nu):
+    """kappa = k_t / k_n = 2 (1 - nu) / (2 - nu) for two bodies of one elastic material (Mindlin 1949)."""
+    return 2.0 * (1.0 - nu) / (2.0 - nu)
+
+
+def kappa_from_shear_modulus(g_star, k, radius):
+    """kappa = 4 G* / E* of a Hertz contact whose spring constant k = (4/3) E* sqrt(R) [N/m^1.5]."""
+    return 4.0 * g_star / (0.75 * k / math.sqrt(radius))
+
+
+@dataclass(frozen=True)
+class TangentialModel:
+    """A tangential contact model and what it can do.
+
+    Attributes
+    ----------
+    name : str
+        Registry key (``--tangential``, ``Scene.tangential``).
+    doc : str
+        What the tangential force is, one phrase for help texts (``spring k_t = kappa k, ...``).
+    stiffness : str
+        How its stiffness is formed, for messages (``k_t = kappa k, constant``); empty for a rigid contact.
+    parameters : tuple of Parameter
+        The ways of giving kappa it accepts (some of :data:`STIFFNESS`); kappa itself is required, given
+        directly or through one of the others.  Empty: the model has no tangential stiffness.
+    spring : str or None
+        The normal law's spring it needs: ``linear`` (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
+    motion : callable
+        ``motion(normal, options)``: the tangential motion over the solved normal motion ``normal``
+        (:class:`sphereimpact.normal.NormalMotion`) with solver options ``options``, an object with
+        ``t_roll`` [s or None], ``regime``, ``switches``, ``at(t)`` -> (v_t [m/s], omega [rad/s], x_t [m])
+        and ``force(t)`` -> the tangential force on the ball [N].
+    batched : bool
+        The motion follows in closed form from the normal impulse, so sweeps compute it vectorised (the
+        rigid contact); otherwise a sweep solves its scenes one at a time with :func:`sphereimpact.simulate`.
+    planar : bool
+        The full planar rigid-body model (``body='planar'``) has this contact too.
+    """
+
+    name: str
+    doc: str
+    stiffness: str
+    parameters: tuple
+    spring: str | None
+    motion: Callable
+    batched: bool = False
+    planar: bool = False
+
+    def __post_init__(self):
+        unknown = [p.name for p in self.parameters if p.name not in TANGENTIAL_PARAMETERS]
+        if unknown:
+            raise ValueError(f"tangential model {self.name!r}: parameter {unknown[0]!r} is not one of "
+                             f"{', '.join(TANGENTIAL_PARAMETERS)}")
+        if self.parameters and "kappa" not in self.parameter_names:
+            raise ValueError(f"tangential model {self.name!r}: a model with a stiffness takes kappa")
+        if self.spring not in (None, "linear", "hertz"):
+            raise ValueError(f"tangential model {self.name!r}: spring must be 'linear', 'hertz' or None; "
+                             f"got {self.spring!r}")
+
+    @property
+    def parameter_names(self) -> tuple:
+        return tuple(p.name for p in self.parameters)
+
+    def refusal(self, law, p) -> str | None:
+        """Why this model cannot serve the normal law ``law`` with parameters ``p`` (a Scene), or None."""
+        if self.spring is None:
+            return None
+        from ..laws import LAWS
+
+        if self.spring == "linear" and law.spring != "linear":
+            hertzian = _names(TANGENTIALS, "hertz")
+            return (f"tangential {self.name!r} ({self.stiffness}) needs a linear-spring law "
+                    f"({_names(LAWS, 'linear')}); model {law.name!r} has a Hertz spring: use tangential {hertzian}")
+        if self.spring == "hertz" and (law.spring != "hertz" or spring_exponent(law, p) != 1.5):
+            found = (f"a linear spring: use tangential {_names(TANGENTIALS, 'linear')}" if law.spring == "linear"
+                     else f"exponent {spring_exponent(law, p):g}")
+            return (f"tangential {self.name!r} ({self.stiffness}) needs a Hertz spring k delta^(3/2) "
+                    f"({_names(LAWS, 'hertz')}, exponent 1.5); model {law.name!r} has {found}")
+        return None
+
+
+def _names(registry, spring: str) -> str:
+    """The names in ``registry`` whose ``spring`` is ``spring``, listed (tangential models quoted, as a
+    command-line value; laws plain)."""
+    names = [name for name, item in registry.items() if item.spring == spring]
+    return ", ".join(f"'{n}'" for n in names) if registry is TANGENTIALS else ", ".join(names)
+
+
+class Registry(dict):
+    """Name -> TangentialModel.  :meth:`register` adds a model; nothing else needs to change."""
+
+    def register(self, model: TangentialModel) -> TangentialModel:
+        """Add ``model`` under its name (``ValueError`` if the name is taken by another model)."""
+        if not isinstance(model, TangentialModel):
+            raise TypeError(f"model must be a TangentialModel; got {type(model).__name__}")
+        if model.name in self and self[model.name] is not model:
+            raise ValueError(f"a tangential model named {model.name!r} is already registered")
+        self[model.name] = model
+        return model
+
+    def model(self, name: str) -> TangentialModel:
+        """The model ``name``; ``ValueError`` listing the registered models otherwise."""
+        try:
+            return self[name]
+        except (KeyError, TypeError):
+            raise ValueError(f"tangential must be one of {', '.join(self)}; got {name!r}") from None
+
+    def taking(self, parameter: str) -> list[str]:
+        """Names of the models that accept ``parameter``."""
+        return [name for name, model in self.items() if parameter in model.parameter_names]
+
+
+#: The registered tangential models (filled by :mod:`sphereimpact.tangential`).
+TANGENTIALS = Registry()
