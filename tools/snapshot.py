@@ -27,10 +27,10 @@ from pathlib import Path
 import pandas as pd
 
 #: Columns that hold timings (wall-clock seconds or ratios of them): dropped before comparing.
-TIMING = re.compile(r"(^|_)(time|times|seconds|wall_time|ms|speedup|speed_up|per_second|impacts_per_s|"
-                    r"time_ratio|ratio|cumtime|tottime|percall|share|fraction_of_call)($|_)")
-#: Markdown files whose text holds timings (compared by the tables they come from).
-TIMED_TEXT = ("readme/speed.md",)
+TIMING = re.compile(r"(^|_)(time|times|seconds|wall_time|ms|us|speedup|speed_up|throughput|memory|per_second|"
+                    r"ratio|share)($|_)")
+#: Files that are timings through and through (a profile names functions by file and line): not recorded.
+TIMED = ("readme/speed.md", "bench_profile.csv")
 #: `sphereimpact simulate` argument lists recorded with --json: the benchmark's scenes, then every law,
 #: tangential model, body, method, criterion and option.
 SIMULATE = [
@@ -95,9 +95,11 @@ def record(out: Path, results: Path) -> None:
     (out / "tables").mkdir(parents=True)
     for path in sorted(results.rglob("*")):
         rel = path.relative_to(results).as_posix()
+        if rel in TIMED:
+            continue
         if path.suffix in (".csv", ".parquet"):
             (out / "tables" / (rel.replace("/", "__") + ".csv")).write_text(_table_text(path))
-        elif path.suffix == ".md" and rel not in TIMED_TEXT:
+        elif path.suffix == ".md" and rel not in TIMED:
             shutil.copy(path, out / "tables" / rel.replace("/", "__"))
     simulated = {}
     for args in SIMULATE:
