@@ -37,6 +37,7 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         "sphereimpact/outcome.py", "sphereimpact/scene.py",
         "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/methods.py",
         "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py", "tangential/springs.py",
+        "tangential/microslip.py",
         "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
         "sphereimpact/planar.py"}
 

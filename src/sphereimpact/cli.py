@@ -19,8 +19,8 @@ from .events import ImpactError
 from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
-from .scene import ATOL_RANGE, METHODS, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, SolverOptions, \
-    check_columns
+from .scene import ATOL_RANGE, METHODS, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
+    SolverOptions, check_columns
 from .solve import BODIES, BeyondRadiusWarning, simulate
 from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
@@ -149,6 +149,10 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
+    for name, (low, high) in RESOLUTION.items():
+        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N",
+            help=f"microslip's {'cells of the element row' if name == 'elements' else 'time steps over the contact'}, "
+                 f"an integer in [{low}, {high}] (default: the convergence study's)")
     add("--body", choices=BODIES, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
@@ -285,7 +289,8 @@ def _simulate(args) -> None:
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
                   speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
                   tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law)
-    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol)
+    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol, elements=args.elements,
+                            time_steps=args.time_steps)
     fitted, units = {}, UNITS
     if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None):
         raise ValueError("--cor-relation and --contact-time need --cor")

@@ -518,6 +518,10 @@ ATOL_RANGE = ("a finite number in [1e-16, 1e-2] (on the O(1) dimensionless state
               "tighter is below double precision)")
 
 
+#: Allowed resolutions of a tangential model that resolves the contact area: (fewest, most).
+RESOLUTION = {"elements": (8, 100_000), "time_steps": (16, 10_000_000)}
+
+
 @dataclass(frozen=True)
 class SolverOptions:
     """How to integrate the normal motion.
@@ -539,12 +543,18 @@ class SolverOptions:
         plain floats, for laws with a scalar formula, and is scipy's DOP853 for any other law or body.
     max_step : float
         Largest step [s]; ``inf`` lets the method choose.
+    elements, time_steps : int or None
+        Resolution of a tangential model that resolves the contact area (``microslip``): cells of its
+        element row, in [8, 100000], and time steps over the contact, in [16, 10000000].  None: the
+        defaults of the convergence study (:mod:`sphereimpact.tangential.microslip`).
     """
 
     method: str = "auto"
     rtol: float = 1e-10
     atol: float = 1e-10
     max_step: float = math.inf
+    elements: int | None = None
+    time_steps: int | None = None
 
     def __post_init__(self):
         _check_choice("method", self.method, METHODS)
@@ -553,6 +563,14 @@ class SolverOptions:
         step = as_number("max_step", self.max_step)
         if not step > 0:  # also refuses nan
             raise ValueError(f"max_step must be a number > 0 s (inf allowed); got {self.max_step!r}")
+        for name, (low, high) in RESOLUTION.items():
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) \
+                    or not low <= value <= high:
+                raise ValueError(f"{name} must be an integer in [{low}, {high}]; got {value!r}")
+            object.__setattr__(self, name, int(value))
         object.__setattr__(self, "max_step", step)
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from contextlib import contextmanager
 from dataclasses import replace
 
 import numpy as np
@@ -43,13 +44,13 @@ class ReducedMotion:
     normal impact has none.
     """
 
-    def __init__(self, normal: NormalMotion, options: SolverOptions):
+    def __init__(self, normal: NormalMotion, options: SolverOptions, tangential=None):
         self.normal, self.scene = normal, normal.scene
         self.t_m, self.t_f, self.grid, self.stats = normal.t_m, normal.t_f, normal.grid, normal.stats
         if not self.scene.has_tangential_motion:
             self.tangential, self.t_roll, self.regime, self.switches = None, None, "none", 0
             return
-        self.tangential = TANGENTIALS[self.scene.tangential].motion(normal, options)
+        self.tangential = tangential or TANGENTIALS[self.scene.tangential].motion(normal, options)
         self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
         self.switches = self.tangential.switches
 
@@ -157,7 +158,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                          f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
                          "not depend on friction)")
     start = time.perf_counter()
-    try:
+    with _beyond_double(scene):
         if body == "reduced":
             motion = ReducedMotion(normal_motion(scene, options), options)
         else:
@@ -165,12 +166,26 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
 
             motion = PlanarMotion(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    return _checked(outcome, strict)
+
+
+@contextmanager
+def _beyond_double(scene: Scene):
+    """Arithmetic that leaves double precision becomes an ImpactError naming the scene's family: a safety net."""
+    try:
+        yield
     except ImpactError:
         raise
-    except (ArithmeticError, RuntimeError) as err:  # a safety net: arithmetic that left double precision
+    except (ArithmeticError, RuntimeError) as err:
         raise ImpactError(f"the computation left double precision ({type(err).__name__}: {err}; "
                           f"{describe_family(scene)}criterion '{scene.separation}'): the scene lies outside what "
                           "the model computes") from None
+
+
+def _checked(outcome: Outcome, strict: bool) -> Outcome:
+    """``outcome``, refused when an output is not finite, and flagged (warned, or refused when ``strict``)
+    when the maximum compression exceeds the radius."""
+    scene = outcome.scene
     bad = [key for key, value in outcome.to_dict().items() if isinstance(value, float) and not math.isfinite(value)]
     if bad:  # never a NaN in a result
         raise ImpactError(f"no finite {', '.join(bad)} ({describe_family(scene)}criterion '{scene.separation}'): "
@@ -181,5 +196,44 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                    "or raise k)")
         if strict:
             raise ImpactError(message)
-        warnings.warn(message, BeyondRadiusWarning, stacklevel=2)
+        warnings.warn(message, BeyondRadiusWarning, stacklevel=3)
     return outcome
+
+
+def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = False) -> list[Outcome]:
+    """Simulate several impacts (reduced body): :func:`simulate` on each, except that the scenes whose
+    tangential model declares a batched kernel (``TangentialModel.many``: ``microslip``) share one run of it.
+
+    Every outcome equals what :func:`simulate` gives its scene alone, but for those scenes' resolution: a
+    batch runs at the finest resolution any of its scenes needs.  ``wall_time`` is the batch's time shared
+    out equally.
+
+    Raises
+    ------
+    ImpactError
+        As :func:`simulate`, for the first scene that fails.
+    """
+    options = SolverOptions() if options is None else options
+    scenes = list(scenes)
+    outcomes: list = [None] * len(scenes)
+    batches: dict = {}
+    for i, scene in enumerate(scenes):
+        model = TANGENTIALS[scene.tangential]
+        if model.many is None or not scene.has_tangential_motion:
+            outcomes[i] = simulate(scene, options, strict=strict)
+            continue
+        start = time.perf_counter()
+        with _beyond_double(scene):
+            batches.setdefault(model.name, []).append((i, normal_motion(scene, options), time.perf_counter() - start))
+    for name, members in batches.items():
+        start = time.perf_counter()
+        motions = TANGENTIALS[name].many([normal for _, normal, _ in members], options)
+        share = (time.perf_counter() - start) / len(members)
+        for (i, normal, normal_time), tangential in zip(members, motions):
+            with _beyond_double(normal.scene):
+                start = time.perf_counter()
+                motion = ReducedMotion(normal, options, tangential)
+                outcome = Outcome.from_motion(motion, 0.0)
+            outcomes[i] = _checked(replace(outcome, wall_time=normal_time + share + time.perf_counter() - start),
+                                   strict)
+    return outcomes

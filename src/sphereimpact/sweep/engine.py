@@ -46,7 +46,7 @@ from ..laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import (SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns,
                      scale_problem)
-from ..solve import BeyondRadiusWarning, simulate
+from ..solve import BeyondRadiusWarning, simulate, simulate_many
 from ..tangential import TANGENTIALS
 from . import batch, closed, plane, series_lanes
 from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
@@ -57,6 +57,9 @@ DEFAULTS = {f.name: f.default for f in fields(Scene)}
 #: Outputs of a sweep, as ``sphereimpact simulate`` names them.
 SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor", "regime",
                  "beyond_radius")
+#: Scenes solved by the single-impact model per call of :func:`~sphereimpact.solve.simulate_many` (a batched
+#: tangential kernel runs them together; progress is reported after each).
+SINGLES_CHUNK = 100
 #: The regime column's values, by index.
 REGIMES = np.array(["none", "sliding", "rolling"], dtype=object)
 #: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each (measured for the
@@ -479,19 +482,23 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     alone_whole, limits = _solved_alone(whole, d_whole, target)
     single = alone_whole if span is None else _solved_alone(frame, d_all, target, limits)[0]
     singles = np.flatnonzero(single)
-    for done, i in enumerate(singles, 1):  # stick-slip with re-slip, compliance, extremes: the single-impact path
+    options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
+    for start in range(0, singles.size, SINGLES_CHUNK):  # stick-slip with re-slip, compliance, extremes
+        rows = singles[start:start + SINGLES_CHUNK]
+        scenes = [scene_of(frame.iloc[i].to_dict()) for i in rows]
         with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
             warnings.simplefilter("ignore", BeyondRadiusWarning)
             try:
-                out = simulate(scene_of(frame.iloc[i].to_dict()), SolverOptions(rtol=min(1e-10, target / 100),
-                                                                               atol=min(1e-10, target / 100)))
-            except ImpactError as err:
-                raise ImpactError(f"sweep row {i}: {err}") from None
-        for key in result:
-            result[key][i] = getattr(out, key)
-        regime[i] = out.regime
-        if progress and (done % 100 == 0 or done == singles.size):
-            progress(done, singles.size)
+                outs = simulate_many(scenes, options)
+            except ImpactError:
+                _raise_for_first_failure(rows, scenes, options)
+                raise
+        for i, out in zip(rows, outs):
+            for key in result:
+                result[key][i] = getattr(out, key)
+            regime[i] = out.regime
+        if progress:
+            progress(start + rows.size, singles.size)
     rest = ~single
     if rest.any():
         part = frame[rest]
@@ -528,6 +535,15 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
     outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
     return pd.concat([frame, outputs[list(SWEEP_OUTPUTS)]], axis=1)
+
+
+def _raise_for_first_failure(rows, scenes, options) -> None:
+    """Raise the ImpactError of the first of ``scenes`` that fails alone, naming its sweep row."""
+    for i, scene in zip(rows, scenes):
+        try:
+            simulate(scene, options)
+        except ImpactError as err:
+            raise ImpactError(f"sweep row {i}: {err}") from None
 
 
 def grid(**ranges) -> pd.DataFrame:

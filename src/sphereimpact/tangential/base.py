@@ -66,7 +66,10 @@ class TangentialModel:
         and ``force(t)`` -> the tangential force on the ball [N].
     batched : bool
         The motion follows in closed form from the normal impulse, so sweeps compute it vectorised (the
-        rigid contact); otherwise a sweep solves its scenes one at a time with :func:`sphereimpact.simulate`.
+        rigid contact); otherwise a sweep solves its scenes with :func:`sphereimpact.solve.simulate_many`.
+    many : callable or None
+        ``many(normals, options)``: the motions over several solved normal motions at once (a batched
+        kernel, cheaper than one at a time), as a list in their order; None: one at a time.
     planar : bool
         The full planar rigid-body model (``body='planar'``) has this contact too.
     """
@@ -79,6 +82,7 @@ class TangentialModel:
     motion: Callable
     batched: bool = False
     planar: bool = False
+    many: Callable | None = None
 
     def __post_init__(self):
         unknown = [p.name for p in self.parameters if p.name not in TANGENTIAL_PARAMETERS]

@@ -1,6 +1,6 @@
 """Tangential compliance: an elastic tangential spring at the contact, capped by Coulomb friction.
 
-The rigid model (:mod:`sphereimpact.tangential`) lets the contact point slip or roll.  A real contact
+The rigid model (:mod:`sphereimpact.tangential.rigid`) lets the contact point slip or roll.  A real contact
 first deforms tangentially: while it sticks it stores tangential strain and gives it back, which can
 reverse the contact point's tangential velocity before the ball leaves (Maw, Barber & Fawcett 1976,
 Wear 38:101-114).  Here the tangential force F on the ball (along t, the down-slope direction) obeys
@@ -15,12 +15,18 @@ with P+ = max(P, 0) the normal force, k_t the tangential stiffness and rho a his
     Cundall & Strack (1979), Geotechnique 29:47-65.  rho = 0.
 ``mindlin``
     k_t = 8 G* a = kappa (3/2) k delta^(1/2), a = sqrt(R delta) the contact radius, for a Hertz spring
-    (k delta^(3/2)): Mindlin's no-slip stiffness (Mindlin 1949, J. Appl. Mech. 16:259-268), applied
-    incrementally while the contact grows (Mindlin & Deresiewicz 1953, J. Appl. Mech. 20:327-344, rho = 0);
-    while it shrinks the tangential force is scaled with the stiffness, rho = (dk_t/dt) / k_t (Thornton,
-    Cummins & Cleary 2011, Powder Technol. 210:189-197).  With that rule the stored tangential energy
-    F^2 / (2 k_t) never grows by itself: d/dt [F^2/(2 k_t)] = -F s - |dk_t/dt| F^2 / (2 k_t^2) in both
-    directions (the increments alone would create energy while the contact shrinks).
+    (k delta^(3/2)): Mindlin's no-slip stiffness (Mindlin 1949, J. Appl. Mech. 16:259-268), applied to
+    force increments while the contact grows (Mindlin & Deresiewicz 1953, J. Appl. Mech. 20:327-344,
+    rho = 0); while it shrinks the tangential force is scaled with the stiffness, rho = (dk_t/dt) / k_t
+    (Thornton, Cummins & Cleary 2011, Powder Technol. 210:189-197).  This is LAMMPS's
+    ``mindlin_rescale/force``.  With that rule the stored tangential energy F^2 / (2 k_t) never grows by
+    itself: d/dt [F^2/(2 k_t)] = -F s - |dk_t/dt| F^2 / (2 k_t^2) in both directions (the increments alone
+    would create energy while the contact shrinks).
+``mindlin-displacement``
+    The same stiffness on the total tangential displacement xi, F = -k_t xi, xi rescaled to the cap while
+    sliding: rho = (dk_t/dt) / k_t at every instant.  This is LAMMPS's ``mindlin`` and EDEM's Hertz-Mindlin
+    (no slip) rule (Di Renzo & Di Maio 2004, Chem. Eng. Sci. 59:525-541).  While the contact grows at a
+    fixed displacement its force grows with k_t, so it stores more energy than the displacement put in.
 
 kappa = k_t / k_n is the ratio of tangential to normal contact stiffness, 2 (1 - nu) / (2 - nu) for
 like elastic materials (2/3 for rubber, nu = 0.5).  Maw's parameter psi_1 = kappa tan(theta) / mu
@@ -56,8 +62,9 @@ from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
 STICKING, SLIDING = "sticking", "sliding"
 #: History rules of the spring's force while its stiffness changes: ``never`` (k_t constant: a linear
-#: spring) or ``unloading`` (scaled with k_t while the contact shrinks).
-RESCALE = ("never", "unloading")
+#: spring), ``unloading`` (scaled with k_t while the contact shrinks) or ``always`` (F = -k_t xi on the total
+#: displacement xi: scaled with k_t both ways).
+RESCALE = ("never", "unloading", "always")
 #: Fraction of the law's time scale over which the start of an impact is probed when both P and the
 #: tangential force start from zero (a Hertz or ramped law): the ratio of the stick trial force to the
 #: cap converges to its limit (Maw's psi_1) as that fraction -> 0, with an error of the same order.
@@ -149,15 +156,16 @@ class CompliantTangential:
 
     def _rho(self, delta, delta_dot):
         """History rule rho [1/s]: 0 without rescaling; (dk_t/dt)/k_t = (n-1) delta_dot / delta while
-        unloading with ``rescale='unloading'``."""
+        unloading (``rescale='unloading'``) or at every instant (``always``)."""
         if is_instant(delta):  # one instant (the stick phase's right-hand side): plain floats
-            if self._rescale == "never" or delta <= 0 or delta_dot >= 0:
+            if self._rescale == "never" or delta <= 0 or (delta_dot >= 0 and self._rescale == "unloading"):
                 return 0.0
             return (self._n - 1.0) * delta_dot / delta
         if self._rescale == "never":
             return np.zeros_like(np.asarray(delta, dtype=float))
+        rate = np.minimum(delta_dot, 0.0) if self._rescale == "unloading" else np.asarray(delta_dot, dtype=float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            rho = (self._n - 1.0) * np.minimum(delta_dot, 0.0) / delta
+            rho = (self._n - 1.0) * rate / delta
         return np.where(np.asarray(delta) > 0, rho, 0.0)
 
     def _stick_gap(self, sigma: float, p: CompliantPhase):
@@ -285,6 +293,11 @@ LINEAR = TANGENTIALS.register(TangentialModel(
     parameters=(KAPPA, POISSON), spring="linear",
     motion=lambda normal, options: CompliantTangential(normal, options, rescale="never")))
 MINDLIN = TANGENTIALS.register(TangentialModel(
-    "mindlin", doc="k_t = 8 G* a capped by mu P, Hertz laws", stiffness="k_t = 8 G* a",
+    "mindlin", doc="k_t = 8 G* a on force increments, rescaled while unloading, capped by mu P, Hertz laws",
+    stiffness="k_t = 8 G* a",
     parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
     motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading")))
+MINDLIN_DISPLACEMENT = TANGENTIALS.register(TangentialModel(
+    "mindlin-displacement", doc="k_t = 8 G* a on the total displacement, capped by mu P, Hertz laws",
+    stiffness="F = -8 G* a xi", parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="always")))
