@@ -32,7 +32,7 @@ rule all:
         figure_outputs(),
         "results/bench.csv",
         "results/ablation.csv",
-        expand("paper_figures/{study}.png", study=["work_precision", "stability"]),
+        expand("paper_figures/{study}.png", study=["work_precision", "stability", "microslip_resolution"]),
         expand("paper_figures/{map}.png", map=["spin_map", "cor_speed", "contact_speed"]),
         "results/bench_sweep.csv",
         "results/cor_relations.csv",

@@ -59,13 +59,16 @@ def test_cor_finding_is_computed_for_both_laws(bullets):
 
 
 def test_tangential_finding_says_which_oblique_results_stand(bullets):
-    """Every configured oblique case is in gross slip at the chapter's speed, so its result stands exactly; the
+    """Every configured oblique case is in gross slip at the chapter's speed, under the linear spring and under
+    the exact microslip contact of the chapter's ball as a Hertz contact, so its result stands exactly; the
     finding says so, and a compliant contact at 30 deg would not (checked directly)."""
     from sphereimpact import Scene, simulate
 
     text = next(b for b in bullets if b.startswith("**Tangential compliance**"))
     assert "normal (0°): no tangential motion" in text
-    assert "oblique60 (60°): the ball slides throughout under both contacts" in text
+    assert ("oblique60 (60°): linear spring: slides throughout under both contacts, so the chapter's result stands"
+            in text)
+    assert "exact microslip, Hertz ball: slides throughout under both contacts, so the chapter's result stands" in text
     rigid, compliant = simulate(Scene(angle=30)), simulate(Scene(angle=30, tangential="linear", poisson=0.5))
     assert compliant.vc_t / rigid.vc_t - 1 == pytest.approx(-0.234, abs=0.005)  # the issue's -23 %
     assert compliant.omega_f / rigid.omega_f - 1 == pytest.approx(0.585, abs=0.005)  # and +59 %

@@ -5,10 +5,12 @@ The tables below are the inputs tried as a new user would; add a row for every n
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 import sphereimpact.sweep.engine as engine
 from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, SolverOptions, simulate
@@ -133,8 +135,15 @@ def test_a_tiny_ball_is_answered_by_both_paths(tmp_path):
     assert row["ve_t"] == pytest.approx(one.ve_t, rel=1e-8)
 
 
+_SHIPPED = yaml.safe_load(open(Path(__file__).resolve().parents[1] / "config/config.yaml"))
 #: Config (merged over config/config.yaml's values where it matters), expected message fragment.
 CONFIGS = [
+    ({"validation": _SHIPPED["validation"] | {"tangential": ["rigid", "soft"]}},
+     "config key validation.tangential: 'soft' is not a registered tangential model"),
+    ({"validation": _SHIPPED["validation"] | {"tangential": ["linear"]}},
+     "config key validation.tangential: 'linear' needs a linear-spring law; the validation's model 'hunt-crossley'"),
+    ({"compliance": _SHIPPED["compliance"] | {"tangential": ["rigid"]}},
+     "config key compliance.tangential: 'rigid' has no tangential stiffness to map over kappa"),
     ({"mass": math.nan}, "config key mass: nan is not a finite number"),
     ({"stiffness": math.inf}, "config key stiffness: inf is not a finite number"),
     ({"cases": {"normal": {"angle": math.nan}}}, "config key cases.normal.angle: nan is not a finite number"),

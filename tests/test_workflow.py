@@ -27,6 +27,7 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
            "paper_figures/work_precision.png", "paper_figures/stability.png",
+           "results/microslip_resolution.csv", "paper_figures/microslip_resolution.png",
            "results/sweep/angle_speed.csv", "results/sweep/speed.csv", "results/bench_sweep.csv",
            "paper_figures/spin_map.png", "paper_figures/cor_speed.png", "paper_figures/contact_speed.png",
            "results/notebooks/sweeps.html",
@@ -37,7 +38,7 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
 FIGURE_TOLERANCE = 2.0
 IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
 #: Rules whose jobs are benchmarks or heavy studies.
-HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard")
+HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution")
 
 
 def snakemake(cwd, *args, configfiles=(), path=()):

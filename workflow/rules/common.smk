@@ -70,6 +70,8 @@ NOTEBOOKS = {
         "results/ablation.csv",
         "paper_figures/work_precision.png",
         "paper_figures/stability.png",
+        "results/microslip_resolution.csv",
+        "paper_figures/microslip_resolution.png",
     ],
     "laws": [
         "results/config.yaml",
@@ -84,6 +86,7 @@ NOTEBOOKS = {
         "results/validation.csv",
         "results/validation_summary.csv",
         "results/validation_curves.csv",
+        "results/validation_maw.csv",
         "results/compliance_map.csv",
         "paper_figures/validation_kharaz.png",
         "paper_figures/validation_maw.png",

@@ -70,6 +70,24 @@ rule ablation:
         "../scripts/numerics.py"
 
 
+rule microslip_resolution:
+    """The microslip contact's accuracy against cost over cells x time steps; the default it supports."""
+    input:
+        code=code("workflow/scripts/numerics.py"),
+    output:
+        csv=report("results/microslip_resolution.csv", caption="../report/microslip_resolution.rst",
+                   category="Numerics"),
+    params:
+        config=params_for("microslip_resolution"),
+    threads: workflow.cores  # timed: no other job shares the machine
+    log:
+        "logs/microslip_resolution.log",
+    conda:
+        ENV
+    script:
+        "../scripts/numerics.py"
+
+
 rule numerics_figure:
     """Work-precision and stability charts from their CSV files."""
     input:
@@ -78,7 +96,7 @@ rule numerics_figure:
     output:
         png=report("paper_figures/{study}.png", caption="../report/numerics_figure.rst", category="Numerics"),
     wildcard_constraints:
-        study="work_precision|stability",
+        study="work_precision|stability|microslip_resolution",
     log:
         "logs/figures/{study}.log",
     conda:

@@ -96,9 +96,42 @@ def stability_figure(csv_path: str, outputs) -> None:
         save(fig, outputs)
 
 
+def microslip_resolution_figure(csv_path: str, outputs) -> None:
+    """Worst error over the scenes against the time of one impact, one line per cell count (left), and each
+    scene's error against the time steps at the chosen cell count (right)."""
+    frame = pd.read_csv(csv_path)
+    settings = frame.groupby(["elements", "time_steps"], as_index=False).agg(
+        worst_error=("worst_error", "first"), time=("time", "median"), chosen=("chosen", "first"),
+        package_default=("package_default", "first"))
+    with plt.rc_context(RC | {"figure.figsize": (11.0, 4.6)}):
+        fig, (left, right) = plt.subplots(1, 2)
+        colors = plt.cm.viridis(np.linspace(0.0, 0.9, settings["elements"].nunique()))
+        for color, (cells, line) in zip(colors, settings.groupby("elements")):
+            left.loglog(line["time"] * 1e3, line["worst_error"], "-o", color=color, markersize=3,
+                        label=f"{cells} cells")
+        for mask, marker, label in ((settings["chosen"], "*", "chosen (cheapest meeting the target)"),
+                                    (settings["package_default"], "s", "package default")):
+            if mask.any():
+                left.loglog(settings["time"][mask] * 1e3, settings["worst_error"][mask], marker, color="C3",
+                            markersize=11, markerfacecolor="none", label=label)
+        left.set(xlabel="median time of one impact [ms]", ylabel="worst error over the scenes",
+                 title="microslip: accuracy against cost (e_t absolute, spin relative)")
+        left.legend(fontsize=7)
+        chosen = frame[frame["chosen"]]
+        cells = int(chosen["elements"].iloc[0]) if len(chosen) else int(frame["elements"].max())
+        for scene, line in frame[frame["elements"] == cells].groupby("scene", sort=False):
+            right.loglog(line["time_steps"], line["error"], "-o", markersize=3, label=scene)
+        right.set(xlabel="time steps over the contact", ylabel="error", title=f"each scene, {cells} cells")
+        right.legend(fontsize=7)
+        fig.tight_layout()
+        save(fig, outputs)
+
+
 def draw_study(study: str, csv_path: str, outputs) -> None:
-    """The chart of numerical study ``study`` (``work_precision`` or ``stability``)."""
-    if study == "work_precision":
+    """The chart of numerical study ``study`` (``work_precision``, ``stability`` or ``microslip_resolution``)."""
+    if study == "microslip_resolution":
+        microslip_resolution_figure(csv_path, outputs)
+    elif study == "work_precision":
         work_precision_figure(csv_path, outputs)
     elif study == "stability":
         stability_figure(csv_path, outputs)

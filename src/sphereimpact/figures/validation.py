@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+from matplotlib.colors import SymLogNorm
 import numpy as np
 import pandas as pd
 
@@ -70,21 +71,33 @@ def maw(curves_csv: str, derived_csv: str, outputs) -> None:
 
 
 def compliance_map(map_csv: str, kappa_rubber: float, tolerance: float, outputs) -> None:
-    """Largest relative difference (spin, rebound velocity) of compliant against rigid, over angle x kappa."""
+    """For each compliant model mapped, over angle x kappa: the signed relative spin difference against the
+    rigid contact (left; the tangential spring rings, so it changes sign with kappa) and its envelope over
+    neighbouring kappa, the larger of the spin and rebound-velocity differences (right), with the tolerance."""
     table = pd.read_csv(map_csv)
-    angles, kappas = np.unique(table["angle"]), np.unique(table["kappa"])
-    grid = table.pivot(index="kappa", columns="angle", values="difference").loc[kappas, angles].to_numpy()
-    with plt.rc_context(RC):
-        fig, ax = plt.subplots()
-        mesh = ax.pcolormesh(angles, kappas, np.log10(np.maximum(grid, 1e-16)), shading="nearest",
-                             cmap="viridis", vmin=-4, vmax=0)
-        ax.contour(angles, kappas, grid, levels=[tolerance], colors="w", linewidths=1.2)
-        ax.axhline(kappa_rubber, color="C3", lw=1.0, ls="--")
-        ax.set_yscale("log")
-        ax.set_xlabel("angle of the flat [deg]")
-        ax.set_ylabel("κ = k_t / k_n")
-        ax.set_title(f"Chapter's ball: compliant vs rigid tangential contact (white: {100 * tolerance:g} %;\n"
-                     f"red: κ = {kappa_rubber:.3g}, rubber)", fontsize=9)
-        fig.colorbar(mesh, ax=ax, label="log10 largest relative difference (spin, rebound velocity)")
+    models = list(dict.fromkeys(table["tangential"]))
+    with plt.rc_context(RC | {"figure.figsize": (11.0, 4.2 * len(models))}):
+        fig, axes = plt.subplots(len(models), 2, squeeze=False)
+        for row, model in zip(axes, models):
+            part = table[table["tangential"] == model]
+            angles, kappas = np.unique(part["angle"]), np.unique(part["kappa"])
+            grid = {key: part.pivot(index="kappa", columns="angle", values=key).loc[kappas, angles].to_numpy()
+                    for key in ("spin_difference", "envelope")}
+            law = part["model"].iloc[0]
+            signed = row[0].pcolormesh(angles, kappas, grid["spin_difference"], shading="nearest", cmap="RdBu_r",
+                                       norm=SymLogNorm(linthresh=tolerance / 10, vmin=-1.0, vmax=1.0))
+            fig.colorbar(signed, ax=row[0], label="spin, compliant / rigid - 1")
+            envelope = row[1].pcolormesh(angles, kappas, np.log10(np.maximum(grid["envelope"], 1e-16)),
+                                         shading="nearest", cmap="viridis", vmin=-4, vmax=0)
+            row[1].contour(angles, kappas, grid["envelope"], levels=[tolerance], colors="w", linewidths=1.2)
+            fig.colorbar(envelope, ax=row[1], label="log10 largest difference (spin, rebound velocity)")
+            for ax, title in ((row[0], "signed spin difference"),
+                              (row[1], f"envelope over neighbouring κ (white: {100 * tolerance:g} %)")):
+                ax.axhline(kappa_rubber, color="C3" if ax is row[1] else "k", lw=1.0, ls="--")
+                ax.set_yscale("log")
+                ax.set(xlabel="angle of the flat [deg]", ylabel="κ = k_t / k_n", title=f"{model} ({law} law): {title}")
+                ax.title.set_fontsize(8)
+        fig.suptitle(f"Chapter's ball: compliant against rigid tangential contact (dashed: κ = {kappa_rubber:.3g}, "
+                     "rubber)", fontsize=9)
         fig.tight_layout()
         save(fig, outputs)

@@ -9,6 +9,7 @@ whose error (against :func:`sphereimpact.numerics.reference.reference`) is no la
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 from ..scene import Scene, SolverOptions
@@ -86,6 +87,50 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
         rows.append(base | {"contender": "handwritten", "method": "DOP853", "rtol": rtol, "error": hand_error,
                             "reached": bool(hand_error <= sim_error), "time": hand_time, "nfev": hand["nfev"],
                             "time_ratio": 1.0})
+    return pd.DataFrame(rows)
+
+
+def microslip_bench(scene: Scene, angles, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
+    """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact
+    on the same scene, and a curve over ``angles`` [deg] batched (:func:`~sphereimpact.solve.simulate_many`)
+    beside one impact at a time.
+
+    Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
+    error against the ``reference`` resolution (cells, time steps); the curve's, the largest difference of
+    e_t and spin between batched and one at a time.  ``time`` is per impact; ``time_ratio`` is over the
+    row's comparison contender (the rigid contact; one impact at a time).
+    """
+    from ..solve import simulate_many
+
+    rows = []
+    default = SolverOptions()
+    out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
+    ref = simulate(scene, SolverOptions(elements=reference[0], time_steps=reference[1]))
+    error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
+    timed = per_call_seconds({"microslip": lambda: simulate(scene, default),
+                              "rigid": lambda: simulate(scene.with_(tangential="rigid"), default)}, repeats)
+    base = {"scene": f"{scene.angle:g}deg-{scene.speed:g}ms/{scene.model}/microslip", "model": scene.model,
+            "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": BATCH}
+    rows.append(base | {"contender": "simulate", "method": out.method, "rtol": out.rtol, "error": error,
+                        "reached": True, "time": timed["microslip"], "nfev": out.nfev,
+                        "time_ratio": timed["microslip"] / timed["rigid"]})
+    rows.append(base | {"contender": "simulate, rigid contact", "method": rigid.method, "rtol": rigid.rtol,
+                        "error": 0.0, "reached": True, "time": timed["rigid"], "nfev": rigid.nfev, "time_ratio": 1.0})
+    scenes = [scene.with_(angle=float(a)) for a in angles]
+    batched, alone = simulate_many(scenes, default), [simulate(s, default) for s in scenes]
+    spread = max(max(abs(a.vc_t - b.vc_t) / s.v_tangent, abs(a.omega_f / b.omega_f - 1.0))
+                 for a, b, s in zip(batched, alone, scenes))
+    curve = interleaved_seconds({"batched": lambda: simulate_many(scenes, default),
+                                 "alone": lambda: [simulate(s, default) for s in scenes]}, repeats)
+    base = base | {"scene": f"curve of {len(scenes)} angles-{scene.speed:g}ms/{scene.model}/microslip",
+                   "angle": float(np.mean(angles)), "batch": len(scenes)}
+    nfev = int(np.mean([o.nfev for o in batched]))
+    rows.append(base | {"contender": "simulate_many", "method": out.method, "rtol": out.rtol, "error": spread,
+                        "reached": True, "time": curve["batched"] / len(scenes), "nfev": nfev,
+                        "time_ratio": curve["batched"] / curve["alone"]})
+    rows.append(base | {"contender": "simulate, one at a time", "method": out.method, "rtol": out.rtol,
+                        "error": 0.0, "reached": True, "time": curve["alone"] / len(scenes), "nfev": nfev,
+                        "time_ratio": 1.0})
     return pd.DataFrame(rows)
 
 

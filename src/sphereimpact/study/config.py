@@ -6,8 +6,10 @@ import math
 
 import numpy as np
 
+from ..calibrate import calibrate
 from ..laws import LAWS, PARAMETER_NAMES
 from ..scene import Scene, SolverOptions
+from ..solve import simulate
 
 #: Config key -> Scene field, for the parameters shared by every case.  k and b are spelled out in the
 #: config because snakemake's --config accepts only keys of two or more characters.
@@ -44,6 +46,22 @@ def scene_for(config: dict, case: str, model: str, separation: str, **changes) -
     fields.update(config["cases"][case])
     fields.update(model=model, separation=separation, **changes)
     return Scene(**fields)
+
+
+def hertz_twin(config: dict) -> Scene:
+    """The chapter's ball as a Hertz contact: Hunt-Crossley (k delta^(3/2) (1 + chi delta_dot)) with k and chi
+    fitted so that the primary law's normal impact at the configured speed keeps its COR and contact time.
+    The tangential models that need a Hertz spring (``mindlin``, ``microslip``) run on it."""
+    primary = scene_for_primary(config)
+    normal = simulate(primary)
+    base = Scene(**shared_fields(config, "hunt-crossley"), model="hunt-crossley", separation=primary.separation)
+    return calibrate(base, normal.cor, contact_time=normal.t_f).scene
+
+
+def scene_for_primary(config: dict) -> Scene:
+    """The chapter's ball under the primary law and criterion (angle 0, the config's speed)."""
+    primary = config["primary"]
+    return Scene(**shared_fields(config, primary["model"]), model=primary["model"], separation=primary["separation"])
 
 
 def solver_options(config: dict) -> SolverOptions:
@@ -111,19 +129,25 @@ def _law_errors(config: dict) -> list[str]:
 
 
 def _tangential_errors(config: dict) -> list[str]:
-    """The validation section's tangential models: registered, and able to serve its Hertz-spring law."""
+    """The tangential models named by the validation and compliance sections: registered; the validation's
+    able to serve its law's spring; the compliance map's compliant (with a stiffness to map over)."""
     from ..tangential import TANGENTIALS
 
-    section = config.get("validation", {})
-    law = LAWS.get(section.get("model"))
     errors = []
-    for name in section.get("tangential", []):
-        if name not in TANGENTIALS:
-            errors.append(f"config key validation.tangential: {name!r} is not a registered tangential model "
-                          f"({', '.join(TANGENTIALS)})")
-        elif law is not None and TANGENTIALS[name].spring not in (None, law.spring):
-            errors.append(f"config key validation.tangential: {name!r} needs a {TANGENTIALS[name].spring}-spring "
-                          f"law; the validation's model {law.name!r} has a {law.spring} spring")
+    validation = config.get("validation", {})
+    law = LAWS.get(validation.get("model"))
+    for key, names in (("validation.tangential", validation.get("tangential", [])),
+                       ("compliance.tangential", config.get("compliance", {}).get("tangential", []))):
+        for name in names:
+            model = TANGENTIALS.get(name)
+            if model is None:
+                errors.append(f"config key {key}: {name!r} is not a registered tangential model "
+                              f"({', '.join(TANGENTIALS)})")
+            elif key.startswith("validation") and law is not None and model.spring not in (None, law.spring):
+                errors.append(f"config key {key}: {name!r} needs a {model.spring}-spring law; the validation's "
+                              f"model {law.name!r} has a {law.spring} spring")
+            elif key.startswith("compliance") and not model.parameters:
+                errors.append(f"config key {key}: {name!r} has no tangential stiffness to map over kappa")
     return errors
 
 

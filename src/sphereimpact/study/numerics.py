@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import pandas as pd
+
 from ..numerics.ablation import ablation
-from ..numerics.bench import bench_scenes, profile_call, simulate_vs_handwritten, stages
+from ..numerics.resolution import resolution_study
+from ..numerics.bench import bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages
+from ..parsing import parse_range
 from ..numerics.stability import stability
 from ..numerics.workprecision import work_precision
 from .config import scene_for
@@ -40,7 +44,14 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     oblique configured case under the primary law."""
     bench = config["bench"]
     scenes = bench_scenes(chapter_cases(config), bench["domain"])
-    simulate_vs_handwritten(scenes, bench["repeats"]).to_csv(csv_path, **CSV)
+    from .validation import experiment
+
+    section = config["numerics"]["microslip"]
+    exact = experiment(config["validation"]).model("microslip").with_(angle=_first_oblique(section["angles"]))
+    reference = (section["reference"]["elements"], section["reference"]["time_steps"])
+    microslip = microslip_bench(exact, parse_range(config["validation"]["angles"]), reference, bench["repeats"])
+    pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip], ignore_index=True).to_csv(
+        csv_path, **CSV)
     stages(scenes, bench["repeats"]).to_csv(stages_csv, **CSV)
     oblique = max(config["cases"], key=lambda case: config["cases"][case].get("angle", 0.0))
     profiled = scene_for(config, oblique, config["primary"]["model"], config["primary"]["separation"])
@@ -60,9 +71,41 @@ def write_ablation(config: dict, published_path: str, csv_path: str) -> None:
     ablation(cases, load_published(published_path)).to_csv(csv_path, **CSV)
 
 
+def _first_oblique(angles) -> float:
+    """The first of ``angles`` [deg] from 8 deg up (below it Kharaz's data scatter most), else the last."""
+    return next((a for a in angles if a >= 8.0), angles[-1])
+
+
+def microslip_scenes(config: dict) -> dict:
+    """The resolution study's scenes: the validation's ball (Kharaz et al.) with the exact microslip contact at
+    each of ``numerics.microslip.angles`` (kappa from the materials), and at the first of them from 8 deg up
+    with each of ``kappas``."""
+    from .validation import experiment
+
+    section = config["numerics"]["microslip"]
+    exact = experiment(config["validation"]).model("microslip")
+    scenes = {f"{angle:g} deg": exact.with_(angle=angle) for angle in section["angles"]}
+    oblique = _first_oblique(section["angles"])
+    for kappa in section["kappas"]:
+        scenes[f"{oblique:g} deg, kappa {kappa:g}"] = exact.with_(angle=oblique, kappa=kappa, shear_modulus=None)
+    return scenes
+
+
+def write_microslip_resolution(config: dict, csv_path: str) -> None:
+    """The microslip contact's accuracy against cost over its resolution (``numerics.microslip``)."""
+    section = config["numerics"]["microslip"]
+    reference = (section["reference"]["elements"], section["reference"]["time_steps"])
+    table = resolution_study(microslip_scenes(config), section["elements"], section["time_steps"], reference,
+                             config["bench"]["repeats"], section["target"])
+    table.to_csv(csv_path, **CSV)
+
+
 def write_study(rule: str, config: dict, csv_path: str, published: str | None = None) -> None:
-    """The study of workflow rule ``rule`` (``work_precision``, ``stability`` or ``ablation``)."""
-    if rule == "ablation":
+    """The study of workflow rule ``rule`` (``work_precision``, ``stability``, ``ablation`` or
+    ``microslip_resolution``)."""
+    if rule == "microslip_resolution":
+        write_microslip_resolution(config, csv_path)
+    elif rule == "ablation":
         write_ablation(config, published, csv_path)
     elif rule == "work_precision":
         write_work_precision(config, csv_path)
