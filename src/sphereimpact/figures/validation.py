@@ -39,8 +39,7 @@ def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
         axes[0].legend(loc="lower right", fontsize=8)
         axes[-1].set_xlabel("incidence from the normal [deg]")
         axes[-1].set_xlim(0, max(62.0, float(data["incidence_deg"].max()) + 2))
-        text = "; ".join(f"{r.model}: e_t RMS {r.e_t_rms:.3f}, worst spin {100 * r.spin_worst_relative:.1f} %"
-                         for r in summary.itertuples())
+        text = "targets met: " + ", ".join(f"{r.model} {r.targets_met}/{r.targets}" for r in summary.itertuples())
         axes[0].set_title(f"5 mm alumina on glass, 3.9 m/s (shaded: below {low:g}°)\n{text}", fontsize=8)
         fig.tight_layout()
         save(fig, outputs)
