@@ -19,7 +19,7 @@ from .events import ImpactError
 from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS
 from .parsing import parse_number, range_count
-from .scene import ATOL_RANGE, METHODS, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
+from .scene import ATOL_RANGE, METHODS, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
     SolverOptions, check_columns
 from .solve import BODIES, BeyondRadiusWarning, simulate
 from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
@@ -45,7 +45,19 @@ def _tangential_help() -> dict:
 
 #: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
 RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
-          "gravity": "m/s^2"}
+          "gravity": "m/s^2", "spin": "rad/s"}
+#: Help for the approach and the incoming spin, shared by simulate and sweep.
+APPROACH_HELP = {
+    "angle": "inclination of the flat to the horizontal [deg], in [0, 90), the ball arriving vertically (the "
+             "chapter's description)",
+    "speed": "approach speed of the centre along its path [m/s], > 0 (vertical unless --incidence or "
+             "--angle-to-surface is given)",
+    "spin": "incoming spin [rad/s]: positive topspin, negative backspin (relative to the direction of travel)",
+    "incidence": "the ball's path instead of the flat's tilt: incidence from the flat's normal [deg], in [0, 90), "
+                 "on a level flat",
+    "angle_to_surface": "the ball's path as its angle to the surface [deg], in (0, 90] (90 - incidence), on a "
+                        "level flat",
+}
 
 
 def _law_flags() -> dict:
@@ -114,10 +126,11 @@ def _parser() -> argparse.ArgumentParser:
         description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
                     "Numbers may be fractions (2/3).")
     add = sim.add_argument
-    add("--angle", type=_number, default=_D.angle, metavar="DEG",
-        help="inclination of the flat to the horizontal [deg], in [0, 90)")
-    add("--speed", type=_number, default=_D.speed, metavar="M_S",
-        help="vertical approach speed of the centre [m/s], > 0")
+    add("--angle", type=_number, default=_D.angle, metavar="DEG", help=APPROACH_HELP["angle"])
+    add("--speed", type=_number, default=_D.speed, metavar="M_S", help=APPROACH_HELP["speed"])
+    add("--incidence", type=_number, default=None, metavar="DEG", help=APPROACH_HELP["incidence"])
+    add("--angle-to-surface", type=_number, default=None, metavar="DEG", help=APPROACH_HELP["angle_to_surface"])
+    add("--spin", type=_number, default=_D.spin, metavar="RAD_S", help=APPROACH_HELP["spin"])
     add("--model", default=_D.model, metavar="NAME",
         help="normal force law: " + "; ".join(f"{k}: {m.doc}" for k, m in LAWS.items()))
     add("--mu", type=_number, default=_D.mu, help="kinetic friction coefficient [-], >= 0")
@@ -170,9 +183,13 @@ def _parser() -> argparse.ArgumentParser:
         default = getattr(_D, name)
         allowed = RULES[name][0].removeprefix("a finite number ")
         kwargs = {"nargs": "?", "const": repr(STANDARD_GRAVITY)} if name == "gravity" else {}
+        what = f"{name} [{unit}], {allowed}" + (f" ({APPROACH_HELP[name]})" if name in APPROACH_HELP else "")
         swp.add_argument("--" + name.replace("_", "-"), default=repr(default), metavar="RANGE", **kwargs,
-                         help=f"{name} [{unit}], {allowed}: a value or START:STOP:STEP"
+                         help=f"{what}: a value or START:STOP:STEP"
                               + (f"; the bare flag means {STANDARD_GRAVITY}" if name == "gravity" else ""))
+    for name in PATH_RULES:
+        swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
+                         help=APPROACH_HELP[name] + ": a value or START:STOP:STEP (then --angle stays 0)")
     for name, text in _law_flags().items():
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
@@ -234,7 +251,7 @@ def check_out(path: str, force: bool) -> None:
 def _each_range(args, read) -> dict:
     """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
-    for name in [*RANGED, *_law_flags(), *TANGENTIAL_PARAMETERS]:
+    for name in [*RANGED, *PATH_RULES, *_law_flags(), *TANGENTIAL_PARAMETERS]:
         if getattr(args, name) is None:  # a law or tangential parameter not given: the default
             continue
         try:
@@ -258,8 +275,10 @@ def _sweep(args) -> None:
                         f"now {args.chunk_size}, bounds only the integration's working memory)")
     ranges = _each_range(args, parse_range)
     laws = _law_flags()
-    check_columns({name: values for name, values in ranges.items() if name not in laws}
-                  | {"model": [args.model], "separation": [args.separation]})  # before any work
+    # before any work: the ranges, then the names (the law's parameters are checked per row by sweep: checked
+    # here with the diameter, a law whose k has no default would be refused whatever the ranges give it)
+    check_columns({name: values for name, values in ranges.items() if name not in laws})
+    check_columns({"model": [args.model], "separation": [args.separation]})
     table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
                                   tangential=args.tangential)
     big = scenes >= 100_000 and sys.stderr.isatty()
@@ -287,6 +306,7 @@ def _readable(outputs: dict, units: dict) -> str:
 def _simulate(args) -> None:
     law = {name: getattr(args, name) for name in _law_flags()}
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
+                  spin=args.spin, incidence=args.incidence, angle_to_surface=args.angle_to_surface,
                   speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
                   tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law)
     options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol, elements=args.elements,

@@ -113,7 +113,7 @@ class Outcome:
         ve_t = vc_t - omega * s.radius
         forces = motion.force(motion.grid)
         work = (0.5 * s.mass * (vc_t * vc_t - s.v_tangent ** 2) + 0.5 * s.inertia * omega * omega
-                - s.mass * s.g_tangent * float(both["u_t"][1]))
+                - s.mass * s.g_tangent * float(both["u_t"][1]) - 0.5 * s.inertia * s.spin * s.spin)
         return cls(
             t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
             vc_t=vc_t, vc_n=vc_n, ve_t=ve_t, ve_n=vc_n, omega_f=omega,
@@ -145,7 +145,7 @@ class Outcome:
         s = self.scene
         t = np.linspace(0.0, self.t_f, n)
         k = self.motion.kinematics(t)
-        radius, beta = s.radius, math.radians(s.angle)
+        radius, beta = s.radius, s.tilt  # the flat's tilt orients the global frame
         normal_pos = radius - k["delta"]  # centre height above the flat
         sn, cs = math.sin(beta), math.cos(beta)
         return {

@@ -41,25 +41,32 @@ class PlanarMotion:
         if options.method in ("closed", "taylor"):
             raise ValueError(f"method {options.method!r} is only available for the reduced model")
         self.scene = scene
-        beta = scene.beta
-        self._n = np.array([math.sin(beta), math.cos(beta)])
-        self._t = np.array([math.cos(beta), -math.sin(beta)])
+        tilt = scene.tilt  # the flat's inclination; the approach's incidence sets the initial velocity
+        self._n = np.array([math.sin(tilt), math.cos(tilt)])
+        self._t = np.array([math.cos(tilt), -math.sin(tilt)])
         radius, length = scene.radius, scene.speed / scene.frequency
         scale = np.array([length, length, scene.speed, scene.speed, scene.speed / radius])
         self._options = dict(method=ivp_method(options.method), rtol=options.rtol, atol=options.atol * scale,
                              max_step=options.max_step, dense_output=True)
         self._hold = scene.mass * scene.g_tangent * scene.inertia_factor / (1 + scene.inertia_factor)
-        z = np.array([radius * self._n[0], radius * self._n[1], 0.0, -scene.speed, 0.0])
-        mode = "sliding" if scene.has_tangential_motion else "rolling"
+        velocity = scene.v_tangent * self._t - scene.v_normal * self._n
+        if scene.angle == scene.incidence_deg:  # the chapter's vertical drop: exactly (0, -v)
+            velocity = np.array([0.0, -scene.speed])
+        z = np.array([radius * self._n[0], radius * self._n[1], velocity[0], velocity[1], scene.spin])
+        slip0 = scene.slip0
+        mode = "sliding" if scene.has_tangential_motion and (slip0 != 0 or self._hold > 0) else "rolling"
+        sigma = -1.0 if slip0 < 0 else 1.0
         t0, t_end = 0.0, horizon(scene)
-        self._segments, self._modes, self.t_roll, t_m, nfev = [], [], None, None, 0
+        self._segments, self._modes, self._sigmas, t_m, nfev = [], [], [], None, 0
+        self.t_roll = 0.0 if mode == "rolling" and scene.has_tangential_motion else None
         while True:
-            sol = self._segment(mode, t0, t_end, z)
+            sol = self._segment(mode, sigma, t0, t_end, z)
             nfev += sol.nfev
             if sol.status == -1:
                 raise ImpactError(f"solver {self._options['method']} failed: {sol.message}")
             self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
             self._modes.append(mode)
+            self._sigmas.append(sigma)
             if t_m is None and len(sol.t_events[0]):
                 t_m = float(sol.t_events[0][0])
             if len(sol.t_events[1]):
@@ -70,8 +77,8 @@ class PlanarMotion:
             if mode == "sliding":
                 self.t_roll = t0 if self.t_roll is None else self.t_roll
                 mode, z[4] = "rolling", float(z[2:4] @ self._t) / radius  # exactly on the constraint
-            else:
-                mode = "sliding"
+            else:  # gravity along the flat outgrows friction: the contact point slips down-slope
+                mode, sigma = "sliding", 1.0
             if len(self._segments) >= MAX_PHASES:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         if t_m is None:
@@ -93,10 +100,10 @@ class PlanarMotion:
         delta_dot = -(self._n[0] * z[2] + self._n[1] * z[3])
         return delta, delta_dot, s.stage_force(delta, delta_dot)  # in-contact formula, as NormalMotion.force
 
-    def _segment(self, mode: str, t0: float, t_end: float, z0):
+    def _segment(self, mode: str, sigma: float, t0: float, t_end: float, z0):
         s = self.scene
         n_vec, t_vec, radius = self._n, self._t, s.radius
-        mu, hold, sep = s.mu, self._hold, separation_function(s)
+        mu, hold, sep = sigma * s.mu, self._hold, separation_function(s)
 
         def rhs(t, z):
             _, _, p = self._contact(z)  # smooth past separation, as in the reduced model
@@ -112,10 +119,10 @@ class PlanarMotion:
             return sep(delta, delta_dot)
 
         def switch(t, z):
-            if mode == "sliding":
-                return t_vec @ z[2:4] - z[4] * radius
+            if mode == "sliding":  # sigma times the slip falls through zero
+                return sigma * (t_vec @ z[2:4] - z[4] * radius)
             if hold > 0:
-                return mu * max(float(self._contact(z)[2]), 0.0) - hold
+                return s.mu * max(float(self._contact(z)[2]), 0.0) - hold
             return 1.0
 
         for event in (max_compression, separation, switch):
@@ -141,9 +148,10 @@ class PlanarMotion:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         which = phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
         sliding = np.array([mode == "sliding" for mode in self._modes])[which]
+        sigma = np.array(self._sigmas)[which]
         if not self.scene.has_tangential_motion:
             return np.zeros_like(t)
-        return np.where(sliding, -self.scene.mu * np.maximum(self.force(t), 0.0), -self._hold)
+        return np.where(sliding, -sigma * self.scene.mu * np.maximum(self.force(t), 0.0), -self._hold)
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""

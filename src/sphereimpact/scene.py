@@ -44,6 +44,13 @@ RULES = {
     "speed": ("a finite number > 0 m/s", lambda x: x > 0),
     "mu": ("a finite number >= 0", lambda x: x >= 0),
     "gravity": ("a finite number >= 0 m/s^2", lambda x: x >= 0),
+    "spin": ("a finite number rad/s (positive: topspin, negative: backspin)", lambda x: x == x),
+}
+#: The approach described by the ball's path instead of the flat's tilt (optional Scene fields, NaN in a table
+#: where not given): (allowed range, vectorised test).
+PATH_RULES = {
+    "incidence": ("a finite number in [0, 90) degrees from the flat's normal", lambda x: (x >= 0) & (x < 90)),
+    "angle_to_surface": ("a finite number in (0, 90] degrees", lambda x: (x > 0) & (x <= 90)),
 }
 
 
@@ -229,6 +236,20 @@ def check_columns(columns: dict) -> dict:
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
+        elif name in PATH_RULES:
+            allowed, ok = PATH_RULES[name]
+            raw = np.asarray(values)
+            if raw.dtype == bool:
+                raise TypeError(f"{name} must be real numbers; got a boolean")
+            try:
+                arr = np.asarray(values, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be {allowed}; got a non-numeric value") from None
+            with np.errstate(invalid="ignore"):
+                bad = ~np.isnan(arr) & ~(np.isfinite(arr) & ok(arr))
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS:
             raw = np.asarray(values)
             if raw.dtype == bool:
@@ -239,7 +260,7 @@ def check_columns(columns: dict) -> dict:
                 raise ValueError(f"{name} must be a number; got a non-numeric value") from None
         else:
             raise ValueError(f"unknown scene parameter {name!r}; expected one of "
-                             f"{', '.join([*RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
+                             f"{', '.join([*RULES, *PATH_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
     if all(name in columns for name in ("mass", "speed", "diameter")):
         problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])
         if problem:
@@ -274,10 +295,12 @@ class Scene:
         (2/3 is the largest any mass distribution inside a sphere can give; the command line and the
         config also accept the fraction ``2/3``).
     angle : float
-        Inclination beta of the flat to the horizontal [deg], in [0, 90).
+        Inclination beta of the flat to the horizontal [deg], in [0, 90), the ball arriving vertically (the
+        chapter's description): its incidence from the flat's normal is beta too.
     speed : float
-        Vertical approach speed v of the centre [m/s], > 0.  The approach is
-        v cos(beta) along the normal and v sin(beta) along the flat.
+        Approach speed v of the centre along its path [m/s], > 0 (vertical unless ``incidence`` or
+        ``angle_to_surface`` is given).  The approach is v cos(theta) along the normal and v sin(theta)
+        along the flat, theta the incidence.
     mu : float
         Kinetic (Coulomb) friction coefficient [-], >= 0.  Chapter: 0.2.
     model : str
@@ -304,6 +327,16 @@ class Scene:
         > 0; Poisson's ratio nu [-] in (-1, 0.5] of like materials, kappa = 2 (1 - nu) / (2 - nu) (2/3 for
         rubber); or (Hertz-spring models) the effective shear modulus G* [Pa], kappa = 4 G* / E* with
         E* = 3 k / (4 sqrt(R)).  ``kappa`` then holds the value used.  Refused for ``rigid``.
+    spin : float
+        Incoming spin omega_0 [rad/s] about the axis normal to the plane of motion, positive for topspin
+        (the sense in which a ball rolls along +t, the direction of the incoming tangential motion; on a
+        level flat approached normally, +t is the direction the topspin drives the ball), negative for
+        backspin; 0 by default.  The contact point first slips at v_t - omega_0 R.
+    incidence, angle_to_surface : float or None
+        The approach described by the ball's path, on a level flat: its incidence from the flat's normal
+        [deg] in [0, 90) (Kharaz's and the DEM codes' convention), or its angle to the surface [deg] in
+        (0, 90] (the sports convention, 90 - incidence), with ``speed`` along the path.  At most one of
+        them, and then ``angle`` stays 0: exactly one description of the approach per scene.
     """
 
     mass: float = 0.145
@@ -325,6 +358,9 @@ class Scene:
     kappa: float | None = None
     poisson: float | None = None
     shear_modulus: float | None = None
+    spin: float = 0.0
+    incidence: float | None = None
+    angle_to_surface: float | None = None
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
@@ -332,6 +368,7 @@ class Scene:
         problem = magnitude_problem(self.mass, self.speed, self.diameter)
         if problem:
             raise ValueError(problem)
+        self._check_path()
         _check_choice("model", self.model, tuple(LAWS))
         _check_choice("separation", self.separation, SEPARATION_CRITERIA)
         given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
@@ -348,6 +385,20 @@ class Scene:
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
         self._resolve_kappa()
+
+    def _check_path(self) -> None:
+        """At most one path description, and then a level flat: one description of the approach."""
+        given = []
+        for name, (allowed, ok) in PATH_RULES.items():
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
+                given.append(name)
+        if len(given) > 1:
+            raise ValueError("give incidence or angle_to_surface, not both (angle_to_surface = 90 - incidence)")
+        if given and self.angle != 0:
+            raise ValueError(f"give the flat's tilt (angle, the ball arriving vertically) or the ball's path "
+                             f"({given[0]}, on a level flat), not both; got angle {self.angle!r} and "
+                             f"{given[0]} {getattr(self, given[0])!r}")
 
     def _check_scales(self) -> None:
         with np.errstate(all="ignore"):
@@ -413,29 +464,44 @@ class Scene:
         return self.inertia_factor * self.mass * self.radius**2
 
     @cached_property
+    def incidence_deg(self) -> float:
+        """Incidence of the approach from the flat's normal [deg]: ``incidence``, 90 - ``angle_to_surface``, or
+        the flat's tilt ``angle`` for a vertical approach."""
+        if self.incidence is not None:
+            return self.incidence
+        if self.angle_to_surface is not None:
+            return 90.0 - self.angle_to_surface
+        return self.angle
+
+    @cached_property
     def beta(self) -> float:
-        """Flat inclination [rad]."""
+        """Incidence of the approach [rad] (the flat's inclination when the ball arrives vertically)."""
+        return math.radians(self.incidence_deg)
+
+    @cached_property
+    def tilt(self) -> float:
+        """The flat's inclination to the horizontal [rad]: it sets gravity's components."""
         return math.radians(self.angle)
 
     @cached_property
     def v_normal(self) -> float:
-        """Approach speed along the normal, v cos(beta) [m/s], > 0."""
+        """Approach speed along the normal, v cos(theta) [m/s], > 0."""
         return self.speed * math.cos(self.beta)
 
     @cached_property
     def v_tangent(self) -> float:
-        """Approach speed along the flat, v sin(beta) [m/s], >= 0 (exactly 0 at 0 deg)."""
-        return 0.0 if self.angle == 0 else self.speed * math.sin(self.beta)
+        """Approach speed along the flat, v sin(theta) [m/s], >= 0 (exactly 0 at normal incidence)."""
+        return 0.0 if self.incidence_deg == 0 else self.speed * math.sin(self.beta)
 
     @cached_property
     def g_normal(self) -> float:
-        """Gravity component pressing the ball into the flat, g cos(beta) [m/s^2]."""
-        return self.gravity * math.cos(self.beta)
+        """Gravity component pressing the ball into the flat, g cos(tilt) [m/s^2]."""
+        return self.gravity * math.cos(self.tilt)
 
     @cached_property
     def g_tangent(self) -> float:
-        """Gravity component along the flat (down-slope = +t), g sin(beta) [m/s^2]."""
-        return 0.0 if self.angle == 0 else self.gravity * math.sin(self.beta)
+        """Gravity component along the flat (down-slope = +t), g sin(tilt) [m/s^2]."""
+        return 0.0 if self.angle == 0 else self.gravity * math.sin(self.tilt)
 
     @property
     def law(self):
@@ -478,8 +544,14 @@ class Scene:
 
     @property
     def has_tangential_motion(self) -> bool:
-        """False for a normal impact (beta = 0): then there is no tangential state at all."""
-        return self.angle != 0
+        """False for a normal impact without spin on a level or vertically approached flat: then there is no
+        tangential state at all."""
+        return self.incidence_deg != 0 or self.spin != 0 or self.g_tangent != 0
+
+    @property
+    def slip0(self) -> float:
+        """The contact point's tangential velocity at first contact, v_t - omega_0 R [m/s]."""
+        return self.v_tangent - self.spin * self.radius
 
     def force(self, delta, delta_dot):
         """Normal contact force P [N] of this scene's law at (delta [m], delta_dot [m/s])."""
@@ -494,13 +566,18 @@ class Scene:
 
         Changing ``model`` drops the old law's parameters that the new law does not use (and ``modulus``
         when ``k`` changes); the others carry over.  ``tangential='rigid'`` drops kappa, poisson and
-        shear_modulus; kappa given as poisson or shear_modulus is recomputed.
+        shear_modulus; kappa given as poisson or shear_modulus is recomputed.  Giving a path (``incidence`` or
+        ``angle_to_surface``) levels the flat and drops the other path; giving a tilt ``angle`` drops the path.
         """
         if "model" in changes:
             uses = LAWS.law(changes["model"]).parameter_names
             changes = {name: None for name in PARAMETER_NAMES if name not in uses} | changes
         if "k" in changes and "modulus" not in changes:
             changes["modulus"] = None
+        if any(name in changes for name in PATH_RULES):  # a path given: a level flat, and no other path
+            changes = {"angle": 0.0, **{name: None for name in PATH_RULES}} | changes
+        elif changes.get("angle"):  # a tilted flat approached vertically: no path
+            changes = {name: None for name in PATH_RULES} | changes
         if "diameter" in changes and self.modulus is not None and "k" not in changes:
             changes["k"] = None  # k follows the modulus at the new radius
         if not TANGENTIALS.model(changes.get("tangential", self.tangential)).parameters:

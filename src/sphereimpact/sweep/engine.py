@@ -44,8 +44,8 @@ import pandas as pd
 from ..events import ImpactError
 from ..laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..scene import (SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions, check_columns,
-                     scale_problem)
+from ..scene import (PATH_RULES, SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions,
+                     check_columns, scale_problem)
 from ..solve import BeyondRadiusWarning, simulate, simulate_many
 from ..tangential import TANGENTIALS
 from . import batch, closed, plane, series_lanes
@@ -107,12 +107,18 @@ def scene_table(scenes) -> pd.DataFrame:
                for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
     laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
     columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
-    for name in ("modulus", *TANGENTIAL_PARAMETERS):
+    for name in ("modulus", *TANGENTIAL_PARAMETERS, *PATH_RULES):
         columns.setdefault(name, np.full(n, np.nan))
     # text as object columns: pandas' string dtype costs 0.8 ms per 20 000 rows to build, the rest of a sweep's
     # overhead together about as much
     frame = pd.DataFrame({name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
                           else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+    paths = ~np.isnan(frame[list(PATH_RULES)].to_numpy())
+    for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"].to_numpy() != 0) | paths.all(axis=1))):
+        try:  # one description of the approach per scene: checked as the Scene checks it
+            scene_of(frame.iloc[i].to_dict())
+        except ValueError as err:
+            raise ValueError(f"{err} (row {i})") from None
     tangential = np.column_stack([frame[name].to_numpy() for name in TANGENTIAL_PARAMETERS])
     for i in np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1)):
         try:  # the tangential model's parameters depend on the law: checked as the Scene checks them
@@ -146,6 +152,9 @@ def scene_of(row: dict) -> Scene:
     for name in PARAMETER_NAMES:
         if name == "modulus" or np.isnan(values[name]):  # k is already resolved from the modulus
             values[name] = None
+    for name in PATH_RULES:
+        if np.isnan(values[name]):
+            values[name] = None
     resolved = not np.isnan(values["kappa"])  # kappa is already resolved from poisson or shear_modulus
     for name in TANGENTIAL_PARAMETERS:
         if np.isnan(values[name]) or (name != "kappa" and resolved):
@@ -153,10 +162,19 @@ def scene_of(row: dict) -> Scene:
     return Scene(**values)
 
 
+def incidence(frame: pd.DataFrame) -> np.ndarray:
+    """Each scene's incidence from the flat's normal [deg]: its ``incidence``, 90 - ``angle_to_surface``, or
+    the flat's tilt ``angle`` for a vertical approach (as :attr:`sphereimpact.Scene.incidence_deg`)."""
+    given, surface = frame["incidence"].to_numpy(), frame["angle_to_surface"].to_numpy()
+    return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, frame["angle"].to_numpy()))
+
+
 def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
     """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
-    compliant tangential contact at an angle (its tangential motion is integrated)."""
-    return ((frame["gravity"].to_numpy() > 0) | _compliant(frame)) & (frame["angle"].to_numpy() > 0)
+    compliant tangential contact with tangential motion (its tangential motion is integrated)."""
+    tangential = (incidence(frame) > 0) | (frame["spin"].to_numpy() != 0)
+    return (((frame["gravity"].to_numpy() > 0) & (frame["angle"].to_numpy() > 0))
+            | (_compliant(frame) & tangential))
 
 
 def _series_lanes(d: dict) -> np.ndarray:
@@ -231,7 +249,7 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
     closed form and kernel (``batched``: it has one), its similarity family (as a hashable key; laws without a
     kernel only, None otherwise), and the criterion (``force``: the force criterion's).  The masks are
     compared once here: an elementwise comparison of an object array costs 0.14 ms per 20 000 scenes."""
-    beta = np.radians(frame["angle"].to_numpy())
+    beta = np.radians(incidence(frame))
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
@@ -264,7 +282,8 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
             keys = zip(*numbers.values()) if numbers else [()] * rows.size
             family[rows] = [(model, *values) for values in keys]
     return {"zeta": zeta, "w": w, "v_n": v_n, "lam": lam,
-            "gamma": frame["gravity"].to_numpy() * np.cos(beta) / (w * v_n),  # w v_n: normal (scale_problem)
+            # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
+            "gamma": frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n),
             "modified": modified, "closed": linear, "kernel": kernel, "batched": kernel != None,  # noqa: E711
             "family": family, "separation": separation, "force": separation == "force"}
 
@@ -512,20 +531,23 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
         radius = 0.5 * part["diameter"].to_numpy()
         alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
-        angle = part["angle"].to_numpy()
+        angle, spin = incidence(part), part["spin"].to_numpy()
         v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
+        slip0 = v_t - spin * radius
+        sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
         # friction acts while P > 0, so its impulse is mu J+ with J+ = m v_n (1 - y_p): y_p is the
         # dimensionless rate where P first falls to 0 (at separation if it never pulls); no gravity here
         impulse = m * v_n * (1.0 - dim["y_p"])
-        slides = mu * (1.0 + 1.0 / alpha) * impulse / m < v_t
-        vc_t = np.where(slides, v_t - mu * impulse / m, v_t / (1.0 + alpha))
-        omega = np.where(slides, mu * impulse / (alpha * m * radius), vc_t / radius)  # mu R J / I, no R^2 to underflow
+        slides = mu * (1.0 + 1.0 / alpha) * impulse / m < np.abs(slip0)
+        # gripping ends in rolling with the angular momentum about the contact point kept
+        vc_t = np.where(slides, v_t - sigma * mu * impulse / m, (v_t + alpha * radius * spin) / (1.0 + alpha))
+        omega = np.where(slides, spin + sigma * mu * impulse / (alpha * m * radius), vc_t / radius)  # no R^2
         values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
                   "vc_t": vc_t, "vc_n": -dim["y_f"] * v_n, "ve_t": np.where(slides, vc_t - omega * radius, 0.0),
                   "ve_n": -dim["y_f"] * v_n, "omega_f": omega, "cor": -dim["y_f"]}
         for key, value in values.items():
             result[key][rest] = value
-        regime[rest] = REGIMES[np.where(v_t == 0, 0, np.where(slides, 1, 2))]
+        regime[rest] = REGIMES[np.where((v_t == 0) & (spin == 0), 0, np.where(slides, 1, 2))]
     finite = np.logical_and.reduce([np.isfinite(values) for values in result.values()])
     if not finite.all():  # never a NaN in a table
         i = int(np.flatnonzero(~finite)[0])

@@ -245,7 +245,7 @@ def _inputs(normal, time_steps: int):
     stiffness = 2.0 * hertz_moduli(s)[1] * math.sqrt(s.radius * delta_m)
     inverse_mass = (1.0 + 1.0 / s.inertia_factor) / s.mass
     return t, (np.sqrt(delta / delta_m), cap, s.mu * np.diff(positive), float(t[1] - t[0]), stiffness,
-               inverse_mass, s.g_tangent, s.v_tangent)
+               inverse_mass, s.g_tangent, s.slip0)
 
 
 def _fill_ends(values):
@@ -304,7 +304,7 @@ class MicroslipTangential:
         self._fraction = _fill_ends(fraction)  # F / (mu P+): at the ends, where the cap is 0, the neighbours'
         self.stuck = (cap > 0) & (np.abs(fraction) < 1.0 - STICK_TOLERANCE)
         self.v = s.v_tangent + s.g_tangent * t + self._j / s.mass
-        self.omega = -self._j / (s.inertia_factor * s.mass * s.radius)
+        self.omega = s.spin - self._j / (s.inertia_factor * s.mass * s.radius)
         accel = self._force / s.mass + s.g_tangent
         dt = t[1] - t[0]
         self.x = np.concatenate([[0.0], np.cumsum(0.5 * dt * (self.v[1:] + self.v[:-1])

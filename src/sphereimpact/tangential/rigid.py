@@ -1,17 +1,19 @@
 """Tangential velocity, spin and displacement from the normal impulse (reduced model).
 
 No ODE is integrated here.  Friction is Coulomb: while the contact point slips
-forward (slip s = v_t - omega R > 0) the flat pushes back with mu P+, where
-P+ = max(P, 0) (a tensile force, which the kelvin-voigt law produces before
-delta returns to zero, presses nothing and so carries no friction).  So with
-J+(t) the integral of P+ and K+(t) the integral of J+, over a sliding phase
-that starts at t0:
+in direction sigma (sigma = sign of the slip s = v_t - omega R, +1 forward) the
+flat pushes against it with mu P+, where P+ = max(P, 0) (a tensile force, which
+the kelvin-voigt law produces before delta returns to zero, presses nothing and
+so carries no friction).  So with J+(t) the integral of P+ and K+(t) the
+integral of J+, over a sliding phase that starts at t0:
 
-    v_t(t)   = v_t0 + g_t (t - t0) - mu (J+(t) - J+(t0)) / m
-    omega(t) = omega0 + mu R (J+(t) - J+(t0)) / I
-    x_t(t)   = x_t0 + v_t0 (t - t0) + g_t (t - t0)^2 / 2 - mu (K+(t) - K+(t0) - J+(t0)(t - t0)) / m
+    v_t(t)   = v_t0 + g_t (t - t0) - sigma mu (J+(t) - J+(t0)) / m
+    omega(t) = omega0 + sigma mu R (J+(t) - J+(t0)) / I
+    x_t(t)   = x_t0 + v_t0 (t - t0) + g_t (t - t0)^2 / 2 - sigma mu (K+(t) - K+(t0) - J+(t0)(t - t0)) / m
 
-The ball grips when s reaches zero, found as a root on the normal motion's
+Incoming spin omega_0 sets the first slip, v_t - omega_0 R: topspin can make it
+negative (the flat then drives the ball forward) or zero (the ball rolls from
+the start).  The ball grips when s reaches zero, found as a root on the normal motion's
 dense output (no sign() in any right-hand side).  While rolling, v_t = omega R
 and the friction needed is m g_t alpha / (1 + alpha) (zero without gravity);
 the ball slips again when mu P+ falls below that.
@@ -19,7 +21,7 @@ the ball slips again when mu P+ falls below that.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -34,7 +36,8 @@ MAX_PHASES = 50
 
 @dataclass(frozen=True)
 class Phase:
-    """One sliding or rolling interval [t0, t1] [s] and the tangential state at t0 (SI)."""
+    """One sliding or rolling interval [t0, t1] [s], the tangential state at t0 (SI), and the direction of
+    slip ``sigma`` of a sliding phase (+1: the contact point slips forward, friction F = -sigma mu P+)."""
 
     mode: str
     t0: float
@@ -42,6 +45,7 @@ class Phase:
     v0: float
     omega0: float
     x0: float
+    sigma: float = 1.0
 
 
 def phase_index(phases, t) -> np.ndarray:
@@ -178,13 +182,17 @@ class TangentialMotion:
         self.jp = PositiveImpulse(normal)
         m, mu, alpha = scene.mass, scene.mu, scene.inertia_factor
         self._hold = m * scene.g_tangent * alpha / (1.0 + alpha)  # friction needed to keep rolling [N]
-        phase = Phase("sliding", 0.0, normal.t_f, scene.v_tangent, 0.0, 0.0)
-        self.phases, self.t_roll = [], None
+        slip0 = scene.slip0
+        if slip0 != 0 or self._hold > 0:  # no normal force yet to hold the ball against gravity: it slips down
+            phase = Phase("sliding", 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0, -1.0 if slip0 < 0 else 1.0)
+        else:  # the incoming spin rolls the ball from the start
+            phase = Phase("rolling", 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0)
+        self.phases, self.t_roll = [], None if phase.mode == "sliding" else 0.0
         while True:
             grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
-            if phase.mode == "sliding":
-                t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): self._slip(p, t, j0), grid,
-                                      direction=-1)
+            if phase.mode == "sliding":  # sigma s falls through zero when the contact point stops slipping
+                t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): p.sigma * self._slip(p, t, j0),
+                                      grid, direction=-1)
             elif self._hold > 0:
                 t_switch = first_root(lambda t: mu * np.maximum(normal.force(t), 0.0) - self._hold,
                                       grid, direction=-1)
@@ -193,13 +201,13 @@ class TangentialMotion:
             if t_switch is None or t_switch >= normal.t_f:
                 self.phases.append(phase)
                 break
-            self.phases.append(Phase(phase.mode, phase.t0, t_switch, phase.v0, phase.omega0, phase.x0))
+            self.phases.append(replace(phase, t1=t_switch))
             v, omega, x = (float(q) for q in self._evaluate(self.phases[-1], t_switch))
             if phase.mode == "sliding":
                 self.t_roll = t_switch if self.t_roll is None else self.t_roll
                 phase = Phase("rolling", t_switch, normal.t_f, v, v / scene.radius, x)
-            else:
-                phase = Phase("sliding", t_switch, normal.t_f, v, omega, x)
+            else:  # gravity along the flat outgrows friction: the contact point slips down-slope
+                phase = Phase("sliding", t_switch, normal.t_f, v, omega, x, 1.0)
             if len(self.phases) >= MAX_PHASES:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         self.regime = self.phases[-1].mode
@@ -216,7 +224,7 @@ class TangentialMotion:
             return v, v / s.radius, p.x0 + p.v0 * dt + 0.5 * accel * dt * dt
         j0 = self.jp(p.t0)
         dk = self.jp.integral(t) - self.jp.integral(p.t0) - j0 * dt
-        return from_impulse(s, p, dt, -s.mu * (self.jp(t) - j0), -s.mu * dk)
+        return from_impulse(s, p, dt, -p.sigma * s.mu * (self.jp(t) - j0), -p.sigma * s.mu * dk)
 
     def _slip(self, p: Phase, t, j0: float | None = None):
         """Slip velocity v_t - omega R [m/s] at t in sliding phase p (the velocities only: no K+; a float for
@@ -224,7 +232,7 @@ class TangentialMotion:
         s = self.scene
         t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         j0 = self.jp(p.t0) if j0 is None else j0
-        v, omega = from_impulse(s, p, t - p.t0, -s.mu * (self.jp(t) - j0))
+        v, omega = from_impulse(s, p, t - p.t0, -p.sigma * s.mu * (self.jp(t) - j0))
         return v - omega * s.radius
 
     def at(self, t):
@@ -242,7 +250,7 @@ class TangentialMotion:
         """Friction force F on the ball along the flat [N] at t [s]: -mu P+ sliding, the holding force rolling."""
         def phase_force(p, instants):
             if p.mode == "sliding":
-                return -self.scene.mu * np.maximum(self.normal.force(instants), 0.0)
+                return -p.sigma * self.scene.mu * np.maximum(self.normal.force(instants), 0.0)
             return np.full(instants.size, -self._hold)
 
         return by_phase(self.phases, t, phase_force)

@@ -191,15 +191,15 @@ class CompliantTangential:
     def _first_phase(self) -> CompliantPhase:
         """Sticking, unless the stick trial force outgrows the cap from the first instant (psi_1 > 1)."""
         s, t_f = self.scene, self.normal.t_f
-        slip0 = s.v_tangent
+        slip0 = s.slip0  # the incoming spin's share: v_t - omega_0 R
         if float(self.cap(0.0)) > 0:  # the cap starts finite (kelvin-voigt): F = 0 sticks
-            return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, 0.0, 0.0)
+            return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, s.spin, 0.0)
         eps = START_PROBE / self._w
         # near t = 0, delta ~ v_n t and k_t ~ t^(n - 1), so the stick rule gives |F| = |s0| k_t(eps) eps / n
         trial = abs(slip0) * float(self.stiffness(eps)) * eps / self._n
         if trial > float(self.cap(eps)):
-            return CompliantPhase(SLIDING, 0.0, t_f, s.v_tangent, 0.0, 0.0, sigma=float(np.sign(slip0)))
-        return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, 0.0, 0.0)
+            return CompliantPhase(SLIDING, 0.0, t_f, s.v_tangent, s.spin, 0.0, sigma=float(np.sign(slip0)))
+        return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, s.spin, 0.0)
 
     def _run(self, p: CompliantPhase):
         """Solve phase ``p`` to its end; return it (with t1) and the next phase, or None at separation."""
