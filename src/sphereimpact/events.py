@@ -78,9 +78,10 @@ def first_root(f, grid, direction: int = 0, after: float | None = None) -> float
 def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     """Global ``'min'`` or ``'max'`` of ``f`` over ``[grid[0], grid[-1]]``.
 
-    The best sample is refined by a bounded Brent search between its
-    neighbours; the end points are candidates too.  ``values``, if given, is f on the grid (computed
-    once for both extremes).
+    The best sample is refined by a bounded Brent search between its neighbours, and so are both end
+    intervals (a dip inside one, like the brief pull before delta returns to 0, has no sample of its own
+    and can hide behind an end point's value); the end points are candidates too.
+    ``values``, if given, is f on the grid (computed once for both extremes).
 
     Returns
     -------
@@ -91,12 +92,15 @@ def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     values = sgn * np.asarray(f(grid) if values is None else values, dtype=float)
     i = int(np.argmin(values))
     best_t, best_v = float(grid[i]), float(values[i])
-    if 0 < i < len(grid) - 1:
+    if len(grid) > 1:
         g = _scalar(f)
-        t, value = minimise(lambda t: sgn * g(t), float(grid[i - 1]), float(grid[i + 1]),
-                            1e-14 * max(float(grid[-1]), 1e-300))
-        if value < best_v:
-            best_t, best_v = t, value
+        last = len(grid) - 1
+        spans = {(max(i - 1, 0), min(i + 1, last)), (0, 1), (last - 1, last)}
+        for low, high in sorted(spans):
+            t, value = minimise(lambda t: sgn * g(t), float(grid[low]), float(grid[high]),
+                                1e-14 * max(float(grid[-1]), 1e-300))
+            if value < best_v:
+                best_t, best_v = t, value
     return best_t, sgn * best_v
 
 
