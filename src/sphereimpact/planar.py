@@ -159,4 +159,4 @@ class PlanarMotion:
         delta, delta_dot, _ = self._contact(z)
         radius = self.scene.radius
         return {"delta": delta, "delta_dot": delta_dot, "vc_t": self._t @ z[2:4], "vc_n": self._n @ z[2:4],
-                "omega": z[4], "u_t": self._t @ (z[0:2] - radius * self._n)}
+                "omega": z[4], "u_t": self._t @ (z[0:2] - radius * self._n[:, None])}
