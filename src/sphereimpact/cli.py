@@ -17,7 +17,7 @@ from . import __version__
 from .calibrate import RELATIONS, calibrate
 from .events import ImpactError
 from .laws import LAWS, PARAMETER_NAMES
-from .outcome import OUTPUT_KEYS
+from .outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
 from .scene import ATOL_RANGE, METHODS, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
     SolverOptions, check_columns
@@ -28,9 +28,7 @@ _D = Scene()
 _O = SolverOptions()
 
 #: Output units for the readable (non-JSON) output of ``simulate``.
-UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
-         "omega_f": "rad/s", "cor": "-", "t_roll": "s", "force_min": "N", "force_max": "N",
-         "rebound_angle": "deg", "rebound_angle_contact": "deg", "work_t": "J", "wall_time": "s"}
+UNITS = {key: unit for key, unit in OUTPUT_UNITS.items() if unit and key not in ("switches", "rtol", "atol", "nfev")}
 
 
 def _tangential_help() -> dict:

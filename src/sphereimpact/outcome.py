@@ -22,6 +22,17 @@ OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f
                "switches", "rebound_angle", "rebound_angle_contact", "work_t",
                "method", "rtol", "atol", "nfev", "wall_time")
 
+#: The solver's statistics among OUTPUT_KEYS; the others are the impact's scalar outputs.
+SOLVER_KEYS = ("method", "rtol", "atol", "nfev", "wall_time")
+#: The scalar outputs of one impact (OUTPUT_KEYS less the solver's statistics): the columns of a sweep's
+#: table too (:func:`sphereimpact.sweep.sweep`).
+SCALAR_OUTPUTS = tuple(key for key in OUTPUT_KEYS if key not in SOLVER_KEYS)
+#: Units of the outputs (SI; angles in degrees).
+OUTPUT_UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
+                "omega_f": "rad/s", "cor": "-", "regime": "", "t_roll": "s", "force_min": "N", "force_max": "N",
+                "beyond_radius": "", "switches": "-", "rebound_angle": "deg", "rebound_angle_contact": "deg",
+                "work_t": "J", "method": "", "rtol": "-", "atol": "-", "nfev": "-", "wall_time": "s"}
+
 #: Columns of :meth:`Outcome.history`, with units.
 HISTORY_COLUMNS = {
     "t": "s", "delta": "m", "delta_dot": "m/s", "force": "N", "force_t": "N",

@@ -14,6 +14,8 @@ delta_dot(t_f) exactly: the tangential outputs by the impulse algebra
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 from ..scene import Scene, SolverOptions
@@ -28,13 +30,27 @@ def output_scales(scene: Scene, t_f: float, delta_m: float, force_max: float = 1
     rolling ball's slip) is measured on the scale of the impact rather than relative to zero."""
     v = scene.speed
     return {"t_m": t_f, "t_f": t_f, "t_roll": t_f, "delta_m": delta_m, "vc_t": v, "vc_n": v, "ve_t": v,
-            "ve_n": v, "cor": 1.0, "omega_f": v / scene.radius, "force_min": force_max, "force_max": force_max}
+            "ve_n": v, "cor": 1.0, "omega_f": v / scene.radius, "force_min": force_max, "force_max": force_max,
+            "switches": 1.0, "rebound_angle": 90.0, "rebound_angle_contact": 90.0,
+            "work_t": 0.5 * scene.mass * v * v}
+
+
+def _never(value) -> bool:
+    """An output that did not happen (``t_roll`` of a contact that never stops slipping): None or NaN."""
+    return value is None or value != value
 
 
 def relative_errors(got: dict, ref: dict, scene: Scene, keys=ERROR_KEYS) -> dict:
-    """|got - ref| / max(|ref|, scale) for each key."""
+    """|got - ref| / max(|ref|, scale) for each key; 0 where neither happened (None or NaN), inf where one
+    did and the other did not."""
     scales = output_scales(scene, ref["t_f"], ref["delta_m"], ref.get("force_max", 1.0))
-    return {k: abs(got[k] - ref[k]) / max(abs(ref[k]), scales[k]) for k in keys}
+    out = {}
+    for k in keys:
+        if _never(got[k]) or _never(ref[k]):
+            out[k] = 0.0 if _never(got[k]) and _never(ref[k]) else math.inf
+        else:
+            out[k] = abs(got[k] - ref[k]) / max(abs(ref[k]), scales[k])
+    return out
 
 
 def worst_error(got: dict, ref: dict, scene: Scene) -> float:

@@ -13,7 +13,9 @@ One timing protocol for all three: the median of ``repeats`` complete runs, the 
 each repeat (the engine builds its interpolants anew in every run; nothing is cached).  A contender that
 reaches the engine's error at no tolerance on the ladder is flagged (``<contender>_reached`` False) and
 timed at the tightest.
-Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).
+Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).  The
+engine computes :data:`~sphereimpact.sweep.engine.FAST_OUTPUTS` (every output of ``simulate`` but t_roll and
+the force extremes, which take one single-impact solve per dimensionless family), the script less still.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from ..numerics.reference import relative_errors
 from ..numerics.timing import interleaved_seconds
 from ..scene import Scene, SolverOptions
 from ..solve import BeyondRadiusWarning, simulate
-from .engine import SCENE_COLUMNS, grid, scene_of, sweep
+from .engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
 
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
 #: The per-scene reference: scipy's DOP853 at rtol 1e-13, not the package's default integrator.
@@ -79,7 +81,7 @@ def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sampl
 
 
 def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
-    table = sweep(scenes)
+    table = sweep(scenes, outputs=FAST_OUTPUTS)
     pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)), replace=False))
     outputs = table.iloc[pick].to_dict("records")
     sample = [_scene(row) for row in outputs]
@@ -89,12 +91,12 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
     error = _worst(outputs, refs, sample)
     chosen = {label: per_scene(solve, sample, refs, max(error, TOLERANCES[-1])) for label, solve in CONTENDERS.items()}
     # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
-    calls = {"engine": lambda: sweep(scenes)} | {
+    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS)} | {
         label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
         for label, solve in CONTENDERS.items()}
     seconds = interleaved_seconds(calls, repeats)
     tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
-    sweep(scenes)
+    sweep(scenes, outputs=FAST_OUTPUTS)
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     throughput = n / seconds["engine"]

@@ -46,7 +46,8 @@ from ..laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import (PATH_RULES, SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions,
                      check_columns, scale_problem)
-from ..solve import BeyondRadiusWarning, simulate, simulate_many
+from ..outcome import SCALAR_OUTPUTS
+from ..solve import BeyondRadiusWarning, normal_motion, simulate, simulate_many
 from ..tangential import TANGENTIALS
 from . import batch, closed, plane, series_lanes
 from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
@@ -54,9 +55,16 @@ from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant
 #: Scene parameters, with the single-impact defaults for missing columns.
 SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
 DEFAULTS = {f.name: f.default for f in fields(Scene)}
-#: Outputs of a sweep, as ``sphereimpact simulate`` names them.
-SWEEP_OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor", "regime",
-                 "beyond_radius")
+#: Outputs of a sweep: every scalar output of ``simulate``, named as it names them (one list, shared).
+SWEEP_OUTPUTS = SCALAR_OUTPUTS
+#: The outputs that depend on the whole time history of the normal force, not only on its end state: the
+#: fast paths (closed form, lanes, interpolants) get them from one single-impact solve per dimensionless family,
+#: scaled to each scene (exact: the family fixes the dimensionless motion).
+FAMILY_OUTPUTS = ("t_roll", "force_min", "force_max")
+#: The outputs the fast paths compute from the end state alone (``outputs=FAST_OUTPUTS``: the fastest sweep).
+FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in FAMILY_OUTPUTS)
+#: Newton steps refining a grip instant from its interpolate on the solver's grid (quadratic convergence).
+GRIP_NEWTON = 5
 #: Scenes solved by the single-impact model per call of :func:`~sphereimpact.solve.simulate_many` (a batched
 #: tangential kernel runs them together; progress is reported after each).
 SINGLES_CHUNK = 100
@@ -454,7 +462,8 @@ def _put(out: dict, where, values: dict) -> None:
         out[key][where] = values[key]
 
 
-def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None) -> pd.DataFrame:
+def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
+          outputs=None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -473,11 +482,16 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     span : DataFrame or dict of arrays, optional
         The whole sweep when ``scenes`` is one shard of it: interpolants are built on the whole
         sweep's range, so the merged shards equal the sweep run at once.  Defaults to ``scenes``.
+    outputs : sequence of str, optional
+        The outputs wanted, some of :data:`SWEEP_OUTPUTS` (default: all, every scalar output of
+        ``simulate``).  :data:`FAST_OUTPUTS` spares the per-family solves of :data:`FAMILY_OUTPUTS`.
 
     Returns
     -------
     DataFrame
-        The scene columns followed by :data:`SWEEP_OUTPUTS` (SI units), one row per scene, in order.
+        The scene columns followed by the outputs (in :data:`SWEEP_OUTPUTS`' order; SI units, angles in
+        degrees), one row per scene, in order.  ``t_roll`` is empty (NaN) where the contact point never stops
+        slipping, as ``simulate`` gives None.
 
     Raises
     ------
@@ -491,6 +505,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
+    wanted = _wanted(outputs)
     frame = scene_table(scenes)
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
@@ -514,7 +529,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                 raise
         for i, out in zip(rows, outs):
             for key in result:
-                result[key][i] = getattr(out, key)
+                value = getattr(out, key)
+                result[key][i] = np.nan if value is None else value
             regime[i] = out.regime
         if progress:
             progress(start + rows.size, singles.size)
@@ -542,21 +558,100 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         # gripping ends in rolling with the angular momentum about the contact point kept
         vc_t = np.where(slides, v_t - sigma * mu * impulse / m, (v_t + alpha * radius * spin) / (1.0 + alpha))
         omega = np.where(slides, spin + sigma * mu * impulse / (alpha * m * radius), vc_t / radius)  # no R^2
+        vc_n, ve_t = -dim["y_f"] * v_n, np.where(slides, vc_t - omega * radius, 0.0)
+        moving = (v_t != 0) | (spin != 0)  # tangential motion at all
         values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
-                  "vc_t": vc_t, "vc_n": -dim["y_f"] * v_n, "ve_t": np.where(slides, vc_t - omega * radius, 0.0),
-                  "ve_n": -dim["y_f"] * v_n, "omega_f": omega, "cor": -dim["y_f"]}
+                  "vc_t": vc_t, "vc_n": vc_n, "ve_t": ve_t, "ve_n": vc_n, "omega_f": omega, "cor": -dim["y_f"],
+                  "switches": np.where(moving & ~slides & (slip0 != 0), 1.0, 0.0),
+                  "rebound_angle": np.degrees(np.arctan2(vc_t, vc_n)),
+                  "rebound_angle_contact": np.degrees(np.arctan2(ve_t, vc_n)),
+                  # no gravity along the flat on these paths: the change of tangential kinetic energy
+                  "work_t": 0.5 * m * (vc_t * vc_t - v_t * v_t) + 0.5 * alpha * m * radius * radius * (
+                      omega * omega - spin * spin)}
+        extras = [key for key in FAMILY_OUTPUTS if key in wanted]
+        if extras:
+            grips = moving & ~slides
+            values |= _history_outputs(part, d, extras, grips, slip0, mu * (1.0 + 1.0 / alpha) * v_n, options)
         for key, value in values.items():
             result[key][rest] = value
-        regime[rest] = REGIMES[np.where((v_t == 0) & (spin == 0), 0, np.where(slides, 1, 2))]
-    finite = np.logical_and.reduce([np.isfinite(values) for values in result.values()])
+        regime[rest] = REGIMES[np.where(~moving, 0, np.where(slides, 1, 2))]
+    checked = [key for key in result if key in wanted and key != "t_roll"]
+    finite = np.logical_and.reduce([np.isfinite(result[key]) for key in checked]) if checked else np.ones(n, bool)
     if not finite.all():  # never a NaN in a table
         i = int(np.flatnonzero(~finite)[0])
         scene = ", ".join(f"{k}={v}" for k, v in frame.iloc[i].to_dict().items())
         raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
                           "sweep resolves: try `sphereimpact simulate` on that scene")
     beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
+    result["switches"] = result["switches"].astype(np.int64)
     outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
-    return pd.concat([frame, outputs[list(SWEEP_OUTPUTS)]], axis=1)
+    return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]]], axis=1)
+
+
+def _wanted(outputs) -> set:
+    """The outputs asked for (all when None), checked against :data:`SWEEP_OUTPUTS`."""
+    if outputs is None:
+        return set(SWEEP_OUTPUTS)
+    names = [outputs] if isinstance(outputs, str) else list(outputs)
+    unknown = [name for name in names if name not in SWEEP_OUTPUTS]
+    if unknown or not names:
+        raise ValueError(f"outputs must be some of {', '.join(SWEEP_OUTPUTS)}; got {unknown[0] if unknown else 'none'!r}")
+    return set(names)
+
+
+def _grip_times(normal, impulses: np.ndarray) -> np.ndarray:
+    """The instants [s] at which the normal impulse of P+ reaches each of ``impulses`` [N s] (each reached
+    by t_f): bracketed on the solver's grid (the impulse never decreases), then Newton's method on
+    dJ+/dt = P+, kept inside the bracket, to the last bits."""
+    from ..tangential import PositiveImpulse
+
+    impulse = PositiveImpulse(normal)
+    grid = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
+    on_grid = impulse(grid)
+    upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, grid.size - 1)
+    low, high = grid[upper - 1], grid[upper]
+    j_low, j_high = on_grid[upper - 1], on_grid[upper]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.where(j_high > j_low, low + (impulses - j_low) / (j_high - j_low) * (high - low), high)
+    for _ in range(GRIP_NEWTON):
+        rate = np.maximum(normal.force(t), 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.where(rate > 0, (impulse(t) - impulses) / rate, 0.0)
+        t = np.clip(t - step, low, high)
+    return np.where(impulses <= 0, 0.0, t)
+
+
+def _history_outputs(part: pd.DataFrame, d: dict, wanted, grips, slip0, grip_rate, options) -> dict:
+    """force_min, force_max and t_roll of scenes on the fast paths, from one single-impact normal solve per
+    dimensionless family (model, its numbers, gamma, criterion), scaled to each scene: forces by m v_n / T and
+    times by T.  A scene grips when the normal impulse of P+ reaches m |slip0| / (mu (1 + 1/alpha)), which
+    ``grip_rate`` = mu (1 + 1/alpha) v_n turns into the family's dimensionless impulse; that instant is found
+    on the family's impulse (:func:`_grip_times`)."""
+    from ..events import extremum
+
+    n = len(part)
+    out = {key: np.full(n, np.nan) for key in wanted}
+    w, v_n, m = d["w"], d["v_n"], part["mass"].to_numpy()
+    scale = m * v_n * w  # force scale [N]
+    labels = [part["model"].to_numpy(), d["separation"], d["gamma"], d["zeta"], d["lam"],
+              np.array([str(f) for f in d["family"]], dtype=object)]
+    codes, _ = pd.MultiIndex.from_arrays(labels).factorize()
+    target = np.abs(slip0) / np.where(grip_rate > 0, grip_rate, np.inf)  # the dimensionless impulse at grip
+    for code in range(codes.max() + 1 if n else 0):
+        rows = np.flatnonzero(codes == code)
+        first = rows[0]
+        normal = normal_motion(scene_of(part.iloc[first].to_dict()), options)
+        if "force_min" in wanted or "force_max" in wanted:
+            forces = normal.force(normal.grid)
+            for key, kind in (("force_min", "min"), ("force_max", "max")):
+                if key in wanted:
+                    out[key][rows] = extremum(normal.force, normal.grid, kind, forces)[1] / scale[first] * scale[rows]
+        if "t_roll" in wanted:
+            gripping = rows[grips[rows]]
+            if gripping.size:
+                out["t_roll"][gripping] = _grip_times(normal, target[gripping] * m[first] * v_n[first]) * (
+                    w[first] / w[gripping])
+    return out
 
 
 def _raise_for_first_failure(rows, scenes, options) -> None:
