@@ -4,6 +4,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from sphereimpact import OUTPUT_KEYS, Scene, SolverOptions, simulate
@@ -98,3 +99,30 @@ def test_help_documents_every_option_with_units():
     sweep = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--help"], capture_output=True, text=True)
     assert "in [0, 90) degrees" in sweep.stdout and "> 0 kg" in sweep.stdout
     assert "default: None" not in sweep.stdout
+
+
+def test_history_and_plot_from_the_command_line(tmp_path, capsys):
+    """--history writes Outcome.history()'s table (CSV: units in the header; Parquet: in the schema's
+    metadata), --plot its figure; both refused before any work when they cannot be written."""
+    import pandas as pd
+    import pyarrow.parquet as pq
+
+    from sphereimpact import HISTORY_COLUMNS, Scene, simulate
+
+    csv, parquet, png = tmp_path / "h.csv", tmp_path / "h.parquet", tmp_path / "h.png"
+    args = ["simulate", "--angle", "30", "--spin", "100", "--samples", "51"]
+    assert run([*args, "--history", str(csv), "--plot", str(png)]) == 0
+    assert run([*args, "--history", str(parquet)]) == 0
+    expected = simulate(Scene(angle=30.0, spin=100.0)).history(51)
+    assert expected.attrs["units"] == HISTORY_COLUMNS
+    written = pd.read_csv(csv)
+    assert list(written.columns) == [f"{name} [{unit}]" for name, unit in HISTORY_COLUMNS.items()]
+    np.testing.assert_array_equal(written.to_numpy(), expected.to_numpy())  # shortest round-trip floats
+    assert pd.read_parquet(parquet).equals(expected)
+    assert json.loads(pq.read_schema(parquet).metadata[b"units"]) == HISTORY_COLUMNS
+    assert png.stat().st_size > 10_000
+    capsys.readouterr()
+    assert run([*args, "--history", str(csv)]) == 2  # exists
+    assert run([*args, "--plot", str(tmp_path / "h.txt")]) == 2
+    assert run([*args, "--samples", "1", "--history", str(tmp_path / "x.csv")]) == 2
+    assert "samples must be an integer >= 2" in capsys.readouterr().err

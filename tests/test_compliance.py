@@ -14,7 +14,7 @@ import pytest
 
 from sphereimpact import ImpactError, Scene, simulate
 from sphereimpact.laws import spring_stiffness
-from sphereimpact.sweep.engine import sweep
+from sphereimpact.sweep import rows, sweep
 
 #: Kharaz, Gorham & Salman (2001): 5 mm alumina on glass (data/kharaz2001.README.md).  E* and G* of the pair
 #: from E = 380 / 70 GPa, nu = 0.23 / 0.25; chi gives e_n = 0.98 at 3.9 m/s (calibrated in the pipeline).
@@ -158,7 +158,7 @@ def test_switch_bound_is_an_error_not_a_hang():
 
 
 def test_sweep_solves_compliant_scenes_as_simulate_does():
-    table = sweep({"angle": [0.0, 20.0, 60.0], "tangential": ["linear"] * 3, "poisson": [0.5] * 3})
+    table = sweep({"angle": [0.0, 20.0, 60.0], "tangential": "linear", "poisson": 0.5})
     assert list(table["kappa"]) == pytest.approx([2 / 3] * 3, rel=1e-15)
     for _, row in table.iterrows():
         one = simulate(Scene(angle=row["angle"], tangential="linear", poisson=0.5))
@@ -166,7 +166,7 @@ def test_sweep_solves_compliant_scenes_as_simulate_does():
             assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
         assert row["regime"] == one.regime
     with pytest.raises(ValueError, match=r"needs a Hertz spring .* \(row 1\)"):
-        sweep({"angle": [0.0, 20.0], "tangential": ["rigid", "mindlin"], "kappa": [np.nan, 1.0]})
+        sweep(rows(angle=[0.0, 20.0], tangential=["rigid", "mindlin"], kappa=[np.nan, 1.0]))
 
 
 def test_cli_tangential_flags():

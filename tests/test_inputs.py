@@ -194,7 +194,7 @@ def test_numpy_scalars_are_numbers(value):
     (lambda: sweep({"angle": [True]}), TypeError, "angle must be real numbers; got a boolean"),
     (lambda: sweep({"angle": [30.0]}, chunk_size=True), ValueError, "chunk_size must be an integer >= 1"),
     (lambda: sweep({"angle": [30.0]}, target=True), ValueError, "target must be a number in [1e-12, 1e-3]"),
-    (lambda: sweep({"angle": [1.0, 2.0], "speed": [1.0, 2.0, 3.0]}), ValueError,
+    (lambda: engine.rows(angle=[1.0, 2.0], speed=[1.0, 2.0, 3.0]), ValueError,
      "scene columns must have the same length; got angle (2), speed (3)"),
     (lambda: simulate(None), TypeError, "scene must be a sphereimpact.Scene"),
     (lambda: simulate({"angle": 60.0}), TypeError, "scene must be a sphereimpact.Scene"),
@@ -249,7 +249,7 @@ def test_the_sweep_flags_a_compression_beyond_the_radius_on_every_path():
               "model": ["modified", "modified", "kelvin-voigt", "modified"], "gravity": [0.0, 0.0, 0.0, 9.81]}
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        table = sweep(scenes)
+        table = sweep(engine.rows(**scenes))
     assert table["beyond_radius"].tolist() == [False, True, True, True]
     assert (table["delta_m"] > table["diameter"] / 2).tolist() == table["beyond_radius"].tolist()
 
@@ -278,7 +278,7 @@ def test_damping_beyond_the_lanes_domain_takes_the_single_impact_path():
     from sphereimpact import Scene, simulate
     from sphereimpact.sweep.engine import LANES_ZETA_MAX, sweep
 
-    table = sweep({"angle": [0.0, 30.0], "b": [3e4, 3e4]})  # zeta = 161
+    table = sweep({"angle": [0.0, 30.0], "b": 3e4})  # zeta = 161
     assert Scene(b=3e4).zeta > LANES_ZETA_MAX
     for row in table.itertuples():
         one = simulate(Scene(angle=row.angle, b=3e4))
@@ -319,4 +319,4 @@ def test_a_ramp_that_underflows_is_an_elastic_contact():
 
 def test_a_sweep_row_whose_scales_leave_double_precision_is_named():
     with pytest.raises(ValueError, match=r"acceleration scale v_n / T = 0 .* \(row 1\)"):
-        sweep({"mass": [1.0, 2.62e181], "speed": [3.0, 8.54e-252], "angle": [10.0, 0.64]})
+        sweep(engine.rows(mass=[1.0, 2.62e181], speed=[3.0, 8.54e-252], angle=[10.0, 0.64]))

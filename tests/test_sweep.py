@@ -213,3 +213,55 @@ def test_a_slow_lane_sent_alone_keeps_shards_equal_and_meets_the_contract():
     shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
     assert pd.concat(shards, ignore_index=True).equals(whole)
     assert_contract(whole.iloc[-3:], sample=3)
+
+
+def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
+    """Each law with its own parameters (Hertz laws by k or by modulus) through `sphereimpact sweep`, a sample
+    of rows against simulate; one closing line on standard error."""
+    from sphereimpact import LAWS
+
+    flags = {"kelvin-voigt": [], "modified": [], "linear-hunt-crossley": ["--k", "6e4", "--chi", "0.05"],
+             "hertz": ["--modulus", "1e7"], "hunt-crossley": ["--k", "8.8e5", "--chi", "0.05"]}
+    assert set(flags) == set(LAWS)  # a new built-in law gets a row here
+    for law, extra in flags.items():
+        out = tmp_path / f"{law}.csv"
+        assert run(["sweep", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra, "--out", str(out)]) == 0
+        assert capsys.readouterr().err.startswith(f"sphereimpact sweep: 6 scenes in")
+        table = pd.read_csv(out)
+        for row in table.iloc[[1, 5]].to_dict("records"):
+            one = simulate(scene_of({k: row[k] for k in SCENE_COLUMNS}))
+            errors = relative_errors(row, one.to_dict(), one.scene, KEYS)
+            assert max(errors.values()) <= CONTRACT, (law, errors)
+
+
+def test_the_command_line_calibrates_each_ball_once(tmp_path):
+    """--cor sets the damping of each distinct ball from a normal impact at --cor-speed, then sweeps it; the
+    API's calibrate_table does the same."""
+    from sphereimpact.calibrate import calibrate
+    from sphereimpact.sweep.calibrate import calibrate_table
+
+    out = tmp_path / "cor.csv"
+    assert run(["sweep", "--angle", "0:60:30", "--speed", "2:6:2", "--mass", "0.1:0.2:0.1", "--model",
+                "hunt-crossley", "--modulus", "1e7", "--cor", "0.8", "--cor-speed", "3", "--out", str(out)]) == 0
+    table = pd.read_csv(out)
+    for mass, rows in table.groupby("mass"):
+        assert rows["chi"].nunique() == 1  # one calibration per ball
+        fitted = calibrate(Scene(model="hunt-crossley", modulus=1e7, mass=mass, speed=3.0), 0.8).scene
+        assert rows["chi"].iloc[0] == pytest.approx(fitted.chi, rel=1e-12)
+    api = calibrate_table(grid(angle=[0.0, 30.0], mass=[0.1, 0.2]).assign(model="hunt-crossley", modulus=1e7),
+                          0.8, speed=3.0)
+    assert sorted(api["chi"].unique()) == pytest.approx(sorted(table["chi"].unique()), rel=1e-12)
+    assert run(["sweep", "--speed", "1:3:1", "--model", "hunt-crossley", "--modulus", "1e7", "--cor", "0.8",
+                "--out", str(tmp_path / "x.csv")]) == 2  # several speeds: which one was measured?
+
+
+def test_lists_mean_every_combination_in_the_api_and_on_the_command_line(tmp_path):
+    out = tmp_path / "grid.csv"
+    assert run(["sweep", "--angle", "30:45:15", "--speed", "3:20:17", "--out", str(out)]) == 0
+    cli = pd.read_csv(out)
+    api = sweep({"angle": [30.0, 45.0], "speed": [3.0, 20.0]})
+    assert len(api) == len(cli) == 4
+    np.testing.assert_allclose(api["omega_f"], cli["omega_f"], rtol=1e-15)
+    from sphereimpact.sweep import rows
+
+    assert len(sweep(rows(angle=[30.0, 45.0], speed=[3.0, 20.0]))) == 2

@@ -105,8 +105,8 @@ def test_history_frames_consistent():
     speed_global = h["VX"] ** 2 + h["VY"] ** 2
     assert max(abs(speed_local - speed_global)) < 1e-12
     assert h["VX"][0] == pytest.approx(0.0, abs=1e-12) and h["VY"][0] == pytest.approx(-3.0, rel=1e-12)
-    assert h["vc_n"][-1] == pytest.approx(out.vc_n, rel=1e-12)
-    assert h["ve_t"][-1] == pytest.approx(out.ve_t, rel=1e-12)
+    assert h["vc_n"].iloc[-1] == pytest.approx(out.vc_n, rel=1e-12)
+    assert h["ve_t"].iloc[-1] == pytest.approx(out.ve_t, rel=1e-12)
     assert min(h["u_n"]) == pytest.approx(-out.delta_m, rel=1e-4)
 
 

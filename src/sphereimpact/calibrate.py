@@ -236,3 +236,4 @@ def _fit_stiffness(scene: Scene, cor: float | None, relation: str, target_time: 
     options = TIGHT if cor is None else options_for(cor)
     return Calibration(fitted, name or "k", value if name else fitted.k, normal_cor(fitted, options), relation,
                        _relations(fitted, cor) if cor is not None else {}, reached)
+

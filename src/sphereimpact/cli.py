@@ -13,6 +13,8 @@ import os
 import sys
 import warnings
 
+import numpy as np
+
 from . import __version__
 from .calibrate import RELATIONS, calibrate
 from .events import ImpactError
@@ -20,7 +22,7 @@ from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
 from .scene import ATOL_RANGE, METHODS, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
-    SolverOptions, check_columns
+    SolverOptions, check_columns, magnitude_problem
 from .solve import BODIES, BeyondRadiusWarning, simulate
 from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
@@ -44,6 +46,12 @@ def _tangential_help() -> dict:
 #: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
 RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
           "gravity": "m/s^2", "spin": "rad/s"}
+#: Help for the resolution of a tangential model that resolves the contact (microslip).
+RESOLUTION_HELP = {name: f"microslip's {what}, an integer in [{low}, {high}] (default: the convergence study's)"
+                   for (name, (low, high)), what in zip(RESOLUTION.items(), ("cells of the element row",
+                                                                            "time steps over the contact"))}
+#: Seconds after which a sweep on a terminal shows its progress.
+PROGRESS_AFTER = 2.0
 #: Help for the approach and the incoming spin, shared by simulate and sweep.
 APPROACH_HELP = {
     "angle": "inclination of the flat to the horizontal [deg], in [0, 90), the ball arriving vertically (the "
@@ -160,15 +168,20 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
-    for name, (low, high) in RESOLUTION.items():
-        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N",
-            help=f"microslip's {'cells of the element row' if name == 'elements' else 'time steps over the contact'}, "
-                 f"an integer in [{low}, {high}] (default: the convergence study's)")
+    for name in RESOLUTION:
+        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=RESOLUTION_HELP[name])
     add("--body", choices=BODIES, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
         help="refuse a result outside the model (maximum compression beyond the radius) instead of flagging it")
     add("--json", action="store_true", help="print one JSON object instead of the readable table")
+    add("--history", default=None, metavar="FILE",
+        help="also write the time history, .csv (units in the header: 't [s]') or .parquet (units in the schema's "
+             "metadata), SI units, contact and global frames")
+    add("--plot", default=None, metavar="FILE",
+        help="also draw the history: displacement, velocities, spin, force against compression (.png, .pdf, .svg)")
+    add("--samples", type=int, default=401, metavar="N", help="instants of --history and --plot, an integer >= 2")
+    add("--force", action="store_true", help="overwrite the --history and --plot files if they exist")
 
     swp = sub.add_parser(
         "sweep", help="simulate a grid of impacts and write one row per scene", formatter_class=_Help,
@@ -198,6 +211,21 @@ def _parser() -> argparse.ArgumentParser:
         swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
                          help=tangential_help[name] + ": a value or START:STOP:STEP")
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
+    swp.add_argument("--cor", type=_number, default=None, metavar="E",
+                     help="set the law's damping so that a normal impact at --cor-speed has the COR E, in (0, 1): "
+                          "calibrated once per distinct ball, then swept")
+    swp.add_argument("--cor-speed", type=_number, default=None, metavar="M_S",
+                     help="normal impact speed at which --cor (and --contact-time) was measured [m/s] (default: the "
+                          "sweep's speed, when it has one)")
+    swp.add_argument("--cor-relation", default="exact", metavar="|".join(RELATIONS),
+                     help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
+    swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
+                     help="with --cor: fit the stiffness k too, so that the contact time is S [s]")
+    for name in RESOLUTION:
+        swp.add_argument("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=RESOLUTION_HELP[name])
+    swp.add_argument("--outputs", default=None, metavar="LIST",
+                     help="comma-separated outputs to write (default: all, every scalar output of simulate; "
+                          "'fast': all but t_roll and the force extremes, which take one solve per family)")
     swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
     swp.add_argument("--chunk-size", type=int, default=100_000,
                      help="scenes integrated at once, >= 1 (bounds the integration's working memory)")
@@ -229,21 +257,27 @@ def _values_as_one_token(argv: list[str], parser: argparse.ArgumentParser) -> li
     return out
 
 
-def check_out(path: str, force: bool) -> None:
-    """Refuse an output path that cannot be written, before any work (ValueError naming it)."""
+#: Figure formats of --plot.
+FIGURE_EXTENSIONS = (".png", ".pdf", ".svg")
+
+
+def check_out(path: str, force: bool, extensions=None, what: str = "out") -> None:
+    """Refuse an output path that cannot be written, before any work (ValueError naming it): ``what`` names
+    the option in messages, ``extensions`` the endings allowed (default: the tables')."""
     from .sweep.io import EXTENSIONS
 
+    extensions = EXTENSIONS if extensions is None else extensions
     if os.path.isdir(path):
-        raise ValueError(f"out is a folder, not a file: {path!r}")
-    if not path.endswith(EXTENSIONS):
-        raise ValueError(f"out must end in {' or '.join(EXTENSIONS)}; got {path!r}")
+        raise ValueError(f"{what} is a folder, not a file: {path!r}")
+    if not path.endswith(extensions):
+        raise ValueError(f"{what} must end in {' or '.join(extensions)}; got {path!r}")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
-        raise ValueError(f"out: folder {folder!r} does not exist")
+        raise ValueError(f"{what}: folder {folder!r} does not exist")
     if not os.access(folder, os.W_OK):
-        raise ValueError(f"out: folder {folder!r} is not writable")
+        raise ValueError(f"{what}: folder {folder!r} is not writable")
     if os.path.exists(path) and not force:
-        raise ValueError(f"out: {path!r} exists; pass --force to overwrite it")
+        raise ValueError(f"{what}: {path!r} exists; pass --force to overwrite it")
 
 
 def _each_range(args, read) -> dict:
@@ -260,34 +294,83 @@ def _each_range(args, read) -> dict:
 
 
 def _sweep(args) -> None:
+    import time
+
+    from .sweep.calibrate import calibrate_table
     from .memory import check_size
     from .parsing import parse_range
-    from .sweep.engine import grid, sweep
+    from .sweep.engine import FAST_OUTPUTS, grid, outputs_wanted, sweep
     from .sweep.io import write_table
 
+    start = time.perf_counter()
     if args.chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {args.chunk_size}")
     check_out(args.out, args.force)
+    outputs = _outputs(args.outputs, FAST_OUTPUTS)
+    outputs_wanted(outputs)  # checked before any work
+    SolverOptions(elements=args.elements, time_steps=args.time_steps)  # their ranges, before any work
     scenes = check_size(_each_range(args, range_count),  # counted before any range is made
                         "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
                         f"now {args.chunk_size}, bounds only the integration's working memory)")
     ranges = _each_range(args, parse_range)
     laws = _law_flags()
-    # before any work: the ranges, then the names (the law's parameters are checked per row by sweep: checked
-    # here with the diameter, a law whose k has no default would be refused whatever the ranges give it)
-    check_columns({name: values for name, values in ranges.items() if name not in laws})
+    # before any work: each range, then the names.  The ranges have different lengths: checks across columns
+    # (magnitudes of m v^2, the law's parameters, one path description) run per row in sweep, on the grid
+    for name, values in ranges.items():
+        if name not in laws:
+            check_columns({name: values})
+    largest = {name: float(np.max(ranges[name])) for name in ("mass", "speed", "diameter")}
+    problem = magnitude_problem(**largest)  # the squares and products overflow first at the largest values
+    if problem:
+        raise ValueError(problem)
     check_columns({"model": [args.model], "separation": [args.separation]})
     table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
                                   tangential=args.tangential)
-    big = scenes >= 100_000 and sys.stderr.isatty()
-    result = sweep(table, target=args.target, chunk_size=args.chunk_size, progress=_progress if big else None)
+    if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None
+                             or args.cor_speed is not None):
+        raise ValueError("--cor-relation, --cor-speed and --contact-time need --cor")
+    if args.cor is not None:
+        damping = LAWS.law(args.model).damping
+        if damping is not None and ranges.get(damping) is not None:
+            raise ValueError(f"give --{damping} or --cor, not both (--cor sets {damping})")
+        if args.contact_time is not None and ranges.get("k") is not None:
+            raise ValueError("give --k or --contact-time, not both (--contact-time fits k)")
+        speeds = np.unique(table["speed"])
+        if args.cor_speed is None and speeds.size > 1:
+            raise ValueError("cor_speed is required when the sweep has several speeds: the speed [m/s] of the normal "
+                             "impact whose COR was measured")
+        table = calibrate_table(table, args.cor, speeds[0] if args.cor_speed is None else args.cor_speed,
+                                args.cor_relation, args.contact_time)
+    tty = sys.stderr.isatty()
+    result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
+                   progress=_Progress(start) if tty else None, elements=args.elements, time_steps=args.time_steps)
     write_table(result, args.out)
+    seconds = time.perf_counter() - start
+    sys.stderr.write(f"{chr(13) if tty else ''}sphereimpact sweep: {len(result)} scenes in {seconds:.3g} s -> "
+                     f"{args.out}\n")
 
 
-def _progress(done: int, total: int) -> None:
-    sys.stderr.write(f"\rsphereimpact sweep: {done}/{total} integrated scenes")
-    if done == total:
-        sys.stderr.write("\n")
+def _outputs(text: str | None, fast) -> list | None:
+    """The --outputs list: None for all, FAST_OUTPUTS for 'fast', else the names (checked by sweep)."""
+    if text is None:
+        return None
+    if text.strip() == "fast":
+        return list(fast)
+    return [name.strip() for name in text.split(",") if name.strip()]
+
+
+class _Progress:
+    """Scenes done out of the total on standard error, once a run has taken more than :data:`PROGRESS_AFTER`
+    seconds (a quick sweep prints only its closing line)."""
+
+    def __init__(self, start: float):
+        self.start = start
+
+    def __call__(self, done: int, total: int) -> None:
+        import time
+
+        if time.perf_counter() - self.start > PROGRESS_AFTER:
+            sys.stderr.write(f"\rsphereimpact sweep: {done}/{total} scenes solved ...")
 
 
 def _readable(outputs: dict, units: dict) -> str:
@@ -302,6 +385,12 @@ def _readable(outputs: dict, units: dict) -> str:
 
 
 def _simulate(args) -> None:
+    if args.history is not None:
+        check_out(args.history, args.force, what="history")
+    if args.plot is not None:
+        check_out(args.plot, args.force, FIGURE_EXTENSIONS, what="plot")
+    if args.samples < 2:
+        raise ValueError(f"samples must be an integer >= 2 (instants from 0 to t_f); got {args.samples}")
     law = {name: getattr(args, name) for name in _law_flags()}
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
                   spin=args.spin, incidence=args.incidence, angle_to_surface=args.angle_to_surface,
@@ -328,9 +417,22 @@ def _simulate(args) -> None:
                   **{f"{damping}_{name}": value for name, value in calibration.relations.items()}}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BeyondRadiusWarning)
-        outputs = simulate(scene, options, body=args.body, strict=args.strict).to_dict() | fitted
+        outcome = simulate(scene, options, body=args.body, strict=args.strict)
+        outputs = outcome.to_dict() | fitted
     for warning in caught:  # one line each, like the errors
         sys.stderr.write(f"sphereimpact: warning: {warning.message} (--strict refuses it)\n")
+    if args.history is not None or args.plot is not None:
+        history = outcome.history(args.samples)
+        if args.history is not None:
+            from .sweep.io import write_table
+
+            write_table(history, args.history, units=history.attrs["units"])
+        if args.plot is not None:
+            from .figures.history import history_figure
+
+            title = (f"{scene.model} law, {scene.tangential} contact: {scene.speed:g} m/s at {scene.incidence_deg:g}° "
+                     f"from the normal, spin {scene.spin:g} rad/s; COR {outcome.cor:.4g}, ω_f {outcome.omega_f:.4g} rad/s")
+            history_figure(history, title, [args.plot])
     if args.json:
         json.dump(outputs, sys.stdout, indent=2)
         sys.stdout.write("\n")

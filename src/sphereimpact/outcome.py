@@ -143,8 +143,9 @@ class Outcome:
             out[key] = float(value) if isinstance(value, (float, np.floating)) else value
         return out
 
-    def history(self, n: int = 401) -> dict:
-        """Time histories on ``n`` uniform instants over [0, t_f], keyed by :data:`HISTORY_COLUMNS`.
+    def history(self, n: int = 401):
+        """Time histories on ``n`` uniform instants over [0, t_f]: a DataFrame whose columns are
+        :data:`HISTORY_COLUMNS` (SI units, recorded in its ``attrs["units"]``).
 
         Raises
         ------
@@ -159,11 +160,15 @@ class Outcome:
         radius, beta = s.radius, s.tilt  # the flat's tilt orients the global frame
         normal_pos = radius - k["delta"]  # centre height above the flat
         sn, cs = math.sin(beta), math.cos(beta)
-        return {
+        import pandas as pd
+
+        frame = pd.DataFrame({
             "t": t, "delta": k["delta"], "delta_dot": k["delta_dot"], "force": self.motion.force(t),
             "force_t": self.motion.tangential_force(t),
             "u_t": k["u_t"], "u_n": -k["delta"], "vc_t": k["vc_t"], "vc_n": k["vc_n"], "omega": k["omega"],
             "ve_t": k["vc_t"] - k["omega"] * radius, "ve_n": k["vc_n"],
             "X": normal_pos * sn + k["u_t"] * cs, "Y": normal_pos * cs - k["u_t"] * sn,
             "VX": k["vc_n"] * sn + k["vc_t"] * cs, "VY": k["vc_n"] * cs - k["vc_t"] * sn,
-        }
+        })
+        frame.attrs["units"] = dict(HISTORY_COLUMNS)
+        return frame

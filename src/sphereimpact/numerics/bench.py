@@ -9,6 +9,8 @@ whose error (against :func:`sphereimpact.numerics.reference.reference`) is no la
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import pandas as pd
 
@@ -18,6 +20,8 @@ from .handwritten import handwritten
 from .reference import reference, worst_error
 from .timing import interleaved_seconds
 from .workprecision import TARGET
+
+log = logging.getLogger(__name__)
 
 #: Tolerances tried for a per-scene contender, loosest first: the first whose error meets the one it is
 #: compared with is timed (here and in :mod:`sphereimpact.sweep.bench`).
@@ -68,6 +72,7 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     rows = []
     default = SolverOptions()
     for name, scene in scenes.items():
+        log.info("bench: %s", name)
         ref = reference(scene).outputs
         out = simulate(scene, default)
         sim_error = worst_error(out.to_dict(), ref, scene)
@@ -148,6 +153,7 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     rows = []
     default = SolverOptions()
     for name, scene in scenes.items():
+        log.info("bench: %s", name)
         options = resolve_method(scene, default)
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)

@@ -10,12 +10,16 @@ target: a step costs about the same whatever the cell count at these sizes, so t
 
 from __future__ import annotations
 
+import logging
+
 import pandas as pd
 
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
 from ..tangential.microslip import ELEMENTS, TIME_STEPS
 from .timing import median_seconds
+
+log = logging.getLogger(__name__)
 
 #: Accuracy the default resolution must reach on every scene: e_t (absolute) and spin (relative), 30 times
 #: below the digitisation scatter of the measurements it is validated on (0.003 in e_t).
@@ -42,6 +46,7 @@ def resolution_study(scenes: dict[str, Scene], elements, time_steps, reference: 
     """
     rows = []
     for name, scene in scenes.items():
+        log.info("microslip resolution: scene %s", name)
         e_ref, w_ref = _outputs(scene, *reference)
         for n in elements:
             for m in time_steps:

@@ -19,6 +19,8 @@ counter-examples; the package never uses them.
 
 from __future__ import annotations
 
+import logging
+
 import math
 import warnings
 
@@ -33,6 +35,8 @@ from ..solve import BeyondRadiusWarning, simulate
 from .reference import reference, worst_error
 from .timing import median_time
 from .workprecision import METHODS
+
+log = logging.getLogger(__name__)
 
 
 #: Right-hand-side evaluations after which a naive formulation is declared stuck.
@@ -246,6 +250,7 @@ def stability(base: Scene, studies=tuple(STUDIES), methods=METHODS) -> pd.DataFr
     with warnings.catch_warnings():  # the stiffness study reaches k = 1e3 N/m, where delta_m exceeds R
         warnings.simplefilter("ignore", BeyondRadiusWarning)
         for name in studies:
+            log.info("stability: %s", name)
             chosen = [m for m in methods if m in ("RK45", "DOP853", "Radau", "LSODA")] if name == "grip" else methods
             if name != "stiffness":  # the naive formulations beside the package's path are Runge-Kutta code
                 chosen = [m for m in chosen if m != "taylor"]

@@ -8,6 +8,8 @@ the worst relative error over t_m, delta_m, t_f, COR, omega_f and ve_t against
 
 from __future__ import annotations
 
+import logging
+
 import pandas as pd
 
 from ..events import ImpactError
@@ -15,6 +17,8 @@ from ..scene import Scene, SolverOptions
 from ..solve import simulate
 from .reference import reference, worst_error
 from .timing import median_time
+
+log = logging.getLogger(__name__)
 
 METHODS = ("taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 BODIES = ("reduced", "planar")
@@ -39,6 +43,7 @@ def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHO
     """Every method x body x tolerance for each case, plus the closed form where it exists."""
     rows = []
     for case, scene in cases.items():
+        log.info("work-precision: case %s", case)
         ref = reference(scene)
         base = {"case": case, "model": scene.model, "reference_bound": ref.bound}
         if scene.model == "kelvin-voigt":

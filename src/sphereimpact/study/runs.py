@@ -35,7 +35,7 @@ def run_case(config: dict, case: str, model: str, csv_path: str, json_path: str)
         scene = scene_for(config, case, model, separation)
         outcome = simulate(scene, options_for(config, scene))
         outcomes[separation] = outcome_record(outcome)
-        frame = pd.DataFrame(outcome.history(config["samples"]))
+        frame = outcome.history(config["samples"])
         frame.insert(0, "separation", separation)
         histories.append(frame)
         scene_fields = {f.name: getattr(scene, f.name) for f in fields(scene) if f.name != "separation"}

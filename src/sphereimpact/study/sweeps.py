@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import logging
+
 import warnings
 
 import numpy as np
@@ -12,6 +14,9 @@ from ..solve import BeyondRadiusWarning, simulate
 from ..sweep.engine import grid, parse_range, sweep
 from ..sweep.io import write_table
 from .config import options_for, shared_fields
+
+
+log = logging.getLogger(__name__)
 
 
 def angle_speed_scenes(config: dict) -> pd.DataFrame:
@@ -28,7 +33,9 @@ def write_shard(config: dict, shard: int, shards: int, csv_path: str) -> None:
     shards equal the sweep run at once."""
     whole = angle_speed_scenes(config)
     rows = np.array_split(np.arange(len(whole)), shards)[shard]
-    write_table(sweep(whole.iloc[rows], target=config["sweep"]["target"], span=whole), csv_path)
+    table = sweep(whole.iloc[rows], target=config["sweep"]["target"], span=whole,
+                  progress=lambda done, total: log.info("sweep shard %d: %d of %d integrated scenes", shard, done, total))
+    write_table(table, csv_path)
 
 
 def merge(paths, csv_path: str) -> None:

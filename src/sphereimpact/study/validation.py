@@ -15,6 +15,8 @@ within a tolerance of the compliant one, on spin and on rebound velocity.
 
 from __future__ import annotations
 
+import logging
+
 import math
 from dataclasses import dataclass
 
@@ -28,6 +30,8 @@ from ..solve import simulate_many
 from ..sweep.engine import sweep
 from ..tangential import TANGENTIALS, kappa_from_poisson
 from .config import hertz_twin, scene_for_primary
+
+log = logging.getLogger(__name__)
 
 #: The digitised quantities and how a simulated outcome gives each (scene, outcome) -> value.
 QUANTITIES = {
@@ -122,6 +126,7 @@ def curves(exp: Experiment, angles, models) -> pd.DataFrame:
     """
     rows = []
     for model in models:
+        log.info("validation: tangential model %s", model)
         scene = exp.model(model)
         for angle, out in zip(angles, _outcomes(scene, angles)):
             rows.append({"model": model, "incidence_deg": float(angle),
@@ -140,6 +145,7 @@ def residuals(exp: Experiment, data: pd.DataFrame, models, angle_uncertainty: fl
     rows = []
     theta = data["incidence_deg"].to_numpy(dtype=float)
     for model in models:
+        log.info("validation: tangential model %s", model)
         scene = exp.model(model)
         outs = _outcomes(scene, np.concatenate([theta, theta - angle_uncertainty, theta + angle_uncertainty]))
         for i, row in enumerate(data.itertuples(index=False)):
@@ -261,6 +267,7 @@ def compliance_map(config: dict) -> pd.DataFrame:
     kappas = np.unique(np.append(kappas, kappa_from_poisson(section["poisson"])))
     parts = []
     for tangential in section["tangential"]:
+        log.info("compliance map: tangential model %s", tangential)
         if TANGENTIALS.model(tangential).spring in (None, primary.law.spring):
             ball = primary
         else:

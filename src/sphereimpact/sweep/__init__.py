@@ -1,5 +1,9 @@
-"""Sweeps: many impacts at once (batched integration, vectorised closed form, similarity interpolation)."""
+"""Sweeps: many impacts at once (batched integration, vectorised closed form, similarity interpolation).
 
-from .engine import sweep
+``sweep(table)`` solves one scene per row of a DataFrame; ``sweep(dict)`` every combination of the dict's
+values, as the command line's ranges.  ``grid`` and ``rows`` build the two kinds of table.
+"""
 
-__all__ = ["sweep"]
+from .engine import FAST_OUTPUTS, SWEEP_OUTPUTS, grid, rows, sweep
+
+__all__ = ["FAST_OUTPUTS", "SWEEP_OUTPUTS", "grid", "rows", "sweep"]

@@ -20,6 +20,7 @@ the force extremes, which take one single-impact solve per dimensionless family)
 
 from __future__ import annotations
 
+import logging
 import tracemalloc
 import warnings
 
@@ -34,6 +35,7 @@ from ..scene import Scene, SolverOptions
 from ..solve import BeyondRadiusWarning, simulate
 from .engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
 
+log = logging.getLogger(__name__)
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
 #: The per-scene reference: scipy's DOP853 at rtol 1e-13, not the package's default integrator.
 REFERENCE = SolverOptions(method="DOP853", rtol=1e-13, atol=1e-13)
@@ -81,6 +83,7 @@ def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sampl
 
 
 def _measure(name, scenes, target_speedup, sample_size, seed, repeats) -> dict:
+    log.info("sweep bench: %s (%d scenes)", name, len(scenes))
     table = sweep(scenes, outputs=FAST_OUTPUTS)
     pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)), replace=False))
     outputs = table.iloc[pick].to_dict("records")

@@ -99,13 +99,11 @@ SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
 
 
 def scene_table(scenes) -> pd.DataFrame:
-    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row)."""
-    if isinstance(scenes, dict):
-        lengths = {name: np.size(values) for name, values in scenes.items()}
-        if len(set(lengths.values())) > 1:
-            listed = ", ".join(f"{name} ({length})" for name, length in lengths.items())
-            raise ValueError(f"scene columns must have the same length; got {listed}")
-    given = pd.DataFrame(scenes)
+    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row).
+
+    A DataFrame is one scene per row; a dict of values or lists is every combination of them (:func:`grid`),
+    as the command line's ranges are."""
+    given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
     unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
     if unknown:
         raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
@@ -463,15 +461,17 @@ def _put(out: dict, where, values: dict) -> None:
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
-          outputs=None) -> pd.DataFrame:
+          outputs=None, elements: int | None = None, time_steps: int | None = None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
     ----------
-    scenes : DataFrame or dict of arrays
-        Columns named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
+    scenes : DataFrame or dict
+        Named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
-        ``separation``, ``tangential``, ``kappa``, ...); missing columns take the chapter's defaults.
+        ``separation``, ``tangential``, ``kappa``, ``spin``, ...); missing ones take the chapter's defaults.
+        A DataFrame is one scene per row (:func:`rows` builds one from paired lists); a dict of values or
+        lists is every combination of them (:func:`grid`), as on the command line.
     target : float
         Relative accuracy of every output (1e-8: within 1e-8 of the single-impact reference).
     chunk_size : int
@@ -479,12 +479,15 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     progress : callable, optional
         ``progress(done, total)`` after each chunk of integrated scenes (and every 100 scenes solved one by
         one: gravity on a slope, compliant tangential contact).
-    span : DataFrame or dict of arrays, optional
+    span : DataFrame or dict, optional
         The whole sweep when ``scenes`` is one shard of it: interpolants are built on the whole
         sweep's range, so the merged shards equal the sweep run at once.  Defaults to ``scenes``.
     outputs : sequence of str, optional
         The outputs wanted, some of :data:`SWEEP_OUTPUTS` (default: all, every scalar output of
         ``simulate``).  :data:`FAST_OUTPUTS` spares the per-family solves of :data:`FAMILY_OUTPUTS`.
+    elements, time_steps : int, optional
+        The resolution of a tangential model that resolves the contact (``microslip``), as
+        :class:`sphereimpact.SolverOptions` takes it.
 
     Returns
     -------
@@ -505,7 +508,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
-    wanted = _wanted(outputs)
+    wanted = outputs_wanted(outputs)
     frame = scene_table(scenes)
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
@@ -516,7 +519,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     alone_whole, limits = _solved_alone(whole, d_whole, target)
     single = alone_whole if span is None else _solved_alone(frame, d_all, target, limits)[0]
     singles = np.flatnonzero(single)
-    options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
+    options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100), elements=elements,
+                            time_steps=time_steps)
     for start in range(0, singles.size, SINGLES_CHUNK):  # stick-slip with re-slip, compliance, extremes
         rows = singles[start:start + SINGLES_CHUNK]
         scenes = [scene_of(frame.iloc[i].to_dict()) for i in rows]
@@ -588,7 +592,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]]], axis=1)
 
 
-def _wanted(outputs) -> set:
+def outputs_wanted(outputs) -> set:
     """The outputs asked for (all when None), checked against :data:`SWEEP_OUTPUTS`."""
     if outputs is None:
         return set(SWEEP_OUTPUTS)
@@ -663,8 +667,21 @@ def _raise_for_first_failure(rows, scenes, options) -> None:
             raise ImpactError(f"sweep row {i}: {err}") from None
 
 
+def rows(**columns) -> pd.DataFrame:
+    """Scenes row by row: the i-th scene takes the i-th value of every column (equal lengths; a single value
+    is repeated).  :func:`grid` takes every combination instead."""
+    lengths = {name: np.size(values) for name, values in columns.items()}
+    longest = max(lengths.values(), default=0)
+    if any(length not in (1, longest) for length in lengths.values()):
+        listed = ", ".join(f"{name} ({length})" for name, length in lengths.items())
+        raise ValueError(f"scene columns must have the same length; got {listed}")
+    listed = {name: list(values) if np.ndim(values) else [values] for name, values in columns.items()}
+    return pd.DataFrame({name: values * longest if len(values) == 1 else values for name, values in listed.items()})
+
+
 def grid(**ranges) -> pd.DataFrame:
-    """The Cartesian product of parameter values, one row per scene (first parameter varies slowest)."""
+    """Every combination of parameter values, one row per scene (the first parameter varies slowest): what a
+    dict given to :func:`sweep` and the command line's ranges mean.  :func:`rows` pairs values instead."""
     names = list(ranges)
     mesh = np.meshgrid(*[np.atleast_1d(ranges[n]) for n in names], indexing="ij")
     return pd.DataFrame({n: m.ravel() for n, m in zip(names, mesh)})

@@ -7,16 +7,22 @@ bit-identical to the one written; pyarrow's CSV writer does that about ten times
 
 from __future__ import annotations
 
+import json
+
 import pandas as pd
 import pyarrow as pa
 import pyarrow.csv as pa_csv
+import pyarrow.parquet as pq
 
 #: Output formats by file extension.
 EXTENSIONS = (".csv", ".parquet")
 
 
-def write_table(table: pd.DataFrame, path: str) -> None:
+def write_table(table: pd.DataFrame, path: str, units: dict | None = None) -> None:
     """Write ``table`` to ``path``: ``.csv`` (shortest round-trip floats, strings quoted) or ``.parquet``.
+
+    ``units`` (column -> unit) names each column's unit: in a CSV header as ``name [unit]``, in a Parquet
+    file's schema metadata (key ``units``, JSON) with the names unchanged.
 
     Raises
     ------
@@ -24,8 +30,13 @@ def write_table(table: pd.DataFrame, path: str) -> None:
         For another extension.
     """
     if path.endswith(".csv"):
+        if units:
+            table = table.rename(columns={c: f"{c} [{units[c]}]" for c in table.columns if units.get(c)})
         pa_csv.write_csv(pa.Table.from_pandas(table, preserve_index=False), path)
     elif path.endswith(".parquet"):
-        table.to_parquet(path, index=False)
+        arrow = pa.Table.from_pandas(table, preserve_index=False)
+        if units:
+            arrow = arrow.replace_schema_metadata({**(arrow.schema.metadata or {}), b"units": json.dumps(units)})
+        pq.write_table(arrow, path)
     else:
         raise ValueError(f"out must end in {' or '.join(EXTENSIONS)}; got {path!r}")
