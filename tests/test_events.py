@@ -44,3 +44,23 @@ def test_extremum_refines_the_peak_of_a_sampled_function():
     assert value == pytest.approx(1.0, abs=1e-15) and t == pytest.approx(math.pi / 6, abs=1e-7)
     t, value = extremum(lambda t: np.sin(3 * np.asarray(t)), grid, "min")
     assert (t, value) == (0.0, 0.0)  # the end point
+
+
+def test_an_extremum_inside_an_end_interval_is_found():
+    """f = (1 - t)(20 (1 - t) - 1) dips to -1/80 at t = 0.975, inside the last interval of the grid, with its
+    best sample at the end point (f = 0): the end interval is refined because f just inside it is below both
+    of its samples (before, the end point's 0 was returned, as simulate's force_min was for a brief pull
+    just before delta returns to 0)."""
+    from sphereimpact.events import extremum
+
+    def f(t):
+        return (1.0 - t) * (20.0 * (1.0 - t) - 1.0)
+
+    grid = [0.0, 0.5, 1.0]
+    t, value = extremum(f, grid, "min")
+    assert t == pytest.approx(0.975, abs=1e-7) and value == pytest.approx(-1.0 / 80.0, rel=1e-12)
+    t, value = extremum(lambda x: -f(1.0 - x), grid, "max")  # mirrored: a peak inside the first interval
+    assert t == pytest.approx(0.025, abs=1e-7) and value == pytest.approx(1.0 / 80.0, rel=1e-12)
+    calls = []
+    extremum(lambda x: calls.append(x) or x * x, [0.0, 0.5, 1.0], "max")  # monotone into its end: no search
+    assert len(calls) <= 5

@@ -78,9 +78,10 @@ def first_root(f, grid, direction: int = 0, after: float | None = None) -> float
 def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     """Global ``'min'`` or ``'max'`` of ``f`` over ``[grid[0], grid[-1]]``.
 
-    The best sample is refined by a bounded Brent search between its neighbours, and so are both end
-    intervals (a dip inside one, like the brief pull before delta returns to 0, has no sample of its own
-    and can hide behind an end point's value); the end points are candidates too.
+    The best sample is refined by a bounded Brent search between its neighbours, and so is an end interval
+    whose value just inside its end point is better than both of its samples, for then it has an extremum
+    inside that no sample shows (the brief pull before delta returns to 0 hid behind the end point's value);
+    the end points are candidates too.
     ``values``, if given, is f on the grid (computed once for both extremes).
 
     Returns
@@ -95,7 +96,11 @@ def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     if len(grid) > 1:
         g = _scalar(f)
         last = len(grid) - 1
-        spans = {(max(i - 1, 0), min(i + 1, last)), (0, 1), (last - 1, last)}
+        spans = {(i - 1, i + 1)} if 0 < i < last else set()
+        for end, inner, span in ((0, 1, (0, 1)), (last, last - 1, (last - 1, last))):
+            near = float(grid[end]) + 1e-3 * (float(grid[inner]) - float(grid[end]))
+            if sgn * g(near) < min(values[end], values[inner]):  # below both ends of the interval: one inside
+                spans.add(span)
         for low, high in sorted(spans):
             t, value = minimise(lambda t: sgn * g(t), float(grid[low]), float(grid[high]),
                                 1e-14 * max(float(grid[-1]), 1e-300))
