@@ -5,10 +5,14 @@ from pathlib import Path
 import pytest
 import yaml
 
+from sphereimpact.study.config import with_defaults
+
 from sphereimpact.study.workflow import RULE_KEYS, config_subset, file_sources, package_sources
 
 ROOT = Path(__file__).resolve().parents[1]
-CONFIG = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+#: The shipped configuration with the schema's defaults filled in, as snakemake fills them before any job.
+CONFIG = with_defaults(yaml.safe_load((ROOT / "config/schema.yaml").read_text()),
+                       yaml.safe_load((ROOT / "config/config.yaml").read_text()))
 
 
 def names(paths):

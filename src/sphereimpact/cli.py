@@ -309,9 +309,9 @@ def _sweep(args) -> None:
     outputs = _outputs(args.outputs, FAST_OUTPUTS)
     outputs_wanted(outputs)  # checked before any work
     SolverOptions(elements=args.elements, time_steps=args.time_steps)  # their ranges, before any work
-    scenes = check_size(_each_range(args, range_count),  # counted before any range is made
-                        "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
-                        f"now {args.chunk_size}, bounds only the integration's working memory)")
+    check_size(_each_range(args, range_count),  # counted before any range is made
+               "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
+               f"now {args.chunk_size}, bounds only the integration's working memory)")
     ranges = _each_range(args, parse_range)
     laws = _law_flags()
     # before any work: each range, then the names.  The ranges have different lengths: checks across columns

@@ -102,8 +102,29 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
                     f"exponent, e.g. {_yaml_number(error.instance)}")
         lines.append(f"config key {key}: {error.message}" + (f" ({hint})" if hint else ""))
     if not lines:
-        lines += _sweep_errors(config, schema) + _law_errors(config) + _tangential_errors(config)
+        from .own import own_errors
+
+        lines += (_sweep_errors(config, schema) + _law_errors(config) + _tangential_errors(config)
+                  + own_errors(with_defaults(schema, config)))
     return lines
+
+
+def with_defaults(schema: dict, value):
+    """``value`` with the schema's defaults filled in, as snakemake's validation fills them (objects only)."""
+    if schema.get("type") != "object" or not isinstance(value, dict):
+        return value
+    out = dict(value)
+    for name, sub in schema.get("properties", {}).items():
+        if name not in out and "default" in sub:
+            out[name] = sub["default"]
+        if name in out:
+            out[name] = with_defaults(sub, out[name])
+    extra = schema.get("additionalProperties")
+    if isinstance(extra, dict):
+        for name in out:
+            if name not in schema.get("properties", {}):
+                out[name] = with_defaults(extra, out[name])
+    return out
 
 
 def _law_errors(config: dict) -> list[str]:

@@ -47,6 +47,13 @@ RULE_KEYS = {
     "validation": ("validation",),
     "compliance_map": (*_SCENE, "compliance", "primary"),
     "validation_figures": ("compliance",),
+    "own_ball": ("study", "ball", "surface", "contact"),
+    "own_bounces": ("study", "bounces", "samples"),
+    "own_speed": ("study", "ranges"),
+    "own_maps": ("study", "ranges"),
+    "own_bounce_figure": ("study",),
+    "own_figures": ("study",),
+    "own_page": ("study", "contact", "bounces"),
 }
 
 

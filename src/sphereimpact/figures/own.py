@@ -1,0 +1,53 @@
+"""Figures of a study of one's own ball, drawn from its tables: each bounce's history, the normal impact's
+COR, contact time and peak force against speed, and the spin and rebound-angle maps."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from .history import history_figure
+from .style import RC, save
+
+
+def bounce_figure(history: pd.DataFrame, study: str, bounce: str, outputs) -> None:
+    """One bounce's history (:func:`sphereimpact.figures.history.history_figure`), titled by its study."""
+    history_figure(history, f"study {study}: bounce {bounce}", outputs)
+
+
+def speed_figure(csv_path: str, study: str, outputs) -> None:
+    """COR, contact time and peak force of normal impacts against speed."""
+    table = pd.read_csv(csv_path)
+    with plt.rc_context(RC | {"figure.figsize": (12.0, 3.8)}):
+        fig, axes = plt.subplots(1, 3)
+        for ax, (key, scale, label) in zip(axes, (("cor", 1.0, "COR [-]"), ("t_f", 1e3, "contact time [ms]"),
+                                                   ("force_max", 1.0, "peak normal force [N]"))):
+            ax.plot(table["speed"], table[key] * scale)
+            ax.set(xlabel="impact speed, normal [m/s]", ylabel=label)
+        fig.suptitle(f"study {study}: normal impacts against speed", fontsize=9)
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+def map_figure(csv_path: str, study: str, key: str, label: str, outputs) -> None:
+    """One output over angle to the surface x speed."""
+    table = pd.read_csv(csv_path)
+    angles, speeds = np.unique(table["angle_to_surface"]), np.unique(table["speed"])
+    values = table.pivot(index="speed", columns="angle_to_surface", values=key).loc[speeds, angles].to_numpy()
+    with plt.rc_context(RC):
+        fig, ax = plt.subplots()
+        mesh = ax.pcolormesh(angles, speeds, values, shading="nearest", cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label=label)
+        ax.set(xlabel="angle to the surface [deg]", ylabel="speed along the path [m/s]")
+        ax.set_title(f"study {study}: {label}, incoming spin {table['spin'].iloc[0]:g} rad/s", fontsize=9)
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+def curves_and_maps(speed_csv: str, maps_csv: str, study: str, outputs: dict) -> None:
+    """The study's speed figure and its two maps (``outputs``: speed, spin_map, rebound_map -> path)."""
+    speed_figure(speed_csv, study, [outputs["speed"]])
+    map_figure(maps_csv, study, "omega_f", "rebound spin [rad/s]", [outputs["spin_map"]])
+    map_figure(maps_csv, study, "rebound_angle", "rebound angle of the centre from the normal [deg]",
+               [outputs["rebound_map"]])

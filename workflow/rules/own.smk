@@ -1,0 +1,135 @@
+# A study of one's own ball (config key `study` other than chapter4): everything under results/studies/<name>/.
+# The chapter's rules are not asked for by such a study (see the Snakefile's rule all), so it never writes their
+# files, and the benchmarks and numerical studies are not rerun for it.
+
+
+OWN = f"results/studies/{config['study']}"
+BOUNCES = list(config["bounces"])
+
+
+rule own_ball:
+    """The study's ball: its contact law's damping (and stiffness) fitted to the measured COR (and contact time)."""
+    input:
+        code=code("workflow/scripts/own_ball.py"),
+    output:
+        ball=f"{OWN}/ball.json",
+    params:
+        config=params_for("own_ball"),
+    log:
+        f"logs/studies/{config['study']}/ball.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_ball.py"
+
+
+rule own_bounces:
+    """Each configured bounce: every scalar output, and its time history (units in the CSV header)."""
+    input:
+        ball=f"{OWN}/ball.json",
+        code=code("workflow/scripts/own_bounces.py"),
+    output:
+        outcomes=report(f"{OWN}/outcomes.csv", caption="../report/own.rst", category="Own study"),
+        histories=expand(f"{OWN}/histories/{{bounce}}.csv", bounce=BOUNCES),
+    params:
+        config=params_for("own_bounces"),
+    log:
+        f"logs/studies/{config['study']}/bounces.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_bounces.py"
+
+
+rule own_speed:
+    """Normal impacts across the configured speeds: COR, contact time, peak force, maximum compression."""
+    input:
+        ball=f"{OWN}/ball.json",
+        code=code("workflow/scripts/own_sweep.py"),
+    output:
+        csv=f"{OWN}/speed.csv",
+    params:
+        config=params_for("own_speed"),
+    log:
+        f"logs/studies/{config['study']}/speed.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_sweep.py"
+
+
+rule own_maps:
+    """Angle to the surface x speed at the configured spin: rebound spin, velocities and angles."""
+    input:
+        ball=f"{OWN}/ball.json",
+        code=code("workflow/scripts/own_sweep.py"),
+    output:
+        csv=f"{OWN}/maps.csv",
+    params:
+        config=params_for("own_maps"),
+    log:
+        f"logs/studies/{config['study']}/maps.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_sweep.py"
+
+
+rule own_bounce_figure:
+    """One bounce's history: displacement, velocities, spin, force against compression."""
+    input:
+        history=f"{OWN}/histories/{{bounce}}.csv",
+        code=code("workflow/scripts/own_bounce_figure.py"),
+    output:
+        png=report(f"{OWN}/figures/{{bounce}}.png", caption="../report/own.rst", category="Own study"),
+    params:
+        config=params_for("own_bounce_figure"),
+    log:
+        f"logs/studies/{config['study']}/figure_{{bounce}}.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_bounce_figure.py"
+
+
+rule own_figures:
+    """The speed curve's figure and the two maps."""
+    input:
+        speed=f"{OWN}/speed.csv",
+        maps=f"{OWN}/maps.csv",
+        code=code("workflow/scripts/own_figures.py"),
+    output:
+        speed=f"{OWN}/figures/speed.png",
+        spin_map=f"{OWN}/figures/spin_map.png",
+        rebound_map=f"{OWN}/figures/rebound_map.png",
+    params:
+        config=params_for("own_figures"),
+    log:
+        f"logs/studies/{config['study']}/figures.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_figures.py"
+
+
+rule own_page:
+    """One page (Markdown and HTML) with the ball's parameters, the bounces, the curves and maps."""
+    input:
+        ball=f"{OWN}/ball.json",
+        outcomes=f"{OWN}/outcomes.csv",
+        speed=f"{OWN}/speed.csv",
+        maps=f"{OWN}/maps.csv",
+        figures=[*expand(f"{OWN}/figures/{{bounce}}.png", bounce=BOUNCES),
+                 *(f"{OWN}/figures/{name}.png" for name in ("speed", "spin_map", "rebound_map"))],
+        code=code("workflow/scripts/own_page.py"),
+    output:
+        md=f"{OWN}/index.md",
+        html=report(f"{OWN}/index.html", caption="../report/own.rst", category="Own study"),
+    params:
+        config=params_for("own_page"),
+    log:
+        f"logs/studies/{config['study']}/page.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_page.py"
