@@ -37,7 +37,7 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
     assert names(package_sources("sphereimpact.figures.catalog")) == {
         "sphereimpact/__init__.py", "figures/__init__.py", "figures/catalog.py",
         # the package's __init__ imports the public API (solve imports planar inside a function: counted)
-        "sphereimpact/events.py", "laws/__init__.py", "laws/base.py", "laws/linear.py", "laws/hertz.py",
+        "sphereimpact/events.py", "sphereimpact/registry.py", "laws/__init__.py", "laws/base.py", "laws/linear.py", "laws/hertz.py",
         "sphereimpact/outcome.py", "sphereimpact/scene.py",
         "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/methods.py",
         "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py", "tangential/springs.py",

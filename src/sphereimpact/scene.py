@@ -217,8 +217,9 @@ def check_columns(columns: dict) -> dict:
         ``"<name> must be <range>; got <value> (row <i>)"``.
     """
     for name, values in columns.items():
-        if name in RULES:
-            allowed, ok = RULES[name]
+        if name in RULES or name in PATH_RULES:
+            optional = name in PATH_RULES  # a path field is NaN in the rows that do not give it
+            allowed, ok = (PATH_RULES if optional else RULES)[name]
             raw = np.asarray(values)
             if raw.dtype == bool or (raw.dtype == object and any(isinstance(v, (bool, np.bool_)) for v in raw.flat)):
                 raise TypeError(f"{name} must be real numbers; got a boolean")
@@ -228,6 +229,8 @@ def check_columns(columns: dict) -> dict:
                 raise ValueError(f"{name} must be {allowed}; got a non-numeric value") from None
             with np.errstate(invalid="ignore"):
                 bad = ~(np.isfinite(arr) & ok(arr))
+            if optional:
+                bad &= ~np.isnan(arr)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
                 raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
@@ -236,20 +239,6 @@ def check_columns(columns: dict) -> dict:
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
-        elif name in PATH_RULES:
-            allowed, ok = PATH_RULES[name]
-            raw = np.asarray(values)
-            if raw.dtype == bool:
-                raise TypeError(f"{name} must be real numbers; got a boolean")
-            try:
-                arr = np.asarray(values, dtype=float)
-            except (TypeError, ValueError):
-                raise ValueError(f"{name} must be {allowed}; got a non-numeric value") from None
-            with np.errstate(invalid="ignore"):
-                bad = ~np.isnan(arr) & ~(np.isfinite(arr) & ok(arr))
-            if bad.any():
-                i = int(np.flatnonzero(bad)[0])
-                raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
         elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS:
             raw = np.asarray(values)
             if raw.dtype == bool:

@@ -20,6 +20,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from ..dense import is_instant
+from ..registry import Registry as BaseRegistry
 
 #: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
 PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
@@ -219,24 +220,15 @@ MODULUS = Parameter("modulus", "Pa", "effective modulus E* of ball and flat (ins
                     "a finite number > 0", lambda x: x > 0)
 
 
-class Registry(dict):
+class Registry(BaseRegistry):
     """Name -> ContactLaw.  :meth:`register` adds a law; nothing else needs to change."""
 
-    def register(self, law: ContactLaw) -> ContactLaw:
-        """Add ``law`` under its name (``ValueError`` if the name is taken by another law)."""
-        if not isinstance(law, ContactLaw):
-            raise TypeError(f"law must be a ContactLaw; got {type(law).__name__}")
-        if law.name in self and self[law.name] is not law:
-            raise ValueError(f"a law named {law.name!r} is already registered")
-        self[law.name] = law
-        return law
+    def __init__(self):
+        super().__init__(ContactLaw, "law", "model")
 
     def law(self, name: str) -> ContactLaw:
         """The law ``name``; ``ValueError`` listing the registered laws otherwise."""
-        try:
-            return self[name]
-        except (KeyError, TypeError):
-            raise ValueError(f"model must be one of {', '.join(self)}; got {name!r}") from None
+        return self.named(name)
 
 
 #: The registered laws (filled by :mod:`sphereimpact.laws`).

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..laws.base import Parameter, spring_exponent
+from ..registry import Registry as BaseRegistry
 
 #: The tangential stiffness, three ways: kappa directly, Poisson's ratio of like materials, or (for a Hertz
 #: spring) the effective shear modulus.  One table for the Scene's checks, the sweep's and the help texts.
@@ -124,24 +125,15 @@ def _names(registry, spring: str) -> str:
     return ", ".join(f"'{n}'" for n in names) if registry is TANGENTIALS else ", ".join(names)
 
 
-class Registry(dict):
+class Registry(BaseRegistry):
     """Name -> TangentialModel.  :meth:`register` adds a model; nothing else needs to change."""
 
-    def register(self, model: TangentialModel) -> TangentialModel:
-        """Add ``model`` under its name (``ValueError`` if the name is taken by another model)."""
-        if not isinstance(model, TangentialModel):
-            raise TypeError(f"model must be a TangentialModel; got {type(model).__name__}")
-        if model.name in self and self[model.name] is not model:
-            raise ValueError(f"a tangential model named {model.name!r} is already registered")
-        self[model.name] = model
-        return model
+    def __init__(self):
+        super().__init__(TangentialModel, "tangential model", "tangential")
 
     def model(self, name: str) -> TangentialModel:
         """The model ``name``; ``ValueError`` listing the registered models otherwise."""
-        try:
-            return self[name]
-        except (KeyError, TypeError):
-            raise ValueError(f"tangential must be one of {', '.join(self)}; got {name!r}") from None
+        return self.named(name)
 
     def taking(self, parameter: str) -> list[str]:
         """Names of the models that accept ``parameter``."""
