@@ -53,8 +53,8 @@ def study(name):
 # ## References
 #
 # - `kelvin-voigt`: the closed form, in all three damping regimes.
-# - `modified`: mpmath's arbitrary-precision Taylor integrator at 32 digits, with events found by
-#   `mpmath.findroot`. Its distance from the same computation at 22 digits bounds its error
+# - `modified`: mpmath's arbitrary-precision Taylor integrator at 24 digits, with events found by
+#   `mpmath.findroot`. Its distance from the same computation at 18 digits bounds its error
 #   (`reference_bound`); `tests/test_numerics.py` checks it against DOP853 at its tightest tolerance and
 #   against the closed form.
 

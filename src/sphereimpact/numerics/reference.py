@@ -21,6 +21,9 @@ from dataclasses import dataclass
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
 
+#: Working precisions [decimal digits] of the Taylor reference and of the solve that bounds its error: both
+#: far beyond float64, and their outputs round to the same doubles.
+FINE_DIGITS, COARSE_DIGITS = 24, 18
 #: Outputs compared in the accuracy studies.
 ERROR_KEYS = ("t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t")
 
@@ -122,8 +125,8 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
 
 
 def reference(scene: Scene) -> Reference:
-    """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at 32 digits bounded by 22
-    digits (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded by its distance from
+    """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at :data:`FINE_DIGITS`
+    bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded by its distance from
     rtol 1e-12 (a second implementation beside the package's DOP853-scalar, not an exact one)."""
     if scene.model == "kelvin-voigt":
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
@@ -132,10 +135,10 @@ def reference(scene: Scene) -> Reference:
         fine = simulate(scene, SolverOptions(method="DOP853", rtol=1e-13, atol=1e-15)).to_dict()
         coarse = simulate(scene, SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)).to_dict()
         return Reference(fine, max(worst_error(coarse, fine, scene), 2.2e-16), "scipy DOP853, rtol 1e-13")
-    fine = outputs_from_normal(scene, *taylor_normal(scene, 32))
-    coarse = outputs_from_normal(scene, *taylor_normal(scene, 22))
+    fine = outputs_from_normal(scene, *taylor_normal(scene, FINE_DIGITS))
+    coarse = outputs_from_normal(scene, *taylor_normal(scene, COARSE_DIGITS))
     bound = max(worst_error(coarse, fine, scene), 2.2e-16)
-    return Reference(fine, bound, "mpmath Taylor (32 digits); bound = its distance from 22 digits")
+    return Reference(fine, bound, f"mpmath Taylor ({FINE_DIGITS} digits); bound = its distance from {COARSE_DIGITS} digits")
 
 
 def float64_check(scene: Scene, ref: Reference) -> float:

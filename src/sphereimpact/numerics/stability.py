@@ -55,7 +55,7 @@ def _row(study, variant, method, x_name, x, error=None, nfev=None, time=None, st
 def _package_point(study, scene, ref, method, x_name, x, rtol=1e-8, variant="package default path", **opts):
     options = SolverOptions(method=method, rtol=rtol, atol=rtol, **opts)
     try:
-        seconds, out = median_time(lambda: simulate(scene, options), budget=0.2)
+        seconds, out = median_time(lambda: simulate(scene, options))
     except ImpactError as err:
         return _row(study, variant, method, x_name, x, status=f"failed: {err}")
     return _row(study, variant, method, x_name, x, worst_error(out.to_dict(), ref, scene), out.nfev, seconds)
@@ -128,7 +128,7 @@ def onset(base: Scene, methods=METHODS) -> list[dict]:
             rows.append(_package_point("onset", scene, ref, method, "rtol", rtol, rtol=rtol,
                                        variant="start at contact (package)"))
             try:
-                seconds, (out, nfev) = median_time(lambda: _through_contact(scene, method, rtol, 0.5e-3), budget=0.2)
+                seconds, (out, nfev) = median_time(lambda: _through_contact(scene, method, rtol, 0.5e-3))
                 rows.append(_row("onset", "through contact from free flight", method, "rtol", rtol,
                                  worst_error(out, ref, scene), nfev, seconds))
             except (ImpactError, _OverBudget) as err:
@@ -163,7 +163,7 @@ def grip(base: Scene, methods=("RK45", "DOP853", "Radau", "LSODA"), angle: float
     for method in methods:
         for variant, eps, law in laws:
             try:
-                seconds, (v_t, nfev) = median_time(lambda: _friction_ode(scene, law, method, 1e-8), budget=0.2)
+                seconds, (v_t, nfev) = median_time(lambda: _friction_ode(scene, law, method, 1e-8))
                 rows.append(_row("grip", variant, method, "eps [m/s]", eps, abs(v_t / exact - 1), nfev, seconds))
             except _OverBudget:
                 rows.append(_row("grip", variant, method, "eps [m/s]", eps,

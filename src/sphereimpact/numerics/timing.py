@@ -7,7 +7,11 @@ import statistics
 import time
 
 
-def median_time(call, budget: float = 0.3, max_repeats: int = 7) -> tuple[float, object]:
+#: Seconds a work-precision or stability point is repeated for (at least 3 runs unless one run exceeds it).
+BUDGET = 0.05
+
+
+def median_time(call, budget: float = BUDGET, max_repeats: int = 7) -> tuple[float, object]:
     """Run ``call()`` at least 3 times (once if a single run exceeds ``budget`` s), until ``budget`` is spent
     or ``max_repeats`` is reached; return (median seconds, last result)."""
     times, result = [], None
@@ -22,8 +26,8 @@ def median_time(call, budget: float = 0.3, max_repeats: int = 7) -> tuple[float,
 
 def _timed(call) -> float:
     """Wall time [s] of one call with the cyclic garbage collector off, as :mod:`timeit` does: its passes
-    land at random in one contender or another and moved per-scene timings by up to 1.8x between runs."""
-    gc.collect()
+    would land at random in one contender or another.  No collection before the call: in a process holding
+    pandas and scipy one costs more than the impact it would precede."""
     gc.disable()
     try:
         start = time.perf_counter()

@@ -23,6 +23,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..numerics.reference import FINE_DIGITS
 from .tables import markdown_table
 
 #: Blocks of the README, in order.
@@ -109,7 +110,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "in plain floats) against the hand-written "
         "script (one `solve_ivp` call, scalar right-hand side, the two events, no dense output) at the loosest "
         "tolerance whose error is no larger than `simulate`'s. Error: the worst relative error over t_m, δ_m, "
-        "t_f, COR, ω_f and v_E,t against the closed form, the 32-digit Taylor reference (eq. 4.2) or scipy's "
+        f"t_f, COR, ω_f and v_E,t against the closed form, the {FINE_DIGITS}-digit Taylor reference (eq. 4.2) or scipy's "
         "DOP853 at rtol 1e-13 (the Hertz and Hunt–Crossley laws). Times are medians over "
         f"{int(single['repeats'].iloc[0])} runs of {int(single['batch'].iloc[0])} calls each.",
         one,
