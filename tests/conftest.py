@@ -21,3 +21,9 @@ def assert_outputs_close(got, ref, rtol: float) -> None:
         assert math.isfinite(a), key
         assert abs(a - b) <= rtol * max(abs(b), scale), f"{key}: {a!r} vs {b!r}"
 
+
+
+def pytest_collection_modifyitems(items):
+    """The pipeline tests first: run in parallel by file (pyproject's ``-n 2 --dist loadfile``), their
+    long module fixture (the test pipeline) then overlaps the unit tests on the other worker."""
+    items.sort(key=lambda item: item.path.name != "test_workflow.py")

@@ -155,3 +155,46 @@ def test_a_registered_tangential_model_is_served_by_simulate_sweep_and_cli(tange
     assert "poisson sets kappa of tangential 'linear' or 'mindlin'" in capsys.readouterr().err
     with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only"):
         simulate(scene, body="planar")
+
+
+# --- an integrator registered from outside ---------------------------------------------------------------
+@pytest.fixture
+def integrator():
+    from dataclasses import replace
+
+    from sphereimpact.integrators import INTEGRATORS, Integrator
+    from sphereimpact.normal import IntegratedNormal
+
+    def solve(scene, options):  # DOP853 in plain floats, steps capped at 1/100 of the undamped period
+        return IntegratedNormal(scene, replace(options, method="DOP853-scalar",
+                                               max_step=2 * np.pi / scene.frequency / 100))
+
+    def cannot(scene):
+        return None if scene.law.scalar is not None else f"needs a law with a scalar formula; got {scene.model!r}"
+
+    toy = INTEGRATORS.register(Integrator("toy-capped", "DOP853-scalar, steps capped (test integrator)", solve,
+                                          cannot=cannot))
+    yield toy
+    del INTEGRATORS["toy-capped"]
+
+
+def test_a_registered_integrator_is_served_by_simulate_and_cli_and_refuses_what_it_cannot(integrator, law, capsys):
+    scene = Scene(angle=30.0)
+    out = simulate(scene, SolverOptions(method="toy-capped"))
+    period = 2 * np.pi / scene.frequency
+    same = simulate(scene, SolverOptions(method="DOP853-scalar", max_step=period / 100))
+    assert out.to_dict() | {"wall_time": 0} == same.to_dict() | {"wall_time": 0}
+    assert out.nfev > simulate(scene, SolverOptions(method="DOP853-scalar")).nfev  # the cap took effect
+    exact = simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="closed"))
+    capped = simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="toy-capped"))
+    assert capped.cor == pytest.approx(exact.cor, rel=1e-9) and capped.t_f == pytest.approx(exact.t_f, rel=1e-9)
+    assert simulate(scene).method == "taylor"  # auto keeps its declared order
+    assert run(["simulate", "--angle", "30", "--method", "toy-capped", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["cor"] == out.cor
+    with pytest.raises(SystemExit):
+        run(["simulate", "--help"])
+    assert "toy-capped" in capsys.readouterr().out
+    with pytest.raises(ValueError, match="method 'toy-capped' needs a law with a scalar formula; got 'growing-damping'"):
+        simulate(Scene(model=NAME, b=400.0, angle=30.0), SolverOptions(method="toy-capped"))
+    assert run(["simulate", "--model", NAME, "--b", "400", "--method", "toy-capped"]) == 2
+    assert "needs a law with a scalar formula" in capsys.readouterr().err

@@ -125,14 +125,14 @@ def test_history_outputs_on_every_path(scenes):
     table = sweep(scenes)
     assert_contract(table, sample=len(table))
     assert not set(FAMILY_OUTPUTS) & set(sweep(scenes, outputs=FAST).columns)
-    assert list(sweep(scenes, outputs=["cor"]).columns) == [*SCENE_COLUMNS, "cor"]
+    assert list(sweep(scenes, outputs=["cor"]).columns) == [*SCENE_COLUMNS, "cor", "path"]
     with pytest.raises(ValueError, match="outputs must be some of"):
         sweep(scenes, outputs=["spin_rate"])
 
 
 def test_table_layout():
     table = sweep({"angle": [0.0, 30.0, 60.0]})
-    assert list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS]
+    assert list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS, "path"]
     assert list(table["regime"]) == ["none", "rolling", "sliding"]
 
 
@@ -164,7 +164,7 @@ def test_cli_sweep_writes_one_row_per_scene(tmp_path):
     out = tmp_path / "s.csv"
     assert run(["sweep", "--angle", "0:60:30", "--speed", "1:3:2", "--out", str(out)]) == 0
     table = pd.read_csv(out)
-    assert len(table) == 6 and list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS]
+    assert len(table) == 6 and list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS, "path"]
     one = simulate(Scene(angle=30.0, speed=3.0))
     row = table[(table.angle == 30) & (table.speed == 3)].iloc[0]
     assert row["omega_f"] == pytest.approx(one.omega_f, rel=1e-9)
@@ -265,3 +265,19 @@ def test_lists_mean_every_combination_in_the_api_and_on_the_command_line(tmp_pat
     from sphereimpact.sweep import rows
 
     assert len(sweep(rows(angle=[30.0, 45.0], speed=[3.0, 20.0]))) == 2
+
+
+def test_the_path_column_names_the_path_that_solved_each_row():
+    """Each row says which path solved it, and that path is the one the engine's rules give the row."""
+    from sphereimpact.sweep.engine import PATHS, SIMILARITY_MIN
+
+    paths = {name: list(sweep(scenes)["path"]) for name, scenes in {
+        "closed": grid(angle=[0.0, 30.0], speed=[1.0, 3.0], model="kelvin-voigt"),  # linear, no gravity
+        "taylor-lanes": grid(angle=[30.0], speed=[1.0, 3.0], model="modified"),  # a few modified scenes
+        "single": grid(angle=[30.0], speed=[3.0], tangential="linear", kappa=0.7),  # compliant: one by one
+        "per-family": grid(angle=[20.0], speed=[3.0], model="hertz", modulus=1e7),  # kernel-less law
+    }.items()}
+    assert paths == {"closed": ["closed"] * 4, "taylor-lanes": ["taylor-lanes"] * 2, "single": ["single"],
+                     "per-family": ["per-family"]}
+    many = sweep(grid(angle=[30.0], speed=np.linspace(0.5, 30.0, SIMILARITY_MIN)), outputs=["cor"])  # many lam
+    assert set(many["path"]) == {"lambda-interpolant"} and set(paths) <= set(PATHS)

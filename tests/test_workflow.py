@@ -37,6 +37,9 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
 #: Pixel tolerance (RMS on 0-255) for the committed figures: fonts and anti-aliasing only.
 FIGURE_TOLERANCE = 2.0
 IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
+#: Rules whose jobs are timed and so run alone (``threads: workflow.cores``): the test's small run lets them
+#: share the machine, since its timings are not read.
+TIMED_RULES = ("work_precision", "bench", "bench_sweep", "microslip_resolution")
 #: Rules whose jobs are benchmarks or heavy studies.
 HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution")
 
@@ -45,6 +48,7 @@ def snakemake(cwd, *args, configfiles=(), path=()):
     """Run snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
     copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path."""
     env = os.environ | {"PYTHONPATH": os.pathsep.join([*map(str, path), str(Path(cwd) / "src")])}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # the copy's bytecode, compiled once, serves its ~50 job processes
     return subprocess.run(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
                           capture_output=True, text=True, env=env)
 
@@ -61,7 +65,7 @@ def workdir(tmp_path_factory):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
                                                             **({"ignore": IGNORE} if src.is_dir() else {}))
-    run = snakemake(work)
+    run = snakemake(work, "--set-threads", *[f"{rule}=1" for rule in TIMED_RULES])
     assert run.returncode == 0, run.stderr[-3000:]
     return work
 
@@ -145,11 +149,14 @@ def test_editing_the_physics_reruns_what_uses_it(scratch):
 
 
 def test_bad_config_stops_before_any_job(workdir):
-    """Every config check is tabulated, without snakemake, in tests/test_inputs.py; here, that they run."""
-    run = snakemake(workdir, "-n", "--config", "mass=-1", "colour=red")
+    """Every config check is tabulated, without snakemake, in tests/test_inputs.py; here, that they run, each
+    problem named (the schema's, the non-finite numbers that pass every schema bound) and no job planned."""
+    run = snakemake(workdir, "-n", "--config", "mass=-1", "colour=red", "ramp=nan", "damping=-inf")
     text = run.stdout + run.stderr
     assert run.returncode != 0 and "config key mass: -1 is less than or equal to the minimum of 0" in text
     assert "'colour' was unexpected" in text and "Job stats" not in text
+    assert "config key ramp: nan is not a finite number" in text
+    assert "config key damping: -inf is not a finite number" in text
 
 
 def test_a_failing_job_writes_its_traceback_to_its_log(scratch):
@@ -169,21 +176,6 @@ def test_an_off_grid_map_speed_is_refused_before_any_job(workdir, tmp_path):
     run = snakemake(workdir, "-n", configfiles=[str(off_grid)])
     assert run.returncode != 0
     assert "config key sweep.map_speed: 2.0 is not on the speed grid '1:5:2'" in run.stdout + run.stderr
-
-
-def test_non_finite_config_stops_before_any_job(workdir):
-    run = snakemake(workdir, "-n", "--config", "mass=nan", "damping=-inf")
-    text = run.stdout + run.stderr
-    assert run.returncode != 0 and "config key mass: nan is not a finite number" in text
-    assert "config key damping: -inf is not a finite number" in text
-
-
-def test_parsing_the_workflow_does_not_import_matplotlib(workdir, tmp_path):
-    blocker = tmp_path / "blocker" / "matplotlib"
-    blocker.mkdir(parents=True)
-    (blocker / "__init__.py").write_text("raise ImportError('matplotlib imported while parsing the Snakefile')\n")
-    run = snakemake(workdir, "-n", "--forceall", path=[blocker.parent])
-    assert run.returncode == 0, (run.stdout + run.stderr)[-2000:]
 
 
 def test_html_report_has_every_figure_and_table(scratch):
@@ -223,10 +215,14 @@ def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
     assert (workdir / "results/sweep/angle_speed.csv").read_bytes() == whole.read_bytes()
 
 
-def test_slurm_profile_dry_run(workdir):
-    """The cluster profile plans every job (where the SLURM executor plugin is installed)."""
+def test_slurm_profile_dry_run_parses_without_matplotlib(workdir, tmp_path):
+    """The cluster profile plans every job (where the SLURM executor plugin is installed), and planning
+    imports no drawing code (a matplotlib that refuses to import is first on the path)."""
     pytest.importorskip("snakemake_executor_plugin_slurm")
-    run = snakemake(workdir, "-n", "--forceall", "--profile", "workflow/profiles/slurm")
+    blocker = tmp_path / "blocker" / "matplotlib"
+    blocker.mkdir(parents=True)
+    (blocker / "__init__.py").write_text("raise ImportError('matplotlib imported while parsing the Snakefile')\n")
+    run = snakemake(workdir, "-n", "--forceall", "--profile", "workflow/profiles/slurm", path=[blocker.parent])
     text = run.stdout + run.stderr
     assert run.returncode == 0, text[-2000:]
     assert re.search(r"^sweep_shard\s+2$", text, re.M)

@@ -43,7 +43,8 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py", "tangential/springs.py",
         "tangential/microslip.py",
         "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
-        "sphereimpact/planar.py"}
+        "sphereimpact/planar.py", "sphereimpact/errors.py", "integrators/__init__.py", "integrators/base.py",
+        "integrators/closed.py", "integrators/taylor.py", "integrators/runge_kutta.py"}
 
 
 def test_sources_follow_imports_through_the_package():
@@ -66,5 +67,5 @@ def test_conda_environment_mirrors_environment_txt():
     pins = {line.split("#")[0].strip() for line in (ROOT / "environment.txt").read_text().splitlines()}
     conda = yaml.safe_load((ROOT / "workflow/envs/sphereimpact.yaml").read_text())
     pip = {p for entry in conda["dependencies"] if isinstance(entry, dict) for p in entry["pip"]}
-    tools = {p for p in pins if p.split("==")[0] in ("snakemake", "pytest", "snakemake-executor-plugin-slurm")}
+    tools = {p for p in pins if p.split("==")[0] in ("snakemake", "pytest", "pytest-xdist", "snakemake-executor-plugin-slurm")}
     assert {p for p in pins if "==" in p} - tools == {p for p in pip if "==" in p}

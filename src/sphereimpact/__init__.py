@@ -7,11 +7,11 @@ Quick use::
     out.cor, out.omega_f, out.history()    # outputs and time histories (SI units)
 """
 
-from .events import ImpactError
+from .errors import BeyondRadiusWarning, ImpactError
 from .laws import LAWS, ContactLaw, Parameter
 from .outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .scene import Scene, SolverOptions
-from .solve import BeyondRadiusWarning, simulate
+from .solve import simulate
 
 __all__ = ["BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "OUTPUT_KEYS", "Outcome",
            "Parameter", "Scene", "SolverOptions", "simulate"]

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 
 from scipy.optimize import brentq
 
-from .events import ImpactError
+from .errors import ImpactError
 from .normal import IntegratedNormal
 from .scene import Scene, SolverOptions, as_number
 

@@ -17,13 +17,14 @@ import numpy as np
 
 from . import __version__
 from .calibrate import RELATIONS, calibrate
-from .events import ImpactError
+from .errors import BeyondRadiusWarning, ImpactError
+from .integrators import method_names
 from .laws import LAWS, PARAMETER_NAMES
 from .outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
-from .scene import ATOL_RANGE, METHODS, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
+from .scene import ATOL_RANGE, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
     SolverOptions, check_columns, magnitude_problem
-from .solve import BODIES, BeyondRadiusWarning, simulate
+from .solve import BODIES, simulate
 from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
 _D = Scene()
@@ -162,7 +163,7 @@ def _parser() -> argparse.ArgumentParser:
         help=f"gravitational acceleration [m/s^2], >= 0; the bare flag means {STANDARD_GRAVITY} "
              f"(default: {_D.gravity})")
     add("--method", default=_O.method, metavar="NAME",
-        help="integrator: " + ", ".join(METHODS) + " (default auto: the law's closed form where it has one, "
+        help="integrator: " + ", ".join(method_names()) + " (default auto: the law's closed form where it has one, "
              "else the Taylor method where it has a series (eq. 4.2, linear-hunt-crossley), else DOP853-scalar; "
              "'closed' is the exact solution, kelvin-voigt only)")
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")

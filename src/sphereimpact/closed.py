@@ -28,7 +28,8 @@ import math
 import numpy as np
 
 from .dense import is_instant
-from .events import ImpactError, first_root
+from .errors import ImpactError
+from .events import first_root
 from .laws import LAWS
 from .normal import NormalMotion, no_separation_message, separation_function
 from .scene import Scene

@@ -3,8 +3,8 @@
 :class:`scipy.integrate.OdeSolution` evaluates each solver step's interpolant through a Python call per
 step touched (a vector of instants over a whole contact visits every step) and a scalar instant through
 several layers of checks.  The post-processing of one impact evaluates its solution a few hundred times
-(event roots and extrema refined by Brent's method, grids), and through OdeSolution that cost 1.7 to 2.3 ms
-an impact, as much as the integration itself.
+(event roots and extrema refined by Brent's method, grids), and through OdeSolution that cost as much as
+the integration itself.
 
 :class:`StackedDOP853` holds the interpolants of a DOP853 solution as stacked arrays and evaluates them
 with the same arithmetic, in the same order, as :class:`scipy.integrate._ivp.rk.Dop853DenseOutput`

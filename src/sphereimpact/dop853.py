@@ -1,8 +1,8 @@
 """scipy's DOP853, run in plain Python floats for a small system: method ``DOP853-scalar``.
 
 :func:`scipy.integrate.solve_ivp` spends most of one impact's time on numpy calls on two-element arrays,
-not on arithmetic: on eq. 4.2 at rtol 1e-10 (24 steps, 551 evaluations with dense output and two events)
-it took 2.55 ms, and :func:`solve`, the same algorithm in plain floats, 1.11 ms.  It has
+not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost against solve_ivp's:
+``results/bench_stages.csv``).  It has
 
 - the tableau, error estimator, dense output and coefficients of :class:`scipy.integrate.DOP853`
   (Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Springer 1993,

@@ -13,9 +13,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-
-class ImpactError(RuntimeError):
-    """The impact has no valid outcome (e.g. the ball never separates) or an event was missed."""
+from .errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
 
 
 def _scalar(f):

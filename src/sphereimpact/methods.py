@@ -1,15 +1,9 @@
-"""The integration methods of the normal motion, by name, and which scipy method runs each where the
-plain-float integrator cannot."""
+"""The integration methods' names that other layers need without importing the integrators (which import
+the scene): the default integrator and the solve_ivp method that runs a named one.  The integrators
+themselves are :data:`sphereimpact.integrators.INTEGRATORS`."""
 
 from __future__ import annotations
 
-#: Integration methods: ``auto`` (the default) is the law's closed form where it has one, else ``taylor``
-#: where the law has a series and the damping ratio is within the accuracy contract's (<= 100), else
-#: ``DOP853-scalar``; ``closed`` is the exact linear solution (kelvin-voigt only); ``taylor`` is the
-#: Taylor-series method (:mod:`sphereimpact.taylor`, laws with a ``series``); ``DOP853-scalar`` is scipy's
-#: DOP853 run in plain floats (:mod:`sphereimpact.dop853`: the same steps, 2-3x cheaper) on a law with a
-#: scalar formula; the others are :func:`scipy.integrate.solve_ivp` methods.
-METHODS = ("auto", "closed", "taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 #: What ``auto`` integrates with when the law has neither a closed form nor a series (chosen from the
 #: work-precision study).
 DEFAULT_INTEGRATOR = "DOP853-scalar"
@@ -17,6 +11,19 @@ DEFAULT_INTEGRATOR = "DOP853-scalar"
 
 def ivp_method(method: str) -> str:
     """The :func:`scipy.integrate.solve_ivp` method that runs ``method`` where the float integrator cannot
-    (the planar body, a law without a scalar formula, naive formulations): ``auto`` and ``DOP853-scalar``
-    are DOP853's algorithm."""
-    return "DOP853" if method in ("auto", DEFAULT_INTEGRATOR) else method
+    (the planar body, a law without a scalar formula, naive formulations): ``auto`` is
+    :data:`DEFAULT_INTEGRATOR`'s.  ``ValueError`` for a method that runs on the reduced body only."""
+    from .integrators import INTEGRATORS
+
+    integrator = INTEGRATORS.named(DEFAULT_INTEGRATOR if method == "auto" else method)
+    if integrator.ivp is None:
+        raise ValueError(f"method {method!r} is only available for the reduced model")
+    return integrator.ivp
+
+
+def __getattr__(name):
+    if name == "METHODS":  # every name SolverOptions.method accepts, registered integrators included
+        from .integrators import method_names
+
+        return method_names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -23,7 +23,7 @@ from scipy.integrate import OdeSolution, solve_ivp
 
 from . import dop853, taylor
 from .dense import StackedDOP853, fast_solution, is_instant
-from .events import ImpactError
+from .errors import ImpactError
 from .methods import DEFAULT_INTEGRATOR, ivp_method
 
 if TYPE_CHECKING:
@@ -31,33 +31,23 @@ if TYPE_CHECKING:
 
 #: Samples per solver step used when scanning event functions on the dense output.
 SUBSTEPS = 8
-#: Ramp band: where u = (c/R) delta falls below BAND_EDGE on the way out, the ramp 1 - exp(-u) starts to
-#: switch the damping off (exp(-30) ~ 1e-13), on the time scale 1/(lam |y|) in tau (lam = c v_n /
-#: (omega_n R), y the dimensionless rate).  A step sized for the slow motion can cross the whole band, and
-#: the error estimate does not see the switch: at 45 deg and 20 m/s the COR erred by 2.1e-8 at rtol
-#: 1e-10 but 6.4e-10 at rtol 1e-9.  The integration restarts once it is in restitution inside the band
-#: (at the edge, or at maximum compression when that is already inside, as in the chapter's scenes: at
-#: lam = 20, zeta = 0.01 the COR erred by 2.2e-9 until it did), with steps of at most
-#: BAND_STEP / (lam max(|y|, BAND_SPEED)) (|y| is 0 at maximum compression and grows towards the rebound
-#: speed, < 1), starting from the step size it had reached (measured in the commits that introduced them,
-#: and tested in test_accuracy.py).  BAND_STEP: on a grid of 90 scenes (lam 3-150, zeta 0.01-3, both
-#: criteria) the worst error against the capped reference is 6.9e-10 for every cap from 2 to 6 and 9.95e-10
-#: at 8; 4 keeps a factor 2 from that edge and takes 18 % fewer evaluations than 2 at 45 deg and 20 m/s.
-BAND_EDGE = 30.0
+#: Ramp band of eq. 4.2: once in restitution with u = (c/R) delta below BAND_RESTART, the integration
+#: restarts with steps of at most BAND_STEP / (lam max(|y|, BAND_SPEED)) in tau, since a step sized for the
+#: slow motion can cross the whole switch of 1 - exp(-u) unseen by the error estimate.  Values from the
+#: accuracy grid of tests/test_accuracy.py (lam 3-150, zeta 0.01-3, both criteria).
+BAND_RESTART = 30.0
 BAND_STEP = 4.0
 BAND_SPEED = 0.25
 
-#: Landing on t_f: at most this many steps ending there (Newton corrections of the root in between), and
-#: the root is delta = 0 when |x(t_f)| is below LANDING_DELTA x_m (else P = 0 inside contact).
+#: Landing on t_f: at most LANDINGS steps ending there (Newton corrections in between); the root is
+#: delta = 0 when |x(t_f)| < LANDING_DELTA x_m, else P = 0 inside contact.
 LANDINGS = 4
 LANDING_DELTA = 1e-6
 #: Methods whose landing restarts at low order (BDF from order 1): their landed state is no better than the
-#: interpolant, so no Newton correction (BDF's t_f at rtol 1e-3 went from 9e-4 to 1.7e-3 off with one).
+#: interpolant, so they take no Newton correction.
 MULTISTEP = ("BDF", "LSODA")
-#: Most right-hand-side evaluations one normal motion may take (about 10 s): a bound on the cost of any
-#: input.  The accepted domain needs far fewer (eq. 4.2 at zeta = 160 under the penetration criterion, its
-#: slowest measured scene, takes 9.4e3); an over-damped contact held until delta = 0 needs about
-#: zeta^2 evaluations to return, if it ever does (eq. 4.1 never does for zeta >= 1).
+#: Most right-hand-side evaluations one normal motion may take: a bound on any input's cost, far above what
+#: the accepted domain needs (an over-damped contact held until delta = 0 needs about zeta^2).
 MAX_NFEV = 1_000_000
 
 
@@ -318,7 +308,7 @@ class IntegratedNormal(_DimensionlessNormal):
         events = [max_compression, separation]
         if lam is not None:
             def band_exit(tau, z):  # falls through 0 once in restitution inside the band
-                return max(lam * z[0] - BAND_EDGE, z[1])
+                return max(lam * z[0] - BAND_RESTART, z[1])
 
             band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
             events.append(band_exit)
@@ -361,7 +351,7 @@ class IntegratedNormal(_DimensionlessNormal):
             self._check_status(rest, method)
         final, at = (sol, 1) if rest is None else (rest, 0)  # where the separation event is
         t_m, t_f = sol.t_events[0], final.t_events[at]
-        if not len(t_m) and rest is not None and lam * sol.y_events[2][0][0] < BAND_EDGE:
+        if not len(t_m) and rest is not None and lam * sol.y_events[2][0][0] < BAND_RESTART:
             # the band event fired at maximum compression (its function is delta_dot there) and its root
             # came first: that root is t_m
             t_m = sol.t_events[2]

@@ -21,7 +21,7 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .events import ImpactError
+from .errors import ImpactError
 from .normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from .scene import Scene, SolverOptions, ivp_method
 from .tangential import MAX_PHASES, phase_index
@@ -38,8 +38,6 @@ class PlanarMotion:
     """
 
     def __init__(self, scene: Scene, options: SolverOptions):
-        if options.method in ("closed", "taylor"):
-            raise ValueError(f"method {options.method!r} is only available for the reduced model")
         self.scene = scene
         tilt = scene.tilt  # the flat's inclination; the approach's incidence sets the initial velocity
         self._n = np.array([math.sin(tilt), math.cos(tilt)])

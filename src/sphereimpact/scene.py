@@ -17,7 +17,7 @@ import numpy as np
 
 from .laws import LAWS, PARAMETER_NAMES, hertz_constant, spring_exponent
 from .laws.base import MODULUS
-from .methods import DEFAULT_INTEGRATOR, METHODS, ivp_method  # noqa: F401  (re-exported)
+from .methods import DEFAULT_INTEGRATOR, ivp_method  # noqa: F401  (re-exported)
 from .tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
                          kappa_from_poisson, kappa_from_shear_modulus)
 
@@ -595,7 +595,7 @@ class SolverOptions:
     Parameters
     ----------
     method : str
-        One of :data:`METHODS`.  ``auto``: the law's closed form if it has one (kelvin-voigt: exact, and
+        ``auto`` or a registered integrator (:data:`sphereimpact.integrators.INTEGRATORS`).  ``auto``: the law's closed form if it has one (kelvin-voigt: exact, and
         the cheapest), else the Taylor method if it has a series (eq. 4.2, linear Hunt-Crossley; zeta up
         to 100), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
     rtol, atol : float
@@ -623,7 +623,9 @@ class SolverOptions:
     time_steps: int | None = None
 
     def __post_init__(self):
-        _check_choice("method", self.method, METHODS)
+        from .integrators import method_names  # the registry imports the scene: looked up when used
+
+        _check_choice("method", self.method, method_names())
         object.__setattr__(self, "rtol", _check("rtol", self.rtol, RTOL_RANGE, lambda x: 1e-13 <= x <= 1e-2))
         object.__setattr__(self, "atol", _check("atol", self.atol, ATOL_RANGE, lambda x: 1e-16 <= x <= 1e-2))
         step = as_number("max_step", self.max_step)
@@ -641,7 +643,12 @@ class SolverOptions:
 
 
 def __getattr__(name):
-    """Names that moved to :mod:`sphereimpact.tangential`, kept for one release."""
+    """``METHODS``, the method names (computed: registered integrators included); names that moved to
+    :mod:`sphereimpact.tangential`, kept for one release."""
+    if name == "METHODS":
+        from .integrators import method_names
+
+        return method_names()
     moved = {"TANGENTIAL_MODELS": lambda: tuple(TANGENTIALS),
              "TANGENTIAL_RULES": lambda: {p.name: (p.range_text, p.ok) for p in STIFFNESS}}
     if name in moved:

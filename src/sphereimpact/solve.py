@@ -19,21 +19,15 @@ from dataclasses import replace
 
 import numpy as np
 
-from .closed import CLOSED_FORMS
-from .events import ImpactError
-from .laws import LAWS
-from .normal import CONDITIONED_ZETA_MAX, IntegratedNormal, NormalMotion, TaylorNormal, describe_family
+from .errors import BeyondRadiusWarning, ImpactError
+from .integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
+from .normal import NormalMotion, describe_family
 from .outcome import Outcome
-from .scene import DEFAULT_INTEGRATOR, Scene, SolverOptions
-from .taylor import SeriesOverflowError
+from .scene import Scene, SolverOptions
 from .tangential import TANGENTIALS
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
 BODIES = ("reduced", "planar")
-
-
-class BeyondRadiusWarning(UserWarning):
-    """The maximum compression exceeds the ball's radius: the result lies outside the model."""
 
 
 class ReducedMotion:
@@ -72,45 +66,6 @@ class ReducedMotion:
             v_t, omega, u_t = self.tangential.at(t)
         return {"delta": delta, "delta_dot": delta_dot, "vc_t": v_t, "vc_n": -delta_dot,
                 "omega": omega, "u_t": u_t}
-
-
-def resolve_method(scene: Scene, options: SolverOptions) -> SolverOptions:
-    """``options`` with ``auto`` made concrete: the law's closed form if it has one, else the Taylor method
-    if the law has a series and the scene lies in the accuracy contract's domain (damping ratio up to
-    :data:`~sphereimpact.normal.CONDITIONED_ZETA_MAX`; beyond it an explicit method creeps either way and
-    the Runge-Kutta path is the one measured there), else :data:`~sphereimpact.scene.DEFAULT_INTEGRATOR`."""
-    if options.method != "auto":
-        return options
-    if scene.law.closed_form is not None and scene.law.closed_form in CLOSED_FORMS:
-        return replace(options, method="closed")
-    if scene.law.series is not None and scene.family.get("zeta", 0.0) <= CONDITIONED_ZETA_MAX:
-        return replace(options, method="taylor")
-    return replace(options, method=DEFAULT_INTEGRATOR)
-
-
-def normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
-    """The normal motion of ``scene``: its law's closed form for ``method='closed'`` (or ``auto`` on a law
-    that has one), else integrated."""
-    automatic = options.method == "auto"
-    options = resolve_method(scene, options)
-    if options.method == "closed":
-        if scene.law.closed_form is None:
-            closed = ", ".join(name for name, law in LAWS.items() if law.closed_form is not None)
-            raise ValueError(f"method 'closed' needs a law with a closed form ({closed}); got model {scene.model!r}")
-        if scene.law.closed_form not in CLOSED_FORMS:
-            raise ValueError(f"model {scene.model!r} declares closed form {scene.law.closed_form!r}, which is not "
-                             f"one of {', '.join(CLOSED_FORMS)}")
-        return CLOSED_FORMS[scene.law.closed_form](scene)
-    if options.method == "taylor":
-        try:
-            return TaylorNormal(scene, options)
-        except SeriesOverflowError:
-            if not automatic:
-                raise
-            # e.g. lam = 5e299 (a ball of diameter 1e-300): the series overflows where the Runge-Kutta
-            # stages, which never form lam^k, do not
-            return IntegratedNormal(scene, replace(options, method=DEFAULT_INTEGRATOR))
-    return IntegratedNormal(scene, options)
 
 
 def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "reduced",

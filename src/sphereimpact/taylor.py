@@ -34,7 +34,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .dense import is_instant
-from .events import ImpactError
+from .errors import ImpactError, SeriesOverflowError, StepBudgetError
 
 #: lam x at which the ramp band starts: exp(-37) = 8.5e-17, below round-off of 1 - exp(-lam x).
 BAND_EDGE = 37.0
@@ -43,14 +43,6 @@ MAX_STEPS = 100_000
 #: Orders used: at least ORDER_MIN (loose tolerances), at most ORDER_MAX.
 ORDER_MIN, ORDER_MAX = 8, 24
 EPS = float(np.finfo(float).eps)
-
-
-class StepBudgetError(RuntimeError):
-    """The motion needed more than MAX_STEPS steps."""
-
-
-class SeriesOverflowError(ArithmeticError):
-    """The series' coefficients left double precision (a rate such as lam beyond about 1e12)."""
 
 
 def order_for(tol: float) -> int:

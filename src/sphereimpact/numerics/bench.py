@@ -148,7 +148,8 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
     """
     from ..outcome import Outcome
-    from ..solve import ReducedMotion, normal_motion, resolve_method
+    from ..integrators import normal_motion, resolve_method
+    from ..solve import ReducedMotion
 
     rows = []
     default = SolverOptions()

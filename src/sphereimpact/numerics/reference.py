@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
+from ..tangential import impulse_outcome
 
 #: Working precisions [decimal digits] of the Taylor reference and of the solve that bounds its error: both
 #: far beyond float64, and their outputs round to the same doubles.
@@ -71,26 +72,23 @@ class Reference:
 
 
 def outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, rate_f: float) -> dict:
-    """Every output from the normal events (g = 0, friction impulse mu J), by the impulse algebra.
+    """Every output from the normal events (g = 0, friction impulse mu J), by the impulse algebra
+    (:func:`sphereimpact.tangential.impulse_outcome`).
 
     Exact where the force does not pull before separation (always under the force criterion).
     """
     if scene.gravity != 0:
         raise ValueError("outputs from the normal events need gravity = 0")
-    m, alpha = scene.mass, scene.inertia_factor
     vc_n = -rate_f
-    impulse = m * (scene.v_normal + vc_n)
-    vt0 = scene.v_tangent
-    if vt0 == 0:
-        vc_t = omega = 0.0
-    elif scene.mu * (1 + 1 / alpha) * impulse / m >= vt0:  # grips before separating
-        vc_t = vt0 / (1 + alpha)
-        omega = vc_t / scene.radius
+    vt0, spin = scene.v_tangent, scene.spin
+    if vt0 == 0 and spin == 0:
+        vc_t = omega = ve_t = 0.0
     else:
-        vc_t = vt0 - scene.mu * impulse / m
-        omega = scene.mu * impulse / (alpha * m * scene.radius)  # mu R J / I
+        vc_t, omega, slides = (float(x) for x in impulse_outcome(
+            vt0, spin, scene.mass * (scene.v_normal + vc_n), scene.mass, scene.radius, scene.inertia_factor, scene.mu))
+        ve_t = vc_t - omega * scene.radius if slides else 0.0
     return {"t_m": t_m, "delta_m": delta_m, "t_f": t_f, "cor": vc_n / scene.v_normal, "omega_f": omega,
-            "ve_t": vc_t - omega * scene.radius, "vc_t": vc_t, "vc_n": vc_n, "ve_n": vc_n}
+            "ve_t": ve_t, "vc_t": vc_t, "vc_n": vc_n, "ve_n": vc_n}
 
 
 def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float]:

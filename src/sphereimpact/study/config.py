@@ -7,7 +7,9 @@ import math
 import numpy as np
 
 from ..calibrate import calibrate
+from ..integrators import INTEGRATORS
 from ..laws import LAWS, PARAMETER_NAMES
+from ..methods import DEFAULT_INTEGRATOR
 from ..scene import Scene, SolverOptions
 from ..solve import simulate
 
@@ -70,12 +72,11 @@ def solver_options(config: dict) -> SolverOptions:
 
 
 def options_for(config: dict, scene: Scene) -> SolverOptions:
-    """The configured options, except that ``closed`` is used only where the law has a closed form, and
-    ``taylor`` only where it has a series."""
+    """The configured options, except that a method that cannot serve the scene's law (``closed`` without a
+    closed form, ``taylor`` without a series) gives way to the default integrator."""
     options = solver_options(config)
-    if (options.method == "closed" and scene.law.closed_form is None) or (
-            options.method == "taylor" and scene.law.series is None):
-        return SolverOptions(method="DOP853-scalar", rtol=options.rtol, atol=options.atol)
+    if options.method != "auto" and INTEGRATORS[options.method].cannot(scene) is not None:
+        return SolverOptions(method=DEFAULT_INTEGRATOR, rtol=options.rtol, atol=options.atol)
     return options
 
 

@@ -18,7 +18,8 @@ import pandas as pd
 from ..calibrate import calibrate, contact_time
 from ..parsing import parse_range
 from ..scene import Scene
-from ..solve import BeyondRadiusWarning, simulate
+from ..errors import BeyondRadiusWarning
+from ..solve import simulate
 from .config import shared_fields
 
 #: Tension below this fraction of the peak force is round-off, not a pull (as in the replication report).

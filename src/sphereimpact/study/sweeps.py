@@ -10,7 +10,8 @@ import numpy as np
 import pandas as pd
 
 from ..scene import Scene
-from ..solve import BeyondRadiusWarning, simulate
+from ..errors import BeyondRadiusWarning
+from ..solve import simulate
 from ..sweep.engine import grid, parse_range, sweep
 from ..sweep.io import write_table
 from .config import options_for, shared_fields

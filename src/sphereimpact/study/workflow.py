@@ -84,6 +84,7 @@ def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
 _PACKAGE = Path(__file__).resolve().parents[1]
 
 
+@cache
 def _module_file(name: str) -> Path | None:
     """The source file of ``sphereimpact.<...>`` module ``name``, or None outside the package."""
     parts = name.split(".")
@@ -119,9 +120,13 @@ def _imports(path: Path) -> frozenset[str]:
 @cache
 def _closure(module: str) -> tuple[str, ...]:
     seen: set[Path] = set()
+    named: set[str] = set()
     todo = [module]
     while todo:
         name = todo.pop()
+        if name in named:
+            continue
+        named.add(name)
         parts = name.split(".")
         # a module's parent packages run their __init__ first
         for i in range(1, len(parts) + 1):

@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import DOP853
 from scipy.special import wrightomega
 
-from ..events import ImpactError
+from ..errors import ImpactError
 from ..laws import ramp_continued
 
 #: The laws' kernels these lanes integrate (``ContactLaw.kernel``): P_hat = x + 2 zeta y r(lam x).

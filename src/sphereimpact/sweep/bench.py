@@ -32,7 +32,8 @@ from ..numerics.handwritten import handwritten
 from ..numerics.reference import relative_errors
 from ..numerics.timing import interleaved_seconds
 from ..scene import Scene, SolverOptions
-from ..solve import BeyondRadiusWarning, simulate
+from ..errors import BeyondRadiusWarning
+from ..solve import simulate
 from .engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
 
 log = logging.getLogger(__name__)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..events import ImpactError
+from ..errors import ImpactError
 
 #: The ODE these formulas solve (``ContactLaw.closed_form``): the linear spring-damper with the family's zeta.
 CLOSED_FORM = "kelvin-voigt"

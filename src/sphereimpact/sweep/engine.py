@@ -41,16 +41,16 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..events import ImpactError
+from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
 from ..laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..scene import (PATH_RULES, SEPARATION_CRITERIA, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, SolverOptions,
                      check_columns, scale_problem)
 from ..outcome import SCALAR_OUTPUTS
-from ..solve import BeyondRadiusWarning, normal_motion, simulate, simulate_many
-from ..tangential import TANGENTIALS
+from ..solve import normal_motion, simulate, simulate_many
+from ..tangential import TANGENTIALS, impulse_outcome
 from . import batch, closed, plane, series_lanes
-from .similarity import FamilyInterpolant, InterpolationError, LambdaInterpolant, dimensionless_motion
+from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
 #: Scene parameters, with the single-impact defaults for missing columns.
 SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
@@ -68,32 +68,35 @@ GRIP_NEWTON = 5
 #: Scenes solved by the single-impact model per call of :func:`~sphereimpact.solve.simulate_many` (a batched
 #: tangential kernel runs them together; progress is reported after each).
 SINGLES_CHUNK = 100
+#: The ``path`` column's values: which path solved a row's normal motion, in the order the engine tries them
+#: (its tangential outputs follow from the impulse algebra on every path but ``single``).
+PATHS = {
+    "single": "simulate, one impact at a time (gravity on a slope, compliant contact, outside the paths below)",
+    "family-interpolant": "a kernel-less law's interpolant in its last family number",
+    "per-family": "one single-impact solve per dimensionless family, shared by its scenes",
+    "closed": "the linear law's closed-form events",
+    "lambda-interpolant": "eq. 4.2's interpolant in lam at one damping ratio",
+    "plane": "eq. 4.2's interpolant on the (zeta, lam) plane",
+    "taylor-lanes": "batched Taylor-series lanes",
+    "runge-kutta-lanes": "batched Runge-Kutta lanes",
+}
 #: The regime column's values, by index.
 REGIMES = np.array(["none", "sliding", "rolling"], dtype=object)
-#: Fewest scenes sharing (zeta, criterion) for which interpolation beats integrating each (measured for the
-#: chapter's ball: 43 ms against 47 ms at 2000 scenes, 42 against 29 ms at 1000).
+#: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
+#: (zeta, criterion) for the lam interpolant; fewest scenes of one criterion for the (zeta, lam) plane; fewest
+#: distinct values of a kernel-less law's last family number for interpolating in it.
 SIMILARITY_MIN = 2000
-#: Fewest scenes (of one criterion) for which the (zeta, lam) plane beats the Taylor lanes (measured on
-#: random balls, whole sweeps: 17.8 against 16.4 ms at 2000 scenes, 21.3 against 24.9 ms at 4000).
 PLANE_MIN = 3000
-#: Fewest distinct values of a kernel-less law's last family number (scenes sharing its other numbers and
-#: the criterion) for which interpolating in it beats solving each family: a build solves 33 to 129 nodes
-#: one by one (chi v_n of the chapter's ball from 0.5 to 30 m/s: 65 plus a tension piece).
 FAMILY_MIN = 200
-#: Largest damping ratio the batched lanes, the similarity path and the closed form take (the accepted
-#: domain's edge, where their contract is tested); beyond it a lane's steps, bounded by the damping, grow
-#: without bound (an over-damped creep back to delta = 0 under the penetration criterion), so such scenes
-#: are solved one by one.
+#: Largest damping ratio the lanes, the similarity path and the closed form take (the accepted domain's edge,
+#: where their contract is tested); beyond it an over-damped creep makes a lane's steps unbounded.
 LANES_ZETA_MAX = 100.0
-#: Largest lam of eq. 4.2 on the Runge-Kutta lanes: from 1e5 up they lost up to 6e-5 in the COR (lam = 1e6,
-#: penetration criterion, against scipy's DOP853 and the Taylor lanes), so such scenes with gravity or
-#: beyond critical damping are solved one by one.
+#: Largest lam of eq. 4.2 on the Runge-Kutta lanes with gravity or beyond critical damping (beyond it their
+#: COR missed the target against scipy's DOP853); such scenes are solved one by one.
 LANES_LAM_MAX = 1e4
-#: Cost model that chooses between the batched lanes and the single-impact path (measured on eq. 4.2 at
-#: target 1e-8 on a 2-core machine): a batched step costs LANE_STEP_COST [s] however many lanes it carries,
-#: plus LANE_COST per lane (one lane of 21 040 steps took 3.4 s, a thousand took 8.8 s); one impact solved
-#: alone costs SINGLE_COST plus SINGLE_EVAL_COST per evaluation (2.2-2.7 us, then its outcome).  Only the
-#: choice of path depends on it, never a result's accuracy.
+#: Cost model choosing between the batched lanes and single impacts: a batched step costs LANE_STEP_COST [s]
+#: plus LANE_COST per lane; one impact SINGLE_COST plus SINGLE_EVAL_COST per evaluation.  It only chooses a
+#: path, never sets an accuracy.
 LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
 SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
 
@@ -115,8 +118,7 @@ def scene_table(scenes) -> pd.DataFrame:
     columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
     for name in ("modulus", *TANGENTIAL_PARAMETERS, *PATH_RULES):
         columns.setdefault(name, np.full(n, np.nan))
-    # text as object columns: pandas' string dtype costs 0.8 ms per 20 000 rows to build, the rest of a sweep's
-    # overhead together about as much
+    # text as object columns: pandas' string dtype costs as much to build as the rest of a sweep's overhead
     frame = pd.DataFrame({name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
                           else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
     paths = ~np.isnan(frame[list(PATH_RULES)].to_numpy())
@@ -206,8 +208,7 @@ def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
     lane's estimated steps and cost alone [s] (one criterion).
 
     The lanes' cost is paid per step until the slowest lane ends (:data:`LANE_STEP_COST`), so a few slow
-    lanes (an over-damped creep under the penetration criterion: 3.4 s for one scene at zeta 64 that
-    ``simulate`` solves in 11 ms) can cost more than all the others.  The scenes are ordered by estimated
+    lanes (an over-damped creep under the penetration criterion) can cost more than all the others.  The scenes are ordered by estimated
     steps and the slowest move to the single path while that lowers the estimated total.
     """
     order = np.argsort(-steps, kind="stable")
@@ -254,7 +255,7 @@ def _dimensionless(frame: pd.DataFrame) -> dict:
     """Per scene: w = 1 / T (the law's frequency), v_n, gamma, the kernel's zeta and lam, the law's
     closed form and kernel (``batched``: it has one), its similarity family (as a hashable key; laws without a
     kernel only, None otherwise), and the criterion (``force``: the force criterion's).  The masks are
-    compared once here: an elementwise comparison of an object array costs 0.14 ms per 20 000 scenes."""
+    compared once here (an elementwise comparison of an object array is not cheap)."""
     beta = np.radians(incidence(frame))
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
@@ -383,6 +384,7 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
     plane_groups = _plane_groups(d, interpolants)
     planes = _planes(span, plane_groups if span is d else _plane_groups(span, interpolants), target)
     out = {key: np.full(zeta.size, np.nan) for key in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+    path = _objects(zeta.size, "")
     todo = np.ones(zeta.size, bool)
     series = _series_lanes(d)
     groups = _family_groups(d)
@@ -392,17 +394,20 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
         if key in family_interpolants:
             rows = np.array(rows)
             _put(out, rows, family_interpolants[key](np.array([d["family"][i][-1] for i in rows])))
+            path[rows] = "family-interpolant"
             todo[rows] = False
     by_family = np.flatnonzero(~d["batched"] & todo)
     if by_family.size:
         _put(out, by_family, _family_outputs(frame.iloc[by_family], d["family"][by_family],
                                              d["gamma"][by_family], target))
+        path[by_family] = "per-family"
         todo[by_family] = False
     for separation in ("force", "penetration"):
         sep = _criterion(d, separation)
         linear = sep & d["closed"] & (gamma == 0)
         if linear.any():
             _put(out, linear, closed.events(zeta[linear], separation))
+            path[linear] = "closed"
             todo &= ~linear
         for (z, criterion), interpolant in interpolants.items():
             group = np.flatnonzero((criterion == separation) & sep & modified & (gamma == 0) & (zeta == z))
@@ -414,6 +419,7 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
             for start in range(0, group.size, chunk_size):  # evaluated in chunks: memory stays bounded
                 i = group[start:start + chunk_size]
                 _put(out, i, interpolant(lam[i]))
+            path[group] = "lambda-interpolant"
             todo[group] = False
         if separation in planes:
             group = plane_groups[separation]
@@ -427,6 +433,7 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
             for start in range(0, group.size, chunk_size):
                 i = group[start:start + chunk_size]
                 _put(out, i, interpolant(zeta[i], lam[i]))
+            path[group] = "plane"
             todo[group] = False
         rest = np.concatenate([np.flatnonzero(todo & sep & series), np.flatnonzero(todo & sep & ~series)])
         for start in range(0, rest.size, chunk_size):
@@ -434,12 +441,14 @@ def _normal_outputs(d: dict, span: dict, span_frame: pd.DataFrame, target: float
             taylor, runge_kutta = i[series[i]], i[~series[i]]
             if taylor.size:
                 _put(out, taylor, series_lanes.integrate(zeta[taylor], lam[taylor], separation, target))
+                path[taylor] = "taylor-lanes"
             if runge_kutta.size:
                 _put(out, runge_kutta, batch.integrate(zeta[runge_kutta], lam[runge_kutta], gamma[runge_kutta],
                                                        modified[runge_kutta], separation, target))
+                path[runge_kutta] = "runge-kutta-lanes"
             if progress:
                 progress(min(start + chunk_size, rest.size), rest.size)
-    return out
+    return out | {"path": path}
 
 
 def _family_outputs(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float) -> dict:
@@ -493,8 +502,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     -------
     DataFrame
         The scene columns followed by the outputs (in :data:`SWEEP_OUTPUTS`' order; SI units, angles in
-        degrees), one row per scene, in order.  ``t_roll`` is empty (NaN) where the contact point never stops
-        slipping, as ``simulate`` gives None.
+        degrees), one row per scene, in order, then ``path``: which path solved the row (:data:`PATHS`).
+        ``t_roll`` is empty (NaN) where the contact point never stops slipping, as ``simulate`` gives None.
 
     Raises
     ------
@@ -512,7 +521,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     frame = scene_table(scenes)
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
-    regime = _objects(n, "none")
+    regime, path = _objects(n, "none"), _objects(n, "single")
     d_all = _dimensionless(frame)
     whole = frame if span is None else scene_table(span)
     d_whole = d_all if span is None else _dimensionless(whole)
@@ -554,14 +563,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         angle, spin = incidence(part), part["spin"].to_numpy()
         v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
         slip0 = v_t - spin * radius
-        sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
         # friction acts while P > 0, so its impulse is mu J+ with J+ = m v_n (1 - y_p): y_p is the
         # dimensionless rate where P first falls to 0 (at separation if it never pulls); no gravity here
-        impulse = m * v_n * (1.0 - dim["y_p"])
-        slides = mu * (1.0 + 1.0 / alpha) * impulse / m < np.abs(slip0)
-        # gripping ends in rolling with the angular momentum about the contact point kept
-        vc_t = np.where(slides, v_t - sigma * mu * impulse / m, (v_t + alpha * radius * spin) / (1.0 + alpha))
-        omega = np.where(slides, spin + sigma * mu * impulse / (alpha * m * radius), vc_t / radius)  # no R^2
+        vc_t, omega, slides = impulse_outcome(v_t, spin, m * v_n * (1.0 - dim["y_p"]), m, radius, alpha, mu)
         vc_n, ve_t = -dim["y_f"] * v_n, np.where(slides, vc_t - omega * radius, 0.0)
         moving = (v_t != 0) | (spin != 0)  # tangential motion at all
         values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
@@ -579,6 +583,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         for key, value in values.items():
             result[key][rest] = value
         regime[rest] = REGIMES[np.where(~moving, 0, np.where(slides, 1, 2))]
+        path[rest] = dim["path"]
     checked = [key for key in result if key in wanted and key != "t_roll"]
     finite = np.logical_and.reduce([np.isfinite(result[key]) for key in checked]) if checked else np.ones(n, bool)
     if not finite.all():  # never a NaN in a table
@@ -589,7 +594,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
     result["switches"] = result["switches"].astype(np.int64)
     outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
-    return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]]], axis=1)
+    return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]],
+                      pd.DataFrame({"path": pd.Series(path, dtype=object)})], axis=1)
 
 
 def outputs_wanted(outputs) -> set:

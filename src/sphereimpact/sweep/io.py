@@ -2,7 +2,7 @@
 
 CSV floats are written in their shortest round-trip form, so a table read back (pandas or pyarrow) is
 bit-identical to the one written; pyarrow's CSV writer does that about ten times faster than pandas'
-``to_csv`` (measured at 0.6 s against 6.9 s for a 526 581-scene sweep), and writing dominated large sweeps.
+``to_csv``, and writing dominated large sweeps.
 """
 
 from __future__ import annotations

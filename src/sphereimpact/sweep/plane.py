@@ -32,7 +32,8 @@ import numpy as np
 from scipy.fft import dctn
 
 from . import series_lanes
-from .similarity import NODE_FACTOR, NODE_TARGET_MIN, InterpolationError, _lobatto
+from ..errors import InterpolationError
+from .similarity import NODE_FACTOR, NODE_TARGET_MIN, _lobatto
 
 #: Largest zeta the plane takes: towards critical damping the penetration criterion's t_f steepens (x creeps
 #: back to 0) and the calm piece needs ever more nodes in zeta (zeta 0.01 to 0.5, 0.6, 0.8 with lam 1e-3 to
@@ -44,9 +45,7 @@ LAM_MIN, LAM_MAX = 1e-3, 1e6
 #: The tension piece starts at this fraction of the estimated onset v* = pi zeta / (1 + 2.8 zeta).
 ONSET_MARGIN = 0.8
 #: First nodes of each piece in zeta, and in its second number (u or v) per unit of its width and digit of
-#: the target (odd; at least MIN_NODES): measured on random balls (zeta 0.003-0.37, lam 0.08-383) at 1e-8,
-#: where the calm piece's 13 x 49 and the tension piece's 25 x 33 nodes meet the target (errors 7e-11 and
-#: 1.5e-9; one fewer level in either direction of the tension piece misses it).
+#: the target (odd; at least MIN_NODES): the fewest that met 1e-8 on random balls (tests/test_plane.py).
 FIRST_ZETA_NODES = {"calm": 13, "tension": 25}
 NODES_PER_DIGIT = 0.64
 MIN_NODES = 9
@@ -56,8 +55,8 @@ MAX_NODES = 8192
 #: Outputs of each piece.
 CALM = ("tau_m", "x_m", "tau_f", "y_f")
 TENSION = ("tau_f", "y_f")
-#: Points evaluated per matrix product (see :meth:`_Tensor.__call__`): measured fastest of 256-16384 on 2 cores
-#: (6.5 ms for 20 000 points; 2048 and up took twice as long, where OpenBLAS starts a second thread).
+#: Points evaluated per matrix product (see :meth:`_Tensor.__call__`): below the size where OpenBLAS starts
+#: a second thread, which doubled the time.
 EVAL_BLOCK = 1024
 #: A piece is accepted when its tails are below TAIL_FACTOR x target (see the module docstring).
 TAIL_FACTOR = 1.0

@@ -36,6 +36,7 @@ from numpy.polynomial.chebyshev import chebval
 from scipy.fft import dct
 from scipy.optimize import brentq
 
+from ..errors import InterpolationError
 from ..scene import Scene, SolverOptions
 from ..solve import normal_motion
 from ..tangential import PositiveImpulse
@@ -46,8 +47,7 @@ OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 SMOOTH = ("tau_m", "x_m", "tau_f", "y_f")
 #: The first check compares n nodes with their n - 1 midpoints (one solve), n = 2^k + 1 from
 #: NODES_PER_DIGIT x (width in u) x (digits asked of the check), and at least FIRST_NODES: the outputs are
-#: analytic in u, so the nodes needed grow with both.  Measured at target 1e-8 (9 digits): the whole
-#: range of the chapter's ball (u-width 8.2) needs 65, the tension piece (2.7) 17.
+#: analytic in u, so the nodes needed grow with both.
 NODES_PER_DIGIT = 0.7
 FIRST_NODES = 17
 MAX_NODES = 513
@@ -57,10 +57,6 @@ MAX_NODES = 513
 #: target, and interpolation plus nodes below 0.14 target.
 NODE_FACTOR = 0.1
 NODE_TARGET_MIN = 1e-13
-
-
-class InterpolationError(ValueError):
-    """The Chebyshev check failed with MAX_NODES nodes (the caller then integrates scene by scene)."""
 
 
 def _lobatto(a: float, b: float, n: int) -> np.ndarray:

@@ -26,7 +26,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..dense import SMALL, is_instant
-from ..events import ImpactError, first_root, roots
+from ..errors import ImpactError
+from ..events import first_root, roots
 from ..normal import NormalMotion
 from .base import TANGENTIALS, TangentialModel
 
@@ -82,6 +83,35 @@ def from_impulse(scene, p, dt, impulse, integral=None):
     if integral is None:
         return v, omega
     return v, omega, p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt + integral / s.mass
+
+
+def impulse_outcome(v_t, spin, impulse, mass, radius, alpha, mu):
+    """The rigid contact's end state from the friction-carrying normal impulse alone (no gravity along the
+    flat): the one impulse algebra of the single impact's references and the sweep's fast paths.
+
+    The contact slides throughout when mu (1 + 1/alpha) J+ / m < |s0| (s0 = v_t - spin R, its first slip);
+    otherwise it grips and rolls with the angular momentum about the contact point kept.
+
+    Parameters
+    ----------
+    v_t, spin : float or array
+        Incoming tangential velocity of the centre [m/s] and spin [rad/s].
+    impulse : float or array
+        J+, the integral of the positive normal force over the contact [N s].
+    mass, radius, alpha, mu : float or array
+        Ball mass [kg], radius [m], inertia factor I / (m R^2) and friction coefficient.
+
+    Returns
+    -------
+    vc_t, omega, slides : arrays
+        Rebound tangential velocity [m/s], spin [rad/s], and whether the contact slid throughout.
+    """
+    slip0 = np.asarray(v_t - spin * radius)
+    sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
+    slides = mu * (1.0 + 1.0 / alpha) * impulse / mass < np.abs(slip0)
+    vc_t = np.where(slides, v_t - sigma * mu * impulse / mass, (v_t + alpha * radius * spin) / (1.0 + alpha))
+    omega = np.where(slides, spin + sigma * mu * impulse / (alpha * mass * radius), vc_t / radius)  # no R^2
+    return vc_t, omega, slides
 
 
 def _at(f, t) -> np.ndarray:

@@ -54,7 +54,8 @@ import numpy as np
 
 from .. import dop853
 from ..dense import is_instant
-from ..events import ImpactError, first_root
+from ..errors import ImpactError
+from ..events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
 from ..normal import NormalMotion
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel

@@ -1,0 +1,60 @@
+"""The integrators of the normal motion: a registry of definitions, one file each, and the choice ``auto``.
+
+``INTEGRATORS.register(Integrator(...))`` adds one; :func:`choose` and :func:`normal_motion` serve it to
+``simulate``, the sweep's single impacts and the command line's ``--method``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from .base import INTEGRATORS, Integrator
+from . import closed, taylor, runge_kutta  # noqa: F401,E402  (registration order: the help's order)
+
+__all__ = ["AUTO_ORDER", "INTEGRATORS", "Integrator", "choose", "method_names", "normal_motion", "resolve_method"]
+
+#: What ``auto`` tries, in order: the first that can serve the scene and does not decline it (exact first,
+#: then the cheapest at equal accuracy in the work-precision study).
+AUTO_ORDER = ("closed", "taylor", "DOP853-scalar")
+
+
+def method_names() -> tuple:
+    """Every name ``SolverOptions.method`` accepts: ``auto`` and the registered integrators."""
+    return ("auto", *INTEGRATORS)
+
+
+def choose(scene, options):
+    """The integrators that will serve ``scene`` under ``options``, in the order to try them.
+
+    An explicit method is the only candidate, and one that cannot serve the scene is refused
+    (``ValueError`` naming it and why); ``auto`` lists the :data:`AUTO_ORDER` integrators that can serve it
+    and do not decline it.
+    """
+    if options.method != "auto":
+        integrator = INTEGRATORS.named(options.method)
+        reason = integrator.cannot(scene)
+        if reason is not None:
+            raise ValueError(f"method {integrator.name!r} {reason}")
+        return [integrator]
+    return [INTEGRATORS[name] for name in AUTO_ORDER
+            if INTEGRATORS[name].cannot(scene) is None and INTEGRATORS[name].declines(scene) is None]
+
+
+def resolve_method(scene, options):
+    """``options`` with ``auto`` made concrete: the first integrator :func:`choose` offers."""
+    if options.method != "auto":
+        return options
+    return replace(options, method=choose(scene, options)[0].name)
+
+
+def normal_motion(scene, options):
+    """The normal motion of ``scene`` by ``options.method``; under ``auto`` an integrator whose arithmetic
+    overflows (``Integrator.overflows``: the Taylor series at lam = 5e299, say) hands over to the next."""
+    candidates = choose(scene, options)
+    for i, integrator in enumerate(candidates):
+        try:
+            return integrator.solve(scene, replace(options, method=integrator.name))
+        except integrator.overflows:
+            if options.method != "auto" or i == len(candidates) - 1:
+                raise
+    raise AssertionError("unreachable: auto always has an integrator that serves the scene")

@@ -1,0 +1,51 @@
+"""What an integrator of the normal motion is: a name, the scenes it can serve, and how it solves one."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from ..registry import Registry
+
+
+def _always(scene) -> None:
+    return None
+
+
+@dataclass(frozen=True)
+class Integrator:
+    """One way of solving a scene's normal motion into a :class:`~sphereimpact.normal.NormalMotion`.
+
+    Parameters
+    ----------
+    name : str
+        What users give as ``SolverOptions.method`` and ``--method``.
+    summary : str
+        One line for the documentation: the algorithm and where it applies.
+    solve : callable
+        ``solve(scene, options) -> NormalMotion``.
+    cannot : callable
+        ``cannot(scene) -> str | None``: why this integrator cannot serve ``scene`` (a phrase that follows
+        "method 'NAME'"), None when it can.
+    declines : callable
+        ``declines(scene) -> str | None``: why ``auto`` passes it by on a scene it can serve (outside the
+        domain its accuracy was measured on), None when ``auto`` takes it.
+    overflows : tuple of exception types
+        Failures after which ``auto`` moves on to the next integrator (the result lies beyond this one's
+        arithmetic, not beyond the model).
+    ivp : str or None
+        The :func:`scipy.integrate.solve_ivp` method that runs this algorithm where a plain-float or
+        reduced-only path cannot (the planar body, naive formulations); None: the reduced body only.
+    """
+
+    name: str
+    summary: str
+    solve: Callable
+    cannot: Callable = _always
+    declines: Callable = _always
+    overflows: tuple = ()
+    ivp: str | None = None
+
+
+#: The integrators by name, in registration order (the order of ``--method``'s help).
+INTEGRATORS = Registry(Integrator, "integrator", "method")
