@@ -131,6 +131,23 @@ def _digests(root: Path) -> dict:
             for p in sorted(root.rglob("*")) if p.is_file()}
 
 
+def _column_changes(old_path: Path, new_path: Path) -> None:
+    """Print which columns of a table were added, removed or changed."""
+    try:
+        old, new = pd.read_csv(old_path), pd.read_csv(new_path)
+    except (ValueError, pd.errors.ParserError):  # not a table (an error message)
+        return
+    common = [c for c in old.columns if c in new.columns]
+    differ = [c for c in common if len(old) != len(new) or not old[c].equals(new[c])]
+    for label, cols in (("columns added", [c for c in new.columns if c not in old.columns]),
+                        ("columns removed", [c for c in old.columns if c not in new.columns]),
+                        ("columns changed", differ)):
+        if cols:
+            print(f"  {label}: {', '.join(cols)}")
+    if not differ:
+        print(f"  the other {len(common)} columns identical")
+
+
 def compare(before: Path, after: Path) -> int:
     """Print what differs between two records; 0 when they are identical, 1 otherwise."""
     a, b = _digests(before), _digests(after)
@@ -141,6 +158,8 @@ def compare(before: Path, after: Path) -> int:
     for label, names in (("differ", changed), ("only before", missing), ("only after", added)):
         for name in names:
             print(f"{label}: {name}")
+            if label == "differ" and name.endswith(".csv"):
+                _column_changes(before / name, after / name)
     if "simulate.json" in changed:
         old, new = (json.loads((root / "simulate.json").read_text()) for root in (before, after))
         for key in old:
