@@ -251,14 +251,162 @@ class _DimensionlessNormal(NormalMotion):
         return z[0] * self._d_scale, z[1] * self._v
 
 
+class _Run:
+    """The dimensionless normal ODE x' = y, y' = -P / (m omega v) + gamma as one integrator runs it: the
+    right-hand side under the evaluation budget (:data:`MAX_NFEV`), the events, the conditioned tolerances and
+    the method (``DOP853-scalar``: :mod:`sphereimpact.dop853` on the law's scalar formula; else
+    :func:`scipy.integrate.solve_ivp`)."""
+
+    def __init__(self, scene: Scene, options: SolverOptions):
+        self.scene = scene
+        self.w, self.v = w, v = scene.frequency, scene.v_normal
+        self.d_scale = d_scale = v / w
+        gamma, p_scale = scene.g_normal / (w * v), scene.mass * w * v
+        law = scene.stage_force  # smooth past separation: the crossing step stays accurate
+        scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
+        # DOP853-scalar needs the law's scalar formula; without one, scipy's DOP853 is the same algorithm
+        method = DEFAULT_INTEGRATOR if options.method == "auto" else options.method  # auto, when integrated
+        self.method = ivp_method(method) if scalar is None else method
+        sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
+        calls = [0]
+
+        def rhs(tau, z):
+            calls[0] += 1
+            if calls[0] > MAX_NFEV:
+                raise _Budget
+            x, y = float(z[0]), float(z[1])
+            force = scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v)
+            return [y, -force / p_scale + gamma]
+
+        def force(z):  # the law, continued past separation, at a dimensionless state [N]
+            x, y = float(z[0]), float(z[1])
+            return float(scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v))
+
+        def max_compression(tau, z):
+            return z[1]
+
+        def separation(tau, z):
+            return sep(z[0] * d_scale, z[1] * v)
+
+        max_compression.direction = -1
+        separation.direction = -1
+        separation.terminal = True
+        self.rhs, self.force, self.max_compression, self.separation = rhs, force, max_compression, separation
+        self.end = horizon(scene) * w
+        self.rtol, self.atol = conditioned_tolerances(scene, options)
+        self.max_step = min(options.max_step * w, conditioned_step(scene))
+
+    def integrate(self, span, z0, max_step, events, first_step=None):
+        """One solver run over ``span`` (tau) from ``z0``; ImpactError past the budget or on overflow."""
+        try:
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                if self.method == "DOP853-scalar":
+                    sol = dop853.solve(self.rhs, span, z0, self.rtol, self.atol, max_step=max_step, events=events,
+                                       first_step=first_step)
+                else:
+                    sol = solve_ivp(self.rhs, span, z0, method=self.method, rtol=self.rtol, atol=self.atol,
+                                    dense_output=True, max_step=max_step, events=events, first_step=first_step)
+        except OverflowError:  # float arithmetic (x ** n) raises where numpy returns inf
+            raise ImpactError(f"the contact force overflows ({describe_family(self.scene)}method {self.method}): "
+                              "the scene lies outside what the solver resolves") from None
+        except _Budget:
+            scene = self.scene
+            raise ImpactError(
+                f"no separation within {MAX_NFEV:.0e} right-hand-side evaluations (method {self.method}; "
+                f"{describe_family(scene)}criterion '{scene.separation}'): the contact is too stiff or too slow to "
+                "end" + (": an over-damped contact returns to delta = 0 slowly if ever, try --separation force"
+                         if scene.separation == "penetration" else "")) from None
+        if sol.status == -1:
+            raise ImpactError(f"solver {self.method} failed: {sol.message}")
+        return sol
+
+
+class _RampBand:
+    """Eq. 4.2's ramp band as a step policy (see :data:`BAND_RESTART`): a terminal event where restitution
+    enters the band, and the bounded steps the integration restarts with there.
+
+    ``lam`` is the ramp's rate in the dimensionless compression, u = lam x.
+    """
+
+    def __init__(self, lam: float):
+        self.lam = lam
+
+        def band_exit(tau, z):  # falls through 0 once in restitution inside the band
+            return max(lam * z[0] - BAND_RESTART, z[1])
+
+        band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
+        self.event = band_exit
+
+    @classmethod
+    def of(cls, scene: Scene, d_scale: float):
+        """The band of ``scene``'s law, or None when it has no ramp (or its rate underflowed to 0: an elastic
+        contact)."""
+        rate = scene.law.ramp_rate
+        lam = None if rate is None else rate(scene) * d_scale
+        return None if lam is None or lam == 0.0 else cls(lam)
+
+    def step(self, max_step: float, z0) -> float:
+        """The largest step [tau] inside the band from state ``z0``."""
+        return min(max_step, BAND_STEP / (self.lam * max(abs(z0[1]), BAND_SPEED)))
+
+    def restitution(self, run: _Run, sol):
+        """The restitution from the band event on, integrated with bounded steps (None when the first run
+        separated before reaching it); returns (that solution, its step bound)."""
+        if not len(sol.t_events[2]) or len(sol.t_events[1]):
+            return None, run.max_step
+        start, z0 = float(sol.t_events[2][0]), sol.y_events[2][0]
+        step = self.step(run.max_step, z0)
+        # go on with the step the first part had reached, not scipy's estimate from a standing start
+        first = min(step, float(sol.t[-2] - sol.t[-3])) if len(sol.t) >= 3 else None
+        return run.integrate((start, run.end), z0, step, (run.separation,), first), step
+
+    def max_compression(self, sol, t_m):
+        """t_m's event times: where the band event fired at maximum compression (its function is delta_dot
+        there) and its root came first, that root."""
+        if not len(t_m) and self.lam * sol.y_events[2][0][0] < BAND_RESTART:
+            return sol.t_events[2]
+        return t_m
+
+
+def _land(run: _Run, dense, tau_f: float, cap: float, on_delta: bool):
+    """The step that ends exactly at separation, and t_f corrected on it (a step policy).
+
+    The state at separation comes from a step that ends at t_f, not from the crossing step's interpolant,
+    which is one order lower and not error-controlled (on a Hertz spring's continuation it erred by 1.4e-7 in
+    the COR).  The root itself was found on that interpolant; where the separation function is a small
+    difference of large terms (over-damped under the force criterion) Newton's method on the landed state
+    corrects it, landing again while a correction exceeds the tolerance (at most :data:`LANDINGS` times; not
+    for the :data:`MULTISTEP` methods).  Returns (last run, tau_f, its evaluations).
+    """
+    tau_k, crossing, tau_end = float(dense.ts[-2]), dense, _step_end(dense)
+    nfev = 0
+
+    def ending(z):  # the separation function, smooth through its root: delta, or the continued force
+        return float(z[0]) if on_delta else run.force(z)
+
+    for attempt in range(LANDINGS):
+        tail = run.integrate((tau_k, tau_f), dense(tau_k), cap, (), first_step=tau_f - tau_k if tau_f > tau_k else None)
+        nfev += tail.nfev
+        h = 1e-6 * (tau_end - tau_k)
+        slope = (ending(crossing(min(tau_f + h, tau_end))) - ending(crossing(max(tau_f - h, tau_k)))) / (
+            min(tau_f + h, tau_end) - max(tau_f - h, tau_k))
+        correction = -ending(tail.y[:, -1]) / slope if slope != 0 else 0.0
+        if not abs(correction) > run.rtol * tau_f or attempt == LANDINGS - 1 or run.method in MULTISTEP:
+            break
+        tau_f = min(max(tau_f + correction, tau_k), tau_end)
+    return tail, tau_f, nfev
+
+
 class IntegratedNormal(_DimensionlessNormal):
-    """Normal motion integrated with :func:`scipy.integrate.solve_ivp`.
+    """Normal motion integrated by DOP853 in plain floats or a :func:`scipy.integrate.solve_ivp` method: one
+    run to separation (:class:`_Run`), restarted with bounded steps in the ramp band (:class:`_RampBand`),
+    then landed on t_f (:func:`_land`).
 
     Parameters
     ----------
     scene : Scene
     options : SolverOptions
-        ``method`` must be a solve_ivp method (not ``closed``).
+        ``method`` must be a solve_ivp method or ``DOP853-scalar`` (not ``closed``).
 
     Raises
     ------
@@ -270,96 +418,21 @@ class IntegratedNormal(_DimensionlessNormal):
         if options.method == "closed":
             raise ValueError("method 'closed' is not a solve_ivp method")
         self.scene = scene
-        w, v = scene.frequency, scene.v_normal
-        d_scale, gamma = v / w, scene.g_normal / (w * v)
-        p_scale = scene.mass * w * v
-        law = scene.stage_force  # smooth past separation: the crossing step stays accurate
-        scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
-        # DOP853-scalar needs the law's scalar formula; without one, scipy's DOP853 is the same algorithm
-        method = DEFAULT_INTEGRATOR if options.method == "auto" else options.method  # auto, when integrated
-        if scalar is None:
-            method = ivp_method(method)
-        sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
-
-        calls = [0]
-
-        def rhs(tau, z):
-            calls[0] += 1
-            if calls[0] > MAX_NFEV:
-                raise _Budget
-            x, y = float(z[0]), float(z[1])
-            force = scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v)
-            return [y, -force / p_scale + gamma]
-
-        def max_compression(tau, z):
-            return z[1]
-
-        def separation(tau, z):
-            return sep(z[0] * d_scale, z[1] * v)
-
-        max_compression.direction = -1
-        separation.direction = -1
-        separation.terminal = True
-
-        ramp_rate = scene.law.ramp_rate
-        lam = None if ramp_rate is None else ramp_rate(scene) * d_scale  # u = lam x in the ramp band
-        if lam == 0.0:  # underflowed: the ramp is 0 throughout (an elastic contact), no band to resolve
-            lam = None
-        events = [max_compression, separation]
-        if lam is not None:
-            def band_exit(tau, z):  # falls through 0 once in restitution inside the band
-                return max(lam * z[0] - BAND_RESTART, z[1])
-
-            band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
-            events.append(band_exit)
-        end = horizon(scene) * w
-        rtol, atol = conditioned_tolerances(scene, options)
-        max_step = min(options.max_step * w, conditioned_step(scene))
-
-        def integrate(span, z0, max_step, events, first_step=None):
-            try:
-                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                    if method == "DOP853-scalar":
-                        return dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events,
-                                            first_step=first_step)
-                    return solve_ivp(rhs, span, z0, method=method, rtol=rtol, atol=atol, dense_output=True,
-                                     max_step=max_step, events=events, first_step=first_step)
-            except OverflowError:  # float arithmetic (x ** n) raises where numpy returns inf
-                raise ImpactError(f"the contact force overflows ({describe_family(scene)}method {method}): the "
-                                  "scene lies outside what the solver resolves") from None
-
-        budget = ImpactError(
-            f"no separation within {MAX_NFEV:.0e} right-hand-side evaluations (method {method}; "
-            f"{describe_family(scene)}criterion '{scene.separation}'): the contact is too stiff or too slow to end"
-            + (": an over-damped contact returns to delta = 0 slowly if ever, try --separation force"
-               if scene.separation == "penetration" else ""))
-        try:  # overflow in an absurd scene (b = 1e300) is reported by the checks below, not as a warning
-            sol = integrate((0.0, end), [0.0, 1.0], max_step, events)
-        except _Budget:
-            raise budget from None
-        self._check_status(sol, method)
-        rest = None  # restitution inside the ramp band, integrated with bounded steps
-        if lam is not None and len(sol.t_events[2]) and not len(sol.t_events[1]):
-            start, z0 = float(sol.t_events[2][0]), sol.y_events[2][0]
-            step = min(max_step, BAND_STEP / (lam * max(abs(z0[1]), BAND_SPEED)))
-            # go on with the step the first part had reached, not scipy's estimate from a standing start
-            first = min(step, float(sol.t[-2] - sol.t[-3])) if len(sol.t) >= 3 else None
-            try:
-                rest = integrate((start, end), z0, step, (separation,), first)
-            except _Budget:
-                raise budget from None
-            self._check_status(rest, method)
+        run = _Run(scene, options)
+        band = _RampBand.of(scene, run.d_scale)
+        events = [run.max_compression, run.separation] + ([band.event] if band is not None else [])
+        # overflow in an absurd scene (b = 1e300) is reported by the checks below, not as a warning
+        sol = run.integrate((0.0, run.end), [0.0, 1.0], run.max_step, events)
+        rest, cap = (None, run.max_step) if band is None else band.restitution(run, sol)
         final, at = (sol, 1) if rest is None else (rest, 0)  # where the separation event is
         t_m, t_f = sol.t_events[0], final.t_events[at]
-        if not len(t_m) and rest is not None and lam * sol.y_events[2][0][0] < BAND_RESTART:
-            # the band event fired at maximum compression (its function is delta_dot there) and its root
-            # came first: that root is t_m
-            t_m = sol.t_events[2]
+        if rest is not None:
+            t_m = band.max_compression(sol, t_m)
         if final.status == 0 or len(t_f) == 0:
             raise ImpactError(no_separation_message(scene, horizon(scene)))
         if len(t_m) == 0:
             raise ImpactError(f"separation found before maximum compression ({describe_family(scene)}method "
-                              f"{method}, rtol {options.rtol:g}): an event was missed (tighten the tolerance), "
+                              f"{run.method}, rtol {options.rtol:g}): an event was missed (tighten the tolerance), "
                               "or the damping stops the ball within round-off of first touch (beyond what the "
                               "solver resolves)")
         nfev, dense, steps = sol.nfev, fast_solution(sol.sol), sol.t
@@ -367,58 +440,21 @@ class IntegratedNormal(_DimensionlessNormal):
             nfev += rest.nfev
             dense = _join(dense, fast_solution(rest.sol))
             steps = np.concatenate([sol.t[:-1], rest.t])
-        # The state at separation comes from a step that ends exactly at t_f, not from the crossing step's
-        # interpolant: that interpolant is one order lower and its error is not controlled.  Read at t_f it
-        # erred by 1.4e-7 on the COR past a Hertz spring's C^1 continuation (Hunt-Crossley, chi v_n = 0.925,
-        # rtol 1e-10), and by 7.4e-10 (against 5e-11 on t_f) on a smooth linear Hunt-Crossley contact.  The
-        # last step is integrated again from its start, in one step of its known length (16 evaluations with
-        # its dense output).
-        # The root itself was found on that interpolant.  Where the separation function is a small
-        # difference of large terms (over-damped under the force criterion, P = x + 2 zeta y r) its error
-        # moved t_f by 2.2e-8 at zeta 100, lam 150: Newton's method on the landed state corrects it, with the
-        # slope from the interpolant, landing again while a correction exceeds the tolerance integrated to.
-        tau_k, tau_f = float(dense.ts[-2]), float(t_f[0])
-        crossing, tau_end = dense, _step_end(dense)
+        tau_f = float(t_f[0])
         x_m = float(sol.y_events[0][0][0]) if len(sol.y_events[0]) else 1.0
-        on_delta = scene.separation == "penetration" or abs(float(crossing(tau_f)[0])) <= LANDING_DELTA * x_m
-
-        def ending(z):  # the separation function, smooth through its root: delta, or the continued force
-            x, y = float(z[0]), float(z[1])
-            if on_delta:
-                return x
-            return float(scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v))
-
-        cap = step if rest is not None else max_step
-        for attempt in range(LANDINGS):
-            try:
-                tail = integrate((tau_k, tau_f), dense(tau_k), cap, (),
-                                 first_step=tau_f - tau_k if tau_f > tau_k else None)
-            except _Budget:
-                raise budget from None
-            self._check_status(tail, method)
-            nfev += tail.nfev
-            h = 1e-6 * (tau_end - tau_k)
-            slope = (ending(crossing(min(tau_f + h, tau_end))) - ending(crossing(max(tau_f - h, tau_k)))) / (
-                min(tau_f + h, tau_end) - max(tau_f - h, tau_k))
-            correction = -ending(tail.y[:, -1]) / slope if slope != 0 else 0.0
-            if not abs(correction) > rtol * tau_f or attempt == LANDINGS - 1 or method in MULTISTEP:
-                break
-            tau_f = min(max(tau_f + correction, tau_k), tau_end)
+        on_delta = scene.separation == "penetration" or abs(float(dense(tau_f)[0])) <= LANDING_DELTA * x_m
+        tail, tau_f, landing = _land(run, dense, tau_f, cap, on_delta)
+        nfev += landing
         dense = _join(dense, fast_solution(tail.sol))
         steps = np.concatenate([steps[:-1], tail.t[1:]])
         rate_f = float(tail.y[1, -1])
-        check_rebound(scene, options, rate_f * v)
-        self._sol, self._w, self._d_scale, self._v = dense, w, d_scale, v
-        self.t_m = float(t_m[0]) / w
-        self.t_f = tau_f / w
-        grid = substep_grid(steps / w)
+        check_rebound(scene, options, rate_f * run.v)
+        self._sol, self._w, self._d_scale, self._v = dense, run.w, run.d_scale, run.v
+        self.t_m = float(t_m[0]) / run.w
+        self.t_f = tau_f / run.w
+        grid = substep_grid(steps / run.w)
         self.grid = np.append(grid[grid < self.t_f], self.t_f)
-        self.stats = {"method": method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
-
-    @staticmethod
-    def _check_status(sol, method: str) -> None:
-        if sol.status == -1:
-            raise ImpactError(f"solver {method} failed: {sol.message}")
+        self.stats = {"method": run.method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
 
 
 class TaylorNormal(_DimensionlessNormal):
