@@ -1,10 +1,19 @@
 """Shared helpers for the tests."""
 
 import math
+import os
+import shutil
+import subprocess
+from pathlib import Path
 
 from sphereimpact import SolverOptions
 from sphereimpact.numerics.reference import output_scales
 
+ROOT = Path(__file__).resolve().parents[1]
+#: The small configuration the pipeline tests run on.
+TEST_CONFIG = "config/test.yaml"
+#: What a copy of the project for a pipeline test leaves out.
+IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
 #: Tight options for comparisons at the 1e-9 level.
 TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)
 
@@ -27,3 +36,21 @@ def pytest_collection_modifyitems(items):
     """The pipeline tests first: run in parallel by file (pyproject's ``-n 2 --dist loadfile``), their
     long module fixture (the test pipeline) then overlaps the unit tests on the other worker."""
     items.sort(key=lambda item: item.path.name != "test_workflow.py")
+
+
+def project_copy(work: Path) -> Path:
+    """A copy of what the pipeline needs (Snakefile, workflow, config, notebooks, src, data) in ``work``."""
+    for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
+        src = ROOT / item
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
+                                                            **({"ignore": IGNORE} if src.is_dir() else {}))
+    return work
+
+
+def snakemake(cwd, *args, configfiles=(), path=()):
+    """Run snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
+    copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path."""
+    env = os.environ | {"PYTHONPATH": os.pathsep.join([*map(str, path), str(Path(cwd) / "src")])}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # the copy's bytecode, compiled once, serves its ~50 job processes
+    return subprocess.run(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
+                          capture_output=True, text=True, env=env)

@@ -8,15 +8,15 @@ import hashlib
 import os
 import re
 import shutil
-import subprocess
 import time
 from pathlib import Path
 
 import pytest
 from matplotlib.testing.compare import compare_images
 
+from conftest import project_copy, snakemake
+
 ROOT = Path(__file__).resolve().parents[1]
-TEST_CONFIG = "config/test.yaml"
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
            "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
@@ -36,21 +36,11 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
              for ext in ("csv", "json")]]
 #: Pixel tolerance (RMS on 0-255) for the committed figures: fonts and anti-aliasing only.
 FIGURE_TOLERANCE = 2.0
-IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
 #: Rules whose jobs are timed and so run alone (``threads: workflow.cores``): the test's small run lets them
 #: share the machine, since its timings are not read.
 TIMED_RULES = ("work_precision", "bench", "bench_sweep", "microslip_resolution")
 #: Rules whose jobs are benchmarks or heavy studies.
 HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution")
-
-
-def snakemake(cwd, *args, configfiles=(), path=()):
-    """Run snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
-    copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path."""
-    env = os.environ | {"PYTHONPATH": os.pathsep.join([*map(str, path), str(Path(cwd) / "src")])}
-    env.pop("PYTHONDONTWRITEBYTECODE", None)  # the copy's bytecode, compiled once, serves its ~50 job processes
-    return subprocess.run(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
-                          capture_output=True, text=True, env=env)
 
 
 def planned(run) -> dict:
@@ -60,11 +50,7 @@ def planned(run) -> dict:
 
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):
-    work = tmp_path_factory.mktemp("pipeline")
-    for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
-        src = ROOT / item
-        (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
-                                                            **({"ignore": IGNORE} if src.is_dir() else {}))
+    work = project_copy(tmp_path_factory.mktemp("pipeline"))
     run = snakemake(work, "--set-threads", *[f"{rule}=1" for rule in TIMED_RULES])
     assert run.returncode == 0, run.stderr[-3000:]
     return work
@@ -148,17 +134,6 @@ def test_editing_the_physics_reruns_what_uses_it(scratch):
     assert {"work_precision", "stability", "bench", "sweep_shard", "speed_table", "bench_sweep"} <= set(jobs)
 
 
-def test_bad_config_stops_before_any_job(workdir):
-    """Every config check is tabulated, without snakemake, in tests/test_inputs.py; here, that they run, each
-    problem named (the schema's, the non-finite numbers that pass every schema bound) and no job planned."""
-    run = snakemake(workdir, "-n", "--config", "mass=-1", "colour=red", "ramp=nan", "damping=-inf")
-    text = run.stdout + run.stderr
-    assert run.returncode != 0 and "config key mass: -1 is less than or equal to the minimum of 0" in text
-    assert "'colour' was unexpected" in text and "Job stats" not in text
-    assert "config key ramp: nan is not a finite number" in text
-    assert "config key damping: -inf is not a finite number" in text
-
-
 def test_a_failing_job_writes_its_traceback_to_its_log(scratch):
     (scratch / "results/runs/normal_modified.csv").write_text("not,a,run\n1,2,3\n")  # a corrupted input
     run = snakemake(scratch, "paper_figures/fig4_2.png", "--forcerun", "figure")
@@ -167,28 +142,12 @@ def test_a_failing_job_writes_its_traceback_to_its_log(scratch):
     assert "Traceback (most recent call last)" in log and "KeyError: 'separation'" in log
 
 
-def test_an_off_grid_map_speed_is_refused_before_any_job(workdir, tmp_path):
-    import yaml
-
-    sweep = yaml.safe_load((workdir / TEST_CONFIG).read_text())["sweep"]
-    off_grid = tmp_path / "off_grid.yaml"  # a config file replaces whole sections: give all of `sweep`
-    off_grid.write_text(yaml.safe_dump({"sweep": sweep | {"map_speed": 2.0}}))
-    run = snakemake(workdir, "-n", configfiles=[str(off_grid)])
-    assert run.returncode != 0
-    assert "config key sweep.map_speed: 2.0 is not on the speed grid '1:5:2'" in run.stdout + run.stderr
-
-
 def test_html_report_has_every_figure_and_table(scratch):
     run = snakemake(scratch, "--report", "results/report.html")
     assert run.returncode == 0, run.stderr[-2000:]
     html = (scratch / "results/report.html").read_text(errors="replace")
     for name in ["fig4_7.png", "work_precision.png", "spin_map.png", "replication.csv", "bench_sweep.csv"]:
         assert name in html, name
-
-
-def test_lint_is_clean(workdir):
-    run = subprocess.run(["snakemake", "--lint"], cwd=workdir, capture_output=True, text=True)
-    assert run.returncode == 0 and "Congratulations" in run.stdout + run.stderr, run.stdout + run.stderr
 
 
 @pytest.mark.parametrize("name", FIGURES)
@@ -213,19 +172,6 @@ def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
     whole = tmp_path / "whole.csv"
     write_table(sweep(angle_speed_scenes(config), target=config["sweep"]["target"]), str(whole))
     assert (workdir / "results/sweep/angle_speed.csv").read_bytes() == whole.read_bytes()
-
-
-def test_slurm_profile_dry_run_parses_without_matplotlib(workdir, tmp_path):
-    """The cluster profile plans every job (where the SLURM executor plugin is installed), and planning
-    imports no drawing code (a matplotlib that refuses to import is first on the path)."""
-    pytest.importorskip("snakemake_executor_plugin_slurm")
-    blocker = tmp_path / "blocker" / "matplotlib"
-    blocker.mkdir(parents=True)
-    (blocker / "__init__.py").write_text("raise ImportError('matplotlib imported while parsing the Snakefile')\n")
-    run = snakemake(workdir, "-n", "--forceall", "--profile", "workflow/profiles/slurm", path=[blocker.parent])
-    text = run.stdout + run.stderr
-    assert run.returncode == 0, text[-2000:]
-    assert re.search(r"^sweep_shard\s+2$", text, re.M)
 
 
 def test_an_own_study_writes_only_its_own_files(scratch, tmp_path):
