@@ -595,9 +595,9 @@ class SolverOptions:
     Parameters
     ----------
     method : str
-        ``auto`` or a registered integrator (:data:`sphereimpact.integrators.INTEGRATORS`).  ``auto``: the law's closed form if it has one (kelvin-voigt: exact, and
-        the cheapest), else the Taylor method if it has a series (eq. 4.2, linear Hunt-Crossley; zeta up
-        to 100), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
+        ``auto`` or a registered integrator (:data:`sphereimpact.integrators.INTEGRATORS`).  ``auto``: the
+        law's closed form if it has one (kelvin-voigt: exact, and the cheapest), else the Taylor method if it
+        has a series (eq. 4.2, linear Hunt-Crossley; zeta up to 100), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
     rtol, atol : float
         Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`, rtol in [1e-13, 1e-2] and
         atol in [1e-16, 1e-2].

@@ -124,8 +124,9 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
 
 def reference(scene: Scene) -> Reference:
     """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at :data:`FINE_DIGITS`
-    bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded by its distance from
-    rtol 1e-12 (a second implementation beside the package's DOP853-scalar, not an exact one)."""
+    bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded
+    by its distance from rtol 1e-12 (a second implementation beside the package's DOP853-scalar, not an
+    exact one)."""
     if scene.model == "kelvin-voigt":
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")
@@ -136,7 +137,8 @@ def reference(scene: Scene) -> Reference:
     fine = outputs_from_normal(scene, *taylor_normal(scene, FINE_DIGITS))
     coarse = outputs_from_normal(scene, *taylor_normal(scene, COARSE_DIGITS))
     bound = max(worst_error(coarse, fine, scene), 2.2e-16)
-    return Reference(fine, bound, f"mpmath Taylor ({FINE_DIGITS} digits); bound = its distance from {COARSE_DIGITS} digits")
+    return Reference(fine, bound, f"mpmath Taylor ({FINE_DIGITS} digits); bound = its distance from "
+                                  f"{COARSE_DIGITS} digits")
 
 
 def float64_check(scene: Scene, ref: Reference) -> float:
