@@ -24,10 +24,11 @@ def method_names() -> tuple:
 
 
 def choose(scene, options):
-    """The integrators that will serve ``scene`` under ``options``, in the order to try them.
+    """The integrators that will serve ``scene`` under ``options``, in the order to try them (an iterator:
+    ``auto`` asks each only when the ones before it did not serve).
 
     An explicit method is the only candidate, and one that cannot serve the scene is refused
-    (``ValueError`` naming it and why); ``auto`` lists the :data:`AUTO_ORDER` integrators that can serve it
+    (``ValueError`` naming it and why); ``auto`` yields the :data:`AUTO_ORDER` integrators that can serve it
     and do not decline it.
     """
     if options.method != "auto":
@@ -35,26 +36,33 @@ def choose(scene, options):
         reason = integrator.cannot(scene)
         if reason is not None:
             raise ValueError(f"method {integrator.name!r} {reason}")
-        return [integrator]
-    return [INTEGRATORS[name] for name in AUTO_ORDER
-            if INTEGRATORS[name].cannot(scene) is None and INTEGRATORS[name].declines(scene) is None]
+        yield integrator
+        return
+    for name in AUTO_ORDER:
+        integrator = INTEGRATORS[name]
+        if integrator.cannot(scene) is None and integrator.declines(scene) is None:
+            yield integrator
 
 
 def resolve_method(scene, options):
     """``options`` with ``auto`` made concrete: the first integrator :func:`choose` offers."""
     if options.method != "auto":
         return options
-    return replace(options, method=choose(scene, options)[0].name)
+    return replace(options, method=next(choose(scene, options)).name)
 
 
 def normal_motion(scene, options):
     """The normal motion of ``scene`` by ``options.method``; under ``auto`` an integrator whose arithmetic
     overflows (``Integrator.overflows``: the Taylor series at lam = 5e299, say) hands over to the next."""
-    candidates = choose(scene, options)
-    for i, integrator in enumerate(candidates):
+    overflow = None
+    for integrator in choose(scene, options):
         try:
-            return integrator.solve(scene, replace(options, method=integrator.name))
-        except integrator.overflows:
-            if options.method != "auto" or i == len(candidates) - 1:
+            return integrator.solve(scene, options if options.method == integrator.name
+                                    else replace(options, method=integrator.name))
+        except integrator.overflows as err:
+            if options.method != "auto":
                 raise
-    raise AssertionError("unreachable: auto always has an integrator that serves the scene")
+            overflow = err
+    if overflow is None:
+        raise AssertionError("unreachable: auto always has an integrator that serves the scene")
+    raise overflow

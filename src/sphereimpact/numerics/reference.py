@@ -80,13 +80,9 @@ def outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, ra
     if scene.gravity != 0:
         raise ValueError("outputs from the normal events need gravity = 0")
     vc_n = -rate_f
-    vt0, spin = scene.v_tangent, scene.spin
-    if vt0 == 0 and spin == 0:
-        vc_t = omega = ve_t = 0.0
-    else:
-        vc_t, omega, slides = (float(x) for x in impulse_outcome(
-            vt0, spin, scene.mass * (scene.v_normal + vc_n), scene.mass, scene.radius, scene.inertia_factor, scene.mu))
-        ve_t = vc_t - omega * scene.radius if slides else 0.0
+    vc_t, omega, ve_t, _ = (float(x) for x in impulse_outcome(
+        scene.v_tangent, scene.spin, scene.mass * (scene.v_normal + vc_n), scene.mass, scene.radius,
+        scene.inertia_factor, scene.mu))
     return {"t_m": t_m, "delta_m": delta_m, "t_f": t_f, "cor": vc_n / scene.v_normal, "omega_f": omega,
             "ve_t": ve_t, "vc_t": vc_t, "vc_n": vc_n, "ve_n": vc_n}
 

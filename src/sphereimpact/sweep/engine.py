@@ -208,8 +208,9 @@ def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
     lane's estimated steps and cost alone [s] (one criterion).
 
     The lanes' cost is paid per step until the slowest lane ends (:data:`LANE_STEP_COST`), so a few slow
-    lanes (an over-damped creep under the penetration criterion) can cost more than all the others.  The scenes are ordered by estimated
-    steps and the slowest move to the single path while that lowers the estimated total.
+    lanes (an over-damped creep under the penetration criterion) can cost more than all the others.  The
+    scenes are ordered by estimated steps and the slowest move to the single path while that lowers the
+    estimated total.
     """
     order = np.argsort(-steps, kind="stable")
     steps, alone = steps[order], alone[order]
@@ -565,8 +566,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         slip0 = v_t - spin * radius
         # friction acts while P > 0, so its impulse is mu J+ with J+ = m v_n (1 - y_p): y_p is the
         # dimensionless rate where P first falls to 0 (at separation if it never pulls); no gravity here
-        vc_t, omega, slides = impulse_outcome(v_t, spin, m * v_n * (1.0 - dim["y_p"]), m, radius, alpha, mu)
-        vc_n, ve_t = -dim["y_f"] * v_n, np.where(slides, vc_t - omega * radius, 0.0)
+        vc_t, omega, ve_t, slides = impulse_outcome(v_t, spin, m * v_n * (1.0 - dim["y_p"]), m, radius, alpha, mu)
+        vc_n = -dim["y_f"] * v_n
         moving = (v_t != 0) | (spin != 0)  # tangential motion at all
         values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
                   "vc_t": vc_t, "vc_n": vc_n, "ve_t": ve_t, "ve_n": vc_n, "omega_f": omega, "cor": -dim["y_f"],
@@ -605,7 +606,8 @@ def outputs_wanted(outputs) -> set:
     names = [outputs] if isinstance(outputs, str) else list(outputs)
     unknown = [name for name in names if name not in SWEEP_OUTPUTS]
     if unknown or not names:
-        raise ValueError(f"outputs must be some of {', '.join(SWEEP_OUTPUTS)}; got {unknown[0] if unknown else 'none'!r}")
+        got = unknown[0] if unknown else "none"
+        raise ValueError(f"outputs must be some of {', '.join(SWEEP_OUTPUTS)}; got {got!r}")
     return set(names)
 
 

@@ -103,15 +103,16 @@ def impulse_outcome(v_t, spin, impulse, mass, radius, alpha, mu):
 
     Returns
     -------
-    vc_t, omega, slides : arrays
-        Rebound tangential velocity [m/s], spin [rad/s], and whether the contact slid throughout.
+    vc_t, omega, ve_t, slides : arrays
+        Rebound tangential velocity of the centre [m/s], spin [rad/s], of the contact point [m/s] (0 when it
+        rolls), and whether the contact slid throughout.
     """
     slip0 = np.asarray(v_t - spin * radius)
     sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
     slides = mu * (1.0 + 1.0 / alpha) * impulse / mass < np.abs(slip0)
     vc_t = np.where(slides, v_t - sigma * mu * impulse / mass, (v_t + alpha * radius * spin) / (1.0 + alpha))
     omega = np.where(slides, spin + sigma * mu * impulse / (alpha * mass * radius), vc_t / radius)  # no R^2
-    return vc_t, omega, slides
+    return vc_t, omega, np.where(slides, vc_t - omega * radius, 0.0), slides
 
 
 def _at(f, t) -> np.ndarray:
