@@ -276,7 +276,8 @@ def test_extreme_inputs_are_answered_or_refused_in_bounded_time():
 
 def test_damping_beyond_the_lanes_domain_takes_the_single_impact_path():
     from sphereimpact import Scene, simulate
-    from sphereimpact.sweep.engine import LANES_ZETA_MAX, sweep
+    from sphereimpact.sweep.engine import sweep
+    from sphereimpact.sweep.paths import LANES_ZETA_MAX
 
     table = sweep({"angle": [0.0, 30.0], "b": 3e4})  # zeta = 161
     assert Scene(b=3e4).zeta > LANES_ZETA_MAX

@@ -7,7 +7,7 @@ import pytest
 
 from sphereimpact import SolverOptions, simulate
 from sphereimpact.numerics.reference import relative_errors
-from sphereimpact.sweep import batch, engine, plane, series_lanes, similarity
+from sphereimpact.sweep import batch, engine, paths, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.sweep.similarity import OUTPUTS, InterpolationError, _errors
 
@@ -84,11 +84,11 @@ def test_a_plane_that_cannot_reach_the_target_refuses_and_the_engine_integrates(
     monkeypatch.setattr(plane, "MAX_NODES", 200)
     with pytest.raises(InterpolationError, match="did not reach"):
         plane.PlaneInterpolant(*BALLS, "force", 1e-8)
-    monkeypatch.setattr(engine, "PLANE_MIN", 50)
+    monkeypatch.setattr(paths, "PLANE_MIN", 50)
     scenes = random_balls(120, seed=4)
-    monkeypatch.setattr(engine.plane, "PlaneInterpolant", _refusing)
+    monkeypatch.setattr(plane, "PlaneInterpolant", _refusing)
     integrated = sweep(scenes)
-    monkeypatch.setattr(engine, "PLANE_MIN", 10 ** 9)
+    monkeypatch.setattr(paths, "PLANE_MIN", 10 ** 9)
     assert integrated.equals(sweep(scenes))
 
 
@@ -105,10 +105,10 @@ def random_balls(n, seed):
 
 @pytest.mark.filterwarnings("ignore::sphereimpact.BeyondRadiusWarning")  # random balls: some beyond R
 def test_engine_takes_the_plane_for_many_balls_and_shards_equal_the_whole(monkeypatch):
-    monkeypatch.setattr(engine, "PLANE_MIN", 100)
+    monkeypatch.setattr(paths, "PLANE_MIN", 100)
     built = []
     original = plane.PlaneInterpolant
-    monkeypatch.setattr(engine.plane, "PlaneInterpolant", lambda *a: built.append(a) or original(*a))
+    monkeypatch.setattr(plane, "PlaneInterpolant", lambda *a: built.append(a) or original(*a))
     scenes = random_balls(400, seed=5)
     whole = sweep(scenes)
     assert sorted(args[4] for args in built) == ["force", "penetration"]

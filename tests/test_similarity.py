@@ -56,7 +56,7 @@ def test_failed_check_falls_back_to_integration(monkeypatch):
     monkeypatch.setattr(similarity, "MAX_NODES", 5)
     with pytest.raises(similarity.InterpolationError, match="did not reach"):
         similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, "force", 1e-8)
-    monkeypatch.setattr("sphereimpact.sweep.engine.SIMILARITY_MIN", 100)
+    monkeypatch.setattr("sphereimpact.sweep.paths.SIMILARITY_MIN", 100)
     fallback = sweep(scenes, outputs=["cor"])
     monkeypatch.undo()
     direct = sweep(scenes, outputs=["cor"])  # 1800 scenes: below SIMILARITY_MIN, integrated directly
@@ -96,12 +96,12 @@ def test_family_interpolant_needs_a_number_proportional_to_the_speed():
 def test_family_interpolated_sweep_keeps_shards_equal_and_meets_the_contract(monkeypatch):
     from sphereimpact import SolverOptions, simulate
     from sphereimpact.numerics.reference import relative_errors
-    from sphereimpact.sweep import engine
+    from sphereimpact.sweep import engine, paths
 
     scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.0)).assign(
         model="linear-hunt-crossley", k=6.0e4, chi=0.05)
     built = []
-    monkeypatch.setattr(engine, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
+    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
     whole = sweep(scenes)
     assert len(built) == 1  # 450 distinct chi v_n >= FAMILY_MIN: one interpolant
     shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
@@ -121,7 +121,7 @@ def test_random_balls_of_a_kernel_less_law_meet_the_contract(model, monkeypatch)
     simulate."""
     from sphereimpact import SolverOptions, simulate
     from sphereimpact.numerics.reference import relative_errors
-    from sphereimpact.sweep import engine
+    from sphereimpact.sweep import engine, paths
 
     rng = np.random.default_rng(11)
     n = 500
@@ -130,7 +130,7 @@ def test_random_balls_of_a_kernel_less_law_meet_the_contract(model, monkeypatch)
                            "mass": rng.uniform(0.05, 0.5, n), "speed": rng.uniform(0.5, 20, n),
                            "angle": rng.uniform(0, 85, n), "separation": rng.choice(["force", "penetration"], n)})
     built = []
-    monkeypatch.setattr(engine, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
+    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
     table = sweep(scenes)
     assert len(built) == 2
     keys = ["t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t"]

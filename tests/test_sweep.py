@@ -8,11 +8,11 @@ from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
+from sphereimpact.sweep.paths import SIMILARITY_MIN
 from sphereimpact.sweep.engine import (
     FAMILY_OUTPUTS,
     FAST_OUTPUTS,
     SCENE_COLUMNS,
-    SIMILARITY_MIN,
     SWEEP_OUTPUTS,
     grid,
     parse_range,
@@ -194,11 +194,12 @@ def test_slow_lanes_go_to_the_single_impact_path():
     """The lanes pay per step until their slowest lane ends: one zeta = 64 creep took 3.4 s there against
     11 ms alone.  The cost model sends such scenes alone, keeps a crowd of them in lanes (where the per-step
     cost is shared), and leaves ordinary scenes in lanes."""
-    from sphereimpact.sweep.engine import _dimensionless, _solved_alone, scene_table
+    from sphereimpact.sweep.paths import solved_alone
+    from sphereimpact.sweep.scenes import numbers, scene_table
 
     def costly(scenes):
         frame = scene_table(scenes)
-        return _solved_alone(frame, _dimensionless(frame), CONTRACT)[0]
+        return solved_alone(frame, numbers(frame), CONTRACT)[0]
 
     mixed = costly(_stiff_mix())
     assert mixed[-2:].all() and not mixed[:-2].any()
@@ -269,7 +270,7 @@ def test_lists_mean_every_combination_in_the_api_and_on_the_command_line(tmp_pat
 
 def test_the_path_column_names_the_path_that_solved_each_row():
     """Each row says which path solved it, and that path is the one the engine's rules give the row."""
-    from sphereimpact.sweep.engine import PATHS, SIMILARITY_MIN
+    from sphereimpact.sweep.engine import PATHS
 
     paths = {name: list(sweep(scenes)["path"]) for name, scenes in {
         "closed": grid(angle=[0.0, 30.0], speed=[1.0, 3.0], model="kelvin-voigt"),  # linear, no gravity

@@ -108,7 +108,7 @@ class ContactLaw:
         ``KERNELS``, reading the family's ``zeta`` and, for ``modified``, ``lam``), or None: then sweeps
         solve one scene per similarity family with the single-impact integrator, which is exact for
         every law, or interpolate in the family's last number between such solves where many scenes
-        differ only in it and it is proportional to the approach speed (:mod:`sphereimpact.sweep.engine`).
+        differ only in it and it is proportional to the approach speed (:mod:`sphereimpact.sweep.paths`).
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.

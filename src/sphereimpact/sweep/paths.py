@@ -1,0 +1,439 @@
+"""The sweep's paths: each takes some of a sweep's scenes and solves them; :data:`ORDER` is their precedence.
+
+One contract (:class:`SweepPath`): ``take(work, todo, span_todo)`` says which of the rows still to do the
+path takes and how it solves them (:class:`Take`).  A task's ``solve()`` returns, for its rows, the
+dimensionless normal outputs :data:`NORMAL_OUTPUTS`, from which the engine's impulse algebra gives every
+tangential output; only the single-impact path (``gives = "all"``) returns every output itself.  A path that
+builds on the whole sweep (an interpolant over its range) reads the sweep's scenes that no earlier path
+took (``span_todo``), so a shard takes the paths the whole sweep would.  Which path solved each row is the
+sweep table's ``path`` column; ``results/sweep_paths.csv`` measures the paths against each other where two
+apply (:mod:`sphereimpact.sweep.path_study`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import warnings
+
+import numpy as np
+import pandas as pd
+
+from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
+from ..outcome import SCALAR_OUTPUTS
+from ..scene import SEPARATION_CRITERIA, SolverOptions
+from ..solve import simulate, simulate_many
+from . import batch, closed, plane, series_lanes
+from .scenes import Numbers, _compliant, incidence, scene_of
+from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
+
+#: The dimensionless normal outputs every path but the single-impact one gives: times tau = t / T, the
+#: largest compression x_m = delta_m / (v_n T), the rebound rate y_f = -v_f / v_n, and y_p, the rate where P
+#: first falls to 0 (1 - y_p is the impulse of P+ over m v_n).
+NORMAL_OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
+#: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
+#: (zeta, criterion) for the lam interpolant; fewest scenes of one criterion for the (zeta, lam) plane; fewest
+#: distinct values of a kernel-less law's last family number for interpolating in it.
+SIMILARITY_MIN = 2000
+PLANE_MIN = 3000
+FAMILY_MIN = 200
+#: Largest damping ratio the lanes, the similarity path and the closed form take (the accepted domain's edge,
+#: where their contract is tested); beyond it an over-damped creep makes a lane's steps unbounded.
+LANES_ZETA_MAX = 100.0
+#: Largest lam of eq. 4.2 on the Runge-Kutta lanes with gravity or beyond critical damping (beyond it their
+#: COR missed the target against scipy's DOP853); such scenes are solved one by one.
+LANES_LAM_MAX = 1e4
+#: Cost model choosing between the batched lanes and single impacts: a batched step costs LANE_STEP_COST [s]
+#: plus LANE_COST per lane; one impact SINGLE_COST plus SINGLE_EVAL_COST per evaluation.  It only chooses a
+#: path, never sets an accuracy.
+LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
+SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
+#: Scenes solved by the single-impact model per call of :func:`~sphereimpact.solve.simulate_many` (a batched
+#: tangential kernel runs them together; progress is reported after each).
+SINGLES_CHUNK = 100
+
+
+@dataclass(frozen=True)
+class Work:
+    """What a path reads: the scenes to solve (``frame``, their ``numbers``), the whole sweep they belong to
+    (``span_frame``, ``span``; the same objects when the sweep is not sharded), the accuracy ``target``, the
+    scenes integrated at once (``chunk_size``), the single-impact ``options`` and ``progress(done, total)``."""
+
+    frame: pd.DataFrame
+    numbers: Numbers
+    span_frame: pd.DataFrame
+    span: Numbers
+    target: float
+    chunk_size: int
+    options: SolverOptions
+    progress: Callable | None = None
+
+    @property
+    def sharded(self) -> bool:
+        return self.span is not self.numbers
+
+
+@dataclass(frozen=True)
+class Task:
+    """Rows of the scenes (indices) and how to solve them: ``solve()`` -> output name -> values per row."""
+
+    rows: np.ndarray
+    solve: Callable[[], dict]
+
+
+@dataclass(frozen=True)
+class Take:
+    """What a path takes: its ``tasks``, and the mask of the span's scenes it takes (hidden from later paths)."""
+
+    tasks: list
+    span: np.ndarray
+
+
+class SweepPath:
+    """One way to solve some scenes of a sweep.  ``name`` is the value of the sweep's ``path`` column,
+    ``summary`` one line for its help; ``gives`` is ``"normal"`` (:data:`NORMAL_OUTPUTS`) or ``"all"``."""
+
+    name = ""
+    summary = ""
+    gives = "normal"
+
+    def take(self, work: Work, todo: np.ndarray, span_todo: np.ndarray) -> Take:
+        """The rows of ``todo`` (a mask of ``work.frame``) this path takes, and its rows of the span's
+        ``span_todo``."""
+        raise NotImplementedError
+
+
+def _chunked(rows: np.ndarray, chunk_size: int, solve: Callable[[np.ndarray], dict], progress=None) -> dict:
+    """``solve`` on ``rows`` in chunks of ``chunk_size`` (memory stays bounded), the outputs joined."""
+    parts = []
+    for start in range(0, rows.size, chunk_size):
+        parts.append(solve(rows[start:start + chunk_size]))
+        if progress:
+            progress(min(start + chunk_size, rows.size), rows.size)
+    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]} if parts else {}
+
+
+# ---------------------------------------------------------------- the single-impact path and its rule
+
+
+def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
+    """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
+    compliant tangential contact with tangential motion (its tangential motion is integrated)."""
+    tangential = (incidence(frame) > 0) | (frame["spin"].to_numpy() != 0)
+    return (((frame["gravity"].to_numpy() > 0) & (frame["angle"].to_numpy() > 0))
+            | (_compliant(frame) & tangential))
+
+
+def _series_lanes(d: Numbers) -> np.ndarray:
+    """Scenes the batched Taylor lanes take (:mod:`.series_lanes`): eq. 4.2 without gravity up to critical
+    damping and lam 1e12 (their tested domain)."""
+    with np.errstate(invalid="ignore"):
+        return d.modified & (d.gamma == 0) & series_lanes.covers(d.zeta, d.lam) & np.isfinite(d.w)
+
+
+def _beyond_lanes(d: Numbers) -> np.ndarray:
+    """Scenes of a batched kernel or closed form that those paths cannot bound: damping beyond
+    :data:`LANES_ZETA_MAX`, dimensionless numbers that are not finite (e.g. mass 1e-300, b 1e300), or lam
+    beyond :data:`LANES_LAM_MAX` on the Runge-Kutta lanes.  They go to the single-impact path, whose cost is
+    bounded (:data:`sphereimpact.normal.MAX_NFEV`)."""
+    with np.errstate(invalid="ignore"):
+        wild = ~(np.isfinite(d.zeta) & np.isfinite(d.lam) & np.isfinite(d.w) & np.isfinite(d.gamma))
+        sharp = d.modified & (d.lam > LANES_LAM_MAX) & ~_series_lanes(d)
+        return d.batched & (wild | (d.zeta > LANES_ZETA_MAX) | sharp)
+
+
+def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
+    """The most estimated steps a lane may take before the single-impact path is cheaper for it, given each
+    lane's estimated steps and cost alone [s] (one criterion).
+
+    The lanes' cost is paid per step until the slowest lane ends (:data:`LANE_STEP_COST`), so a few slow
+    lanes (an over-damped creep under the penetration criterion) can cost more than all the others.  The
+    scenes are ordered by estimated steps and the slowest move to the single path while that lowers the
+    estimated total.
+    """
+    order = np.argsort(-steps, kind="stable")
+    steps, alone = steps[order], alone[order]
+    # total cost when the k slowest go alone (k = 0 .. n): theirs, plus the lanes' from the k-th on
+    total = (np.concatenate([[0.0], np.cumsum(alone)]) + np.append(steps, 0.0) * LANE_STEP_COST
+             + np.append(np.cumsum(steps[::-1])[::-1], 0.0) * LANE_COST)
+    best = int(np.argmin(total))
+    return float(steps[best]) if best < steps.size else -np.inf
+
+
+def solved_alone(frame: pd.DataFrame, d: Numbers, target: float, limits: dict | None = None) -> tuple[np.ndarray, dict]:
+    """(scenes solved one by one, the lane limit per criterion).
+
+    One by one: :func:`_one_by_one` and :func:`_beyond_lanes` scenes, and the scenes the Runge-Kutta lanes
+    would integrate (a kernel, not the closed form's nor the Taylor lanes') whose estimated steps
+    (:func:`batch.estimated_steps`) exceed their criterion's limit (:func:`_lane_limit`).  The limits are
+    computed on these scenes unless ``limits`` is given: a shard takes the whole sweep's (``span``), so shards
+    and chunk sizes do not change which path a scene takes.
+    """
+    alone = _one_by_one(frame) | _beyond_lanes(d)
+    lanes = d.batched & ~(d.closed & (d.gamma == 0)) & ~_series_lanes(d) & ~alone  # Runge-Kutta lanes
+    computed = {}
+    for separation in SEPARATION_CRITERIA:
+        mine = np.flatnonzero(lanes & d.criterion(separation))
+        if not mine.size:
+            continue
+        zeta, lam = d.zeta[mine], d.lam[mine]
+        steps = batch.estimated_steps(zeta, lam, separation, target)
+        if limits is None:
+            evaluations = 400.0 + 100.0 * batch.estimated_contact_time(zeta, lam, separation)
+            computed[separation] = _lane_limit(steps, SINGLE_COST + SINGLE_EVAL_COST * evaluations)
+        alone[mine] |= steps > (computed if limits is None else limits).get(separation, np.inf)
+    return alone, computed if limits is None else limits
+
+
+class SinglePath(SweepPath):
+    """Gravity on a slope, a compliant tangential contact at an angle, and the scenes the lanes cannot bound
+    or would solve at more cost than alone (:func:`solved_alone`): ``simulate``, one impact at a time."""
+
+    name = "single"
+    summary = "simulate, one impact at a time (gravity on a slope, compliant contact, outside the paths below)"
+    gives = "all"
+
+    def take(self, work, todo, span_todo):
+        alone_span, limits = solved_alone(work.span_frame, work.span, work.target)
+        alone = solved_alone(work.frame, work.numbers, work.target, limits)[0] if work.sharded else alone_span
+        rows = np.flatnonzero(alone & todo)
+        return Take([Task(rows, lambda: self._solve(rows, work))] if rows.size else [], alone_span)
+
+    @staticmethod
+    def _solve(rows: np.ndarray, work: Work) -> dict:
+        """Every output of ``simulate`` on each row, :data:`SINGLES_CHUNK` scenes per call (a batched tangential
+        kernel runs them together), progress after each; an ImpactError names the first failing row."""
+        out = {key: np.full(rows.size, np.nan) for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius")}
+        regime = np.empty(rows.size, dtype=object)
+        for start in range(0, rows.size, SINGLES_CHUNK):
+            chunk = rows[start:start + SINGLES_CHUNK]
+            scenes = [scene_of(work.frame.iloc[i].to_dict()) for i in chunk]
+            with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
+                warnings.simplefilter("ignore", BeyondRadiusWarning)
+                try:
+                    outs = simulate_many(scenes, work.options)
+                except ImpactError:
+                    for i, scene in zip(chunk, scenes):  # name the first scene that fails alone
+                        try:
+                            simulate(scene, work.options)
+                        except ImpactError as err:
+                            raise ImpactError(f"sweep row {i}: {err}") from None
+                    raise
+            for j, one in enumerate(outs, start):
+                for key in out:
+                    value = getattr(one, key)
+                    out[key][j] = np.nan if value is None else value
+                regime[j] = one.regime
+            if work.progress:
+                work.progress(start + chunk.size, rows.size)
+        return out | {"regime": regime}
+
+
+# ---------------------------------------------------------------- laws without a batched kernel
+
+
+def _family_groups(d: Numbers, mask: np.ndarray) -> dict:
+    """(model, the family's other numbers, criterion) -> indices of the kernel-less weightless scenes of
+    ``mask`` with a positive last family number, the one :class:`FamilyInterpolant` interpolates in."""
+    groups: dict = {}
+    for i in np.flatnonzero(mask & ~d.batched & (d.gamma == 0)):
+        family = d.family[i]
+        if len(family) > 1 and family[-1] > 0:
+            groups.setdefault((*family[:-1], d.separation[i]), []).append(i)
+    return groups
+
+
+class FamilyInterpolantPath(SweepPath):
+    """A kernel-less law's weightless scenes where at least :data:`FAMILY_MIN` distinct values of its last
+    family number (proportional to the approach speed: chi v_n of the Hunt-Crossley laws) share the rest:
+    a Chebyshev interpolant in that number over the span's range, from single-impact solves, checked."""
+
+    name = "family-interpolant"
+    summary = "a kernel-less law's interpolant in its last family number"
+
+    def take(self, work, todo, span_todo):
+        span, d = work.span, work.numbers
+        built = {}
+        taken = np.zeros(len(span), bool)
+        for key, rows in _family_groups(span, span_todo).items():
+            q = np.array([span.family[i][-1] for i in rows])
+            if np.unique(q).size < FAMILY_MIN:
+                continue
+            try:
+                built[key] = FamilyInterpolant(scene_of(work.span_frame.iloc[rows[0]].to_dict()), float(q.min()),
+                                               float(q.max()), key[-1], work.target)
+            except InterpolationError:  # such a group is solved family by family
+                continue
+            taken[rows] = True
+        tasks = []
+        for key, rows in _family_groups(d, todo).items():
+            if key in built:
+                rows = np.array(rows)
+                q = np.array([d.family[i][-1] for i in rows])
+                tasks.append(Task(rows, lambda interpolant=built[key], q=q: interpolant(q)))
+        return Take(tasks, taken)
+
+
+class PerFamilyPath(SweepPath):
+    """The other scenes of a kernel-less law: the single-impact integrator (exact for every law) solves the
+    first scene of each distinct (family, gamma, criterion), and the others, which share its dimensionless
+    motion, take its values."""
+
+    name = "per-family"
+    summary = "one single-impact solve per dimensionless family, shared by its scenes"
+
+    def take(self, work, todo, span_todo):
+        d = work.numbers
+        rows = np.flatnonzero(~d.batched & todo)
+        task = Task(rows, lambda: self._solve(work.frame.iloc[rows], d.family[rows], d.gamma[rows], work.target))
+        return Take([task] if rows.size else [], span_todo & ~work.span.batched)
+
+    @staticmethod
+    def _solve(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float) -> dict:
+        options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
+        keys = [(*f, float(g), sep) for f, g, sep in zip(family, gamma, frame["separation"].to_numpy())]
+        first: dict = {}
+        for i, key in enumerate(keys):
+            first.setdefault(key, i)
+        solved = {key: dimensionless_motion(scene_of(frame.iloc[i].to_dict()), options) for key, i in first.items()}
+        return {name: np.array([solved[key][name] for key in keys]) for name in NORMAL_OUTPUTS}
+
+
+# ---------------------------------------------------------------- laws with a batched kernel, without gravity
+
+
+class ClosedPath(SweepPath):
+    """The kelvin-voigt law without gravity: its closed-form events, vectorised (:mod:`.closed`)."""
+
+    name = "closed"
+    summary = "the linear law's closed-form events"
+
+    def take(self, work, todo, span_todo):
+        d = work.numbers
+        tasks = []
+        for separation in SEPARATION_CRITERIA:
+            rows = np.flatnonzero(todo & d.criterion(separation) & d.closed & (d.gamma == 0))
+            if rows.size:
+                tasks.append(Task(rows, lambda rows=rows, s=separation: closed.events(d.zeta[rows], s)))
+        return Take(tasks, span_todo & work.span.closed & (work.span.gamma == 0))
+
+
+class LambdaInterpolantPath(SweepPath):
+    """Eq. 4.2 without gravity, at least :data:`SIMILARITY_MIN` scenes of the span sharing zeta and the
+    criterion (one ball): a Chebyshev interpolant in lam over the span's range, checked against the
+    integrator (:class:`.similarity.LambdaInterpolant`)."""
+
+    name = "lambda-interpolant"
+    summary = "eq. 4.2's interpolant in lam at one damping ratio"
+
+    def take(self, work, todo, span_todo):
+        span, d = work.span, work.numbers
+        taken = np.zeros(len(span), bool)
+        tasks = []
+        similar = np.flatnonzero(span_todo & span.modified & (span.gamma == 0))
+        for criterion in SEPARATION_CRITERIA:
+            mine = similar[span.criterion(criterion)[similar]]
+            zetas, group, counts = np.unique(span.zeta[mine], return_inverse=True, return_counts=True)
+            for i in np.flatnonzero(counts >= SIMILARITY_MIN):
+                members = mine[group == i]
+                lam = span.lam[members]
+                try:
+                    interpolant = LambdaInterpolant(float(zetas[i]), lam.min(), lam.max(), criterion, work.target)
+                except InterpolationError:  # such a group is integrated scene by scene instead
+                    continue
+                taken[members] = True
+                rows = np.flatnonzero(todo & d.criterion(criterion) & d.modified & (d.gamma == 0)
+                                      & (d.zeta == zetas[i]))
+                outside = rows[(d.lam[rows] < interpolant.lo) | (d.lam[rows] > interpolant.hi)]
+                if outside.size:  # a span that does not cover its shard: interpolation would extrapolate
+                    raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} has lam = "
+                                     f"{d.lam[outside[0]]:.6g} outside the span's [{interpolant.lo:.6g}, "
+                                     f"{interpolant.hi:.6g}]; pass the whole sweep as span")
+                tasks.append(Task(rows, lambda rows=rows, f=interpolant: _chunked(
+                    rows, work.chunk_size, lambda i: f(d.lam[i]))))
+        return Take(tasks, taken)
+
+
+class PlanePath(SweepPath):
+    """Eq. 4.2 without gravity, at least :data:`PLANE_MIN` scenes of one criterion with zeta up to
+    :data:`.plane.ZETA_MAX` (many balls: k, b, m, D drawn per scene): one Chebyshev interpolant in
+    (zeta, lam) over the span's rectangle, its nodes solved by the batched Taylor lanes (:mod:`.plane`)."""
+
+    name = "plane"
+    summary = "eq. 4.2's interpolant on the (zeta, lam) plane"
+
+    @staticmethod
+    def _inside(d: Numbers, mask: np.ndarray, separation: str) -> np.ndarray:
+        return np.flatnonzero(mask & d.modified & (d.gamma == 0) & d.criterion(separation) & (d.zeta > 0)
+                              & (d.zeta <= plane.ZETA_MAX) & (d.lam >= plane.LAM_MIN) & (d.lam <= plane.LAM_MAX))
+
+    def take(self, work, todo, span_todo):
+        span, d = work.span, work.numbers
+        taken = np.zeros(len(span), bool)
+        tasks = []
+        for separation in SEPARATION_CRITERIA:
+            members = self._inside(span, span_todo, separation)
+            if members.size < PLANE_MIN:
+                continue
+            zeta, lam = span.zeta[members], span.lam[members]
+            try:
+                f = plane.PlaneInterpolant(zeta.min(), zeta.max(), lam.min(), lam.max(), separation, work.target)
+            except InterpolationError:  # integrated by the lanes instead
+                continue
+            taken[members] = True
+            rows = self._inside(d, todo, separation)
+            outside = rows[(d.zeta[rows] < f.zeta_min) | (d.zeta[rows] > f.zeta_max)
+                           | (d.lam[rows] < f.lam_min) | (d.lam[rows] > f.lam_max)]
+            if outside.size:
+                raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} (zeta = "
+                                 f"{d.zeta[outside[0]]:.6g}, lam = {d.lam[outside[0]]:.6g}) lies outside the span's "
+                                 "plane; pass the whole sweep as span")
+            tasks.append(Task(rows, lambda rows=rows, f=f: _chunked(rows, work.chunk_size,
+                                                                    lambda i: f(d.zeta[i], d.lam[i]))))
+        return Take(tasks, taken)
+
+
+class TaylorLanesPath(SweepPath):
+    """Eq. 4.2 without gravity up to critical damping: the batched Taylor-series lanes (:mod:`.series_lanes`),
+    in chunks."""
+
+    name = "taylor-lanes"
+    summary = "batched Taylor-series lanes"
+
+    def take(self, work, todo, span_todo):
+        d = work.numbers
+        series = _series_lanes(d)
+        tasks = []
+        for separation in SEPARATION_CRITERIA:
+            rows = np.flatnonzero(todo & d.criterion(separation) & series)
+            if rows.size:
+                tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
+                    rows, work.chunk_size, lambda i: series_lanes.integrate(d.zeta[i], d.lam[i], s, work.target),
+                    work.progress)))
+        return Take(tasks, span_todo & _series_lanes(work.span))
+
+
+class RungeKuttaLanesPath(SweepPath):
+    """Every other scene of a batched kernel: the batched Runge-Kutta lanes (:mod:`.batch`), in chunks."""
+
+    name = "runge-kutta-lanes"
+    summary = "batched Runge-Kutta lanes"
+
+    def take(self, work, todo, span_todo):
+        d = work.numbers
+        tasks = []
+        for separation in SEPARATION_CRITERIA:
+            rows = np.flatnonzero(todo & d.criterion(separation) & d.batched)
+            if rows.size:
+                tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
+                    rows, work.chunk_size, lambda i: batch.integrate(d.zeta[i], d.lam[i], d.gamma[i], d.modified[i],
+                                                                     s, work.target), work.progress)))
+        return Take(tasks, span_todo & work.span.batched)
+
+
+#: The paths in their precedence: the first that takes a row solves it.
+ORDER = (SinglePath(), FamilyInterpolantPath(), PerFamilyPath(), ClosedPath(), LambdaInterpolantPath(), PlanePath(),
+         TaylorLanesPath(), RungeKuttaLanesPath())
+#: name -> summary of every path, in precedence order (the ``path`` column's values).
+PATHS = {path.name: path.summary for path in ORDER}

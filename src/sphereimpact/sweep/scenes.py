@@ -1,0 +1,204 @@
+"""A sweep's scenes: the table of scene parameters, checked, and the dimensionless numbers its paths read.
+
+A sweep is a DataFrame with one scene per row, its columns named as :class:`sphereimpact.Scene` fields
+(:func:`rows` pairs values, :func:`grid` takes every combination).  :func:`scene_table` fills and checks it
+as the Scene does; :func:`numbers` gives each row the numbers that choose and drive a path
+(:class:`Numbers`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+
+from ..laws import LAWS, PARAMETER_NAMES
+from ..scene import PATH_RULES, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, check_columns, scale_problem
+from ..tangential import TANGENTIALS
+from . import batch, closed
+
+#: Scene parameters, with the single-impact defaults for missing columns.
+SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
+DEFAULTS = {f.name: f.default for f in fields(Scene)}
+
+
+def scene_table(scenes) -> pd.DataFrame:
+    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row).
+
+    A DataFrame is one scene per row; a dict of values or lists is every combination of them (:func:`grid`),
+    as the command line's ranges are."""
+    given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
+    unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
+    if unknown:
+        raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
+    n = len(given)
+    columns = {name: given[name].to_numpy() if name in given
+               else _objects(n, DEFAULTS[name]) if name in TEXT_FIELDS else np.full(n, DEFAULTS[name])
+               for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
+    laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
+    columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
+    for name in ("modulus", *TANGENTIAL_PARAMETERS, *PATH_RULES):
+        columns.setdefault(name, np.full(n, np.nan))
+    # text as object columns: pandas' string dtype costs as much to build as the rest of a sweep's overhead
+    frame = pd.DataFrame({name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
+                          else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+    paths = ~np.isnan(frame[list(PATH_RULES)].to_numpy())
+    for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"].to_numpy() != 0) | paths.all(axis=1))):
+        try:  # one description of the approach per scene: checked as the Scene checks it
+            scene_of(frame.iloc[i].to_dict())
+        except ValueError as err:
+            raise ValueError(f"{err} (row {i})") from None
+    tangential = np.column_stack([frame[name].to_numpy() for name in TANGENTIAL_PARAMETERS])
+    for i in np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1)):
+        try:  # the tangential model's parameters depend on the law: checked as the Scene checks them
+            scene = scene_of(frame.iloc[i].to_dict())
+        except ValueError as err:
+            raise ValueError(f"{err} (row {i})") from None
+        frame.loc[frame.index[i], "kappa"] = np.nan if scene.kappa is None else scene.kappa
+    return frame
+
+
+def _objects(n: int, value) -> np.ndarray:
+    """An object array of n references to ``value`` (np.full fills object arrays 20x slower)."""
+    out = np.empty(n, dtype=object)
+    out[:] = value
+    return out
+
+
+def _compliant(frame: pd.DataFrame) -> np.ndarray:
+    """Scenes whose tangential model is not ``batched`` (its motion is integrated: solved scene by scene)."""
+    names = frame["tangential"].to_numpy()
+    out = np.ones(names.shape, dtype=bool)
+    for name, model in TANGENTIALS.items():
+        if model.batched:
+            out &= names != name  # numpy's comparison: pandas' is 4x slower
+    return out
+
+
+def scene_of(row: dict) -> Scene:
+    """The Scene of one row of a :func:`scene_table` (its NaN law parameters are the ones its law lacks)."""
+    values = {name: (value if name in TEXT_FIELDS else float(value)) for name, value in row.items()}
+    for name in PARAMETER_NAMES:
+        if name == "modulus" or np.isnan(values[name]):  # k is already resolved from the modulus
+            values[name] = None
+    for name in PATH_RULES:
+        if np.isnan(values[name]):
+            values[name] = None
+    resolved = not np.isnan(values["kappa"])  # kappa is already resolved from poisson or shear_modulus
+    for name in TANGENTIAL_PARAMETERS:
+        if np.isnan(values[name]) or (name != "kappa" and resolved):
+            values[name] = None
+    return Scene(**values)
+
+
+def incidence(frame: pd.DataFrame) -> np.ndarray:
+    """Each scene's incidence from the flat's normal [deg]: its ``incidence``, 90 - ``angle_to_surface``, or
+    the flat's tilt ``angle`` for a vertical approach (as :attr:`sphereimpact.Scene.incidence_deg`)."""
+    given, surface = frame["incidence"].to_numpy(), frame["angle_to_surface"].to_numpy()
+    return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, frame["angle"].to_numpy()))
+
+
+def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+    """The columns a law's vectorised functions read: mass, radius, v_normal and its parameters."""
+    return SimpleNamespace(mass=frame["mass"].to_numpy(), radius=0.5 * frame["diameter"].to_numpy(), v_normal=v_n,
+                           **{name: frame[name].to_numpy() for name in PARAMETER_NAMES})
+
+
+@dataclass(frozen=True)
+class Numbers:
+    """Per scene, what chooses and drives a sweep path: the law's frequency ``w`` = 1 / T [1/s], the normal
+    approach speed ``v_n`` [m/s], the dimensionless gravity ``gamma`` = g_n / (w v_n), the batched kernel's
+    ``zeta`` and ``lam`` (0 without a kernel), masks of the ``modified`` kernel, the kelvin-voigt ``closed``
+    form, a ``batched`` kernel and the ``force`` criterion (compared once here: an elementwise comparison of
+    an object array is not cheap), the ``kernel`` name, the similarity ``family`` as a hashable key (laws
+    without a kernel; None otherwise) and the ``separation`` criterion."""
+
+    w: np.ndarray
+    v_n: np.ndarray
+    gamma: np.ndarray
+    zeta: np.ndarray
+    lam: np.ndarray
+    modified: np.ndarray
+    closed: np.ndarray
+    batched: np.ndarray
+    force: np.ndarray
+    kernel: np.ndarray
+    family: np.ndarray
+    separation: np.ndarray
+
+    def __getitem__(self, rows) -> "Numbers":
+        """The numbers of some scenes (a mask or indices)."""
+        return Numbers(**{f.name: getattr(self, f.name)[rows] for f in fields(self)})
+
+    def __len__(self) -> int:
+        return self.w.size
+
+    def criterion(self, separation: str) -> np.ndarray:
+        """Mask of the scenes under the criterion ``separation``."""
+        return self.force if separation == "force" else ~self.force
+
+
+def numbers(frame: pd.DataFrame) -> Numbers:
+    """The :class:`Numbers` of every scene of a :func:`scene_table`, each from its law's ``frequency`` and
+    ``family`` (ValueError names a law whose kernel or closed form the sweep lacks, and a row whose scales
+    overflow)."""
+    beta = np.radians(incidence(frame))
+    v_n = frame["speed"].to_numpy() * np.cos(beta)
+    n = len(frame)
+    w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
+    kernel, family = _objects(n, None), _objects(n, None)
+    modified, linear = np.zeros(n, bool), np.zeros(n, bool)
+    models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
+    for model in dict.fromkeys(models.tolist()):
+        rows = np.flatnonzero(models == model)
+        law = LAWS[model]
+        if law.kernel is not None and law.kernel not in batch.KERNELS:
+            raise ValueError(f"model {model!r} declares kernel {law.kernel!r}, which the batched lanes do not have "
+                             f"({', '.join(batch.KERNELS)}); declare kernel=None to be solved per family")
+        if law.closed_form is not None and law.closed_form != closed.CLOSED_FORM:
+            raise ValueError(f"model {model!r} declares closed form {law.closed_form!r}, which the sweep does not "
+                             f"have ({closed.CLOSED_FORM})")
+        view = _law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
+        with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
+            w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
+            values = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
+                      for name, value in law.family(view).items()}
+        problem = scale_problem(view.mass, v_n[rows], w[rows], law, rows)
+        if problem:
+            raise ValueError(problem)
+        kernel[rows] = law.kernel
+        modified[rows], linear[rows] = law.kernel == "modified", law.closed_form == closed.CLOSED_FORM
+        if law.kernel is not None:  # the batched kernels read zeta and (modified) lam
+            zeta[rows] = values["zeta"]
+            lam[rows] = values.get("lam", 0.0)
+        else:  # the family as a key, for the paths of kernel-less laws (10^6 tuples: 0.19 s)
+            keys = zip(*values.values()) if values else [()] * rows.size
+            family[rows] = [(model, *key) for key in keys]
+    # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
+    gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
+    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=linear,
+                   batched=kernel != None, force=separation == "force", kernel=kernel,  # noqa: E711
+                   family=family, separation=separation)
+
+
+def rows(**columns) -> pd.DataFrame:
+    """Scenes row by row: the i-th scene takes the i-th value of every column (equal lengths; a single value
+    is repeated).  :func:`grid` takes every combination instead."""
+    lengths = {name: np.size(values) for name, values in columns.items()}
+    longest = max(lengths.values(), default=0)
+    if any(length not in (1, longest) for length in lengths.values()):
+        listed = ", ".join(f"{name} ({length})" for name, length in lengths.items())
+        raise ValueError(f"scene columns must have the same length; got {listed}")
+    listed = {name: list(values) if np.ndim(values) else [values] for name, values in columns.items()}
+    return pd.DataFrame({name: values * longest if len(values) == 1 else values for name, values in listed.items()})
+
+
+def grid(**ranges) -> pd.DataFrame:
+    """Every combination of parameter values, one row per scene (the first parameter varies slowest): what a
+    dict given to :func:`sweep` and the command line's ranges mean.  :func:`rows` pairs values instead."""
+    names = list(ranges)
+    mesh = np.meshgrid(*[np.atleast_1d(ranges[n]) for n in names], indexing="ij")
+    return pd.DataFrame({n: m.ravel() for n, m in zip(names, mesh)})
+
