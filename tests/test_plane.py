@@ -9,7 +9,8 @@ from sphereimpact import SolverOptions, simulate
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch, engine, paths, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
-from sphereimpact.sweep.similarity import OUTPUTS, InterpolationError, _errors
+from sphereimpact.sweep.outputs import NORMAL_OUTPUTS as OUTPUTS
+from sphereimpact.sweep.similarity import InterpolationError, _errors
 
 KEYS = [k for k in engine.SWEEP_OUTPUTS if k not in ("regime", "beyond_radius")]
 #: The random-ball benchmark's rectangle (k 2e4-2e5 N/m, b 2-30 N s/m, m 0.05-0.5 kg, 0.5-30 m/s, 0-89 deg).

@@ -7,7 +7,8 @@ from scipy.integrate import solve_ivp
 
 from sphereimpact import ImpactError
 from sphereimpact.sweep import batch, plane, series_lanes
-from sphereimpact.sweep.similarity import OUTPUTS, _errors
+from sphereimpact.sweep.outputs import NORMAL_OUTPUTS as OUTPUTS
+from sphereimpact.sweep.similarity import _errors
 
 RNG = np.random.default_rng(3)
 ZETA = 10 ** RNG.uniform(-2.5, 0.0, 400)  # 0.003 to 1: the plane's domain

@@ -23,6 +23,7 @@ from scipy.special import wrightomega
 
 from ..errors import ImpactError
 from ..laws import ramp_continued
+from .outputs import NORMAL_OUTPUTS
 
 #: The laws' kernels these lanes integrate (``ContactLaw.kernel``): P_hat = x + 2 zeta y r(lam x).
 KERNELS = ("kelvin-voigt", "modified")
@@ -342,7 +343,7 @@ def _join(store: list) -> dict:
 
 def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool) -> dict:
     """Locate every bracketed event at once; see :func:`integrate` for the outputs."""
-    out = {k: np.full(n, np.nan) for k in ("tau_m", "x_m", "tau_f", "y_f", "y_p")}
+    out = {k: np.full(n, np.nan) for k in NORMAL_OUTPUTS}
     step_of_max = np.full(n, np.nan)
     s_of_max = np.zeros(n)
     m = _join(records["max"])

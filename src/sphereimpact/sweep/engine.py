@@ -22,7 +22,8 @@ from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take range
 from ..scene import SolverOptions
 from ..solve import normal_motion
 from ..tangential import impulse_outcome
-from .paths import NORMAL_OUTPUTS, ORDER, PATHS, Work
+from .outputs import NORMAL_OUTPUTS
+from .paths import ORDER, PATHS, Work
 from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and

@@ -25,13 +25,10 @@ from ..outcome import SCALAR_OUTPUTS
 from ..scene import SEPARATION_CRITERIA, SolverOptions
 from ..solve import simulate, simulate_many
 from . import batch, closed, plane, series_lanes
+from .outputs import NORMAL_OUTPUTS
 from .scenes import Numbers, _compliant, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
-#: The dimensionless normal outputs every path but the single-impact one gives: times tau = t / T, the
-#: largest compression x_m = delta_m / (v_n T), the rebound rate y_f = -v_f / v_n, and y_p, the rate where P
-#: first falls to 0 (1 - y_p is the impulse of P+ over m v_n).
-NORMAL_OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 #: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
 #: (zeta, criterion) for the lam interpolant; fewest scenes of one criterion for the (zeta, lam) plane; fewest
 #: distinct values of a kernel-less law's last family number for interpolating in it.

@@ -36,8 +36,8 @@ import numpy as np
 from ..errors import ImpactError
 from ..taylor import BAND_EDGE, MAX_STEPS, band_limit, order_for
 from .batch import HORIZON
+from .outputs import NORMAL_OUTPUTS
 
-OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 #: Largest damping ratio and lam the lanes are tested to (tests/test_series_lanes.py; lam up to 1e20 ran
 #: without overflow, 1e50 overflows); the engine and the interpolants give them no more (:func:`covers`).
 ZETA_MAX, LAM_MAX = 1.0, 1e12
@@ -191,7 +191,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
     if not np.isin(kind, SEPARATIONS).all():
         raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}")
     if n == 0:
-        return {k: np.empty(0) for k in OUTPUTS}
+        return {k: np.empty(0) for k in NORMAL_OUTPUTS}
     tol = np.maximum(TOLERANCE_FACTOR * target / np.maximum(1.0, 2.0 * zeta) ** 2, TOLERANCE_MIN)
     order = order_for(TOLERANCE_FACTOR * target)  # the target's, not the batch's: a lane's result is its own
     lane = np.arange(n)
@@ -268,7 +268,7 @@ def _ratio_root(xs, ys, two_zeta, lam, b, q_b, tau):
 def _events(records: dict, two_zeta, lam, at_root) -> dict:
     """Locate the bracketed events (see :func:`integrate` for the outputs); ``at_root``: lanes that end at
     Q's root (force criterion, continued)."""
-    out = {k: np.full(two_zeta.size, np.nan) for k in OUTPUTS}
+    out = {k: np.full(two_zeta.size, np.nan) for k in NORMAL_OUTPUTS}
     m = _join(records["max"])
     s_m = _polynomial_root(m["ys"], m["h"], m["tau"])
     out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s_m, _horner(m["xs"], s_m)

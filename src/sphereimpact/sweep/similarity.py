@@ -41,8 +41,8 @@ from ..scene import Scene, SolverOptions
 from ..solve import normal_motion
 from ..tangential import PositiveImpulse
 from . import batch, series_lanes
+from .outputs import NORMAL_OUTPUTS
 
-OUTPUTS = ("tau_m", "x_m", "tau_f", "y_f", "y_p")
 #: Outputs that are smooth across the tension onset under the penetration criterion.
 SMOOTH = ("tau_m", "x_m", "tau_f", "y_f")
 #: The first check compares n nodes with their n - 1 midpoints (one solve), n = 2^k + 1 from
@@ -193,14 +193,14 @@ class _Pieces:
             return
         # tension on [cut, u_hi] (G falls as q grows), everywhere, or in principle on [u_lo, cut]
         a, b = (u_lo if cut is None else cut, u_hi) if tension_at_top else (u_lo, cut)
-        tense, nodes = _fit(solve, a, b, separation, target, OUTPUTS, what, per_digit)
+        tense, nodes = _fit(solve, a, b, separation, target, NORMAL_OUTPUTS, what, per_digit)
         self.nodes += nodes
         self.pieces = [tense] if cut is None else [calm, tense] if tension_at_top else [tense, calm]
 
     def __call__(self, q) -> dict:
         u = np.log(np.asarray(q, dtype=float))
         piece = np.searchsorted(self.cuts, u)
-        out = {k: np.empty(u.size) for k in OUTPUTS}
+        out = {k: np.empty(u.size) for k in NORMAL_OUTPUTS}
         for i, series in enumerate(self.pieces):
             mask = piece == i
             for k, value in series(u[mask]).items():
