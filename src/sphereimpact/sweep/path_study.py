@@ -1,0 +1,120 @@
+"""Which sweep path pays where: the paths that can solve the same scenes, timed against each other at equal
+target, each with its worst error on a sample against an independent reference (a benchmark, not a test).
+
+Eq. 4.2 without gravity is the one region where several paths apply (:mod:`.paths`), so the comparisons
+are there, at several sweep sizes and under both criteria:
+
+- ``one ball``: scenes sharing the chapter's damping ratio, lam log-uniform: the lam interpolant
+  (``lambda-interpolant``), the plane on its one-zeta slice (``plane``), the Taylor lanes and the
+  Runge-Kutta lanes;
+- ``many balls``: zeta and lam drawn per scene inside the plane's domain: the plane and both lanes.
+
+An interpolant's time includes its build: the engine builds it anew for every sweep.  The reference is the
+single-impact model in plain-float DOP853 at rtol 1e-13 (:func:`.similarity.dimensionless_motion`), a code
+path none of the contenders shares.  A row is ``dominated`` when another contender of the same comparison,
+size and criterion is faster and at most as far from the reference; a path dominated on every row of a
+comparison is one the engine should not take there.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+import pandas as pd
+
+from ..numerics.timing import interleaved_seconds
+from ..scene import SEPARATION_CRITERIA, Scene, SolverOptions
+from . import batch, plane, series_lanes
+from .outputs import NORMAL_OUTPUTS
+from .similarity import LambdaInterpolant, _errors, dimensionless_motion
+
+log = logging.getLogger(__name__)
+#: The reference: the single-impact model in plain-float DOP853, at a tolerance far below the target.
+REFERENCE = SolverOptions(method="DOP853-scalar", rtol=1e-13, atol=1e-13)
+#: lam range of both comparisons (the chapter's ball at 0.4 to 40 m/s) and zeta range of the many balls'.
+LAM_RANGE = (2.0, 200.0)
+ZETA_RANGE = (0.01, 0.5)
+
+
+def scene_for(zeta: float, lam: float, separation: str) -> Scene:
+    """The chapter's ball at normal incidence with eq. 4.2's damping ratio ``zeta`` and ramp number ``lam``
+    (b = 2 zeta sqrt(k m), v = lam omega_n R / c)."""
+    base = Scene(separation=separation)
+    b = 2.0 * zeta * math.sqrt(base.k * base.mass)
+    speed = lam * math.sqrt(base.k / base.mass) * (0.5 * base.diameter) / base.ramp
+    return base.with_(b=b, speed=speed)
+
+
+def _contenders(zeta, lam, separation: str, target: float, one_zeta: bool) -> dict:
+    """name -> call solving every scene (zeta, lam) on that path, interpolants built in the call."""
+    lo, hi = float(lam.min()), float(lam.max())
+    gamma, modified = np.zeros(zeta.size), np.ones(zeta.size, bool)
+    calls = {}
+    if one_zeta:
+        calls["lambda-interpolant"] = lambda: LambdaInterpolant(float(zeta[0]), lo, hi, separation, target)(lam)
+    calls["plane"] = lambda: plane.PlaneInterpolant(float(zeta.min()), float(zeta.max()), lo, hi, separation,
+                                                    target)(zeta, lam)
+    calls["taylor-lanes"] = lambda: series_lanes.integrate(zeta, lam, separation, target)
+    calls["runge-kutta-lanes"] = lambda: batch.integrate(zeta, lam, gamma, modified, separation, target)
+    return calls
+
+
+def compare(comparison: str, scenes: int, separation: str, target: float, repeats: int, sample: int,
+            seed: int) -> list[dict]:
+    """One row per contender of ``comparison`` (``one ball`` or ``many balls``) on ``scenes`` scenes."""
+    rng = np.random.default_rng(seed)
+    lam = np.exp(rng.uniform(*np.log(LAM_RANGE), scenes))
+    if comparison == "one ball":
+        zeta = np.full(scenes, Scene().zeta)
+    else:
+        zeta = rng.uniform(*ZETA_RANGE, scenes)
+    calls = _contenders(zeta, lam, separation, target, comparison == "one ball")
+    pick = np.sort(rng.choice(scenes, size=min(sample, scenes), replace=False))
+    solved = [dimensionless_motion(scene_for(z, q, separation), REFERENCE) for z, q in zip(zeta[pick], lam[pick])]
+    reference = {key: np.array([row[key] for row in solved]) for key in NORMAL_OUTPUTS}
+    errors = {name: _errors({key: values[pick] for key, values in call().items()}, reference, NORMAL_OUTPUTS)
+              for name, call in calls.items()}
+    seconds = interleaved_seconds(calls, repeats)
+    log.info("sweep paths: %s, %d scenes, %s: %s", comparison, scenes, separation,
+             ", ".join(f"{name} {seconds[name]:.3g} s" for name in calls))
+    return [{"comparison": comparison, "separation": separation, "scenes": scenes, "target": target,
+             "path": name, "seconds": seconds[name], "us_per_scene": 1e6 * seconds[name] / scenes,
+             "worst_error": errors[name], "repeats": repeats, "sample": len(pick)} for name in calls]
+
+
+def _dominated(table: pd.DataFrame) -> pd.Series:
+    """Per row: another contender of its comparison, size and criterion is faster and as accurate."""
+    out = pd.Series(False, index=table.index)
+    for _, group in table.groupby(["comparison", "separation", "scenes"], sort=False):
+        for i, row in group.iterrows():
+            others = group.drop(index=i)
+            out[i] = bool(((others["seconds"] < row["seconds"]) & (others["worst_error"] <= row["worst_error"])).any())
+    return out
+
+
+def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, repeats: int = 3,
+        sample: int = 30) -> pd.DataFrame:
+    """Every comparison at each of ``sizes`` scenes and both criteria; writes ``csv_path``.
+
+    Parameters
+    ----------
+    sizes : sequence of int
+        Scenes per sweep.
+    target : float
+        The sweep target every contender is asked for.
+    repeats : int
+        Complete runs per timing, the contenders in turn within each repeat (median reported).
+    sample : int
+        Scenes per sweep on which each contender's error is measured against the reference.
+    """
+    rows = []
+    for comparison in ("one ball", "many balls"):
+        for scenes in sizes:
+            for i, separation in enumerate(SEPARATION_CRITERIA):
+                rows += compare(comparison, int(scenes), separation, target, repeats, sample, seed=int(scenes) + i)
+    table = pd.DataFrame(rows)
+    table["dominated"] = _dominated(table)
+    table.to_csv(csv_path, index=False, float_format="%.4g")
+    return table
