@@ -29,6 +29,7 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "paper_figures/work_precision.png", "paper_figures/stability.png",
            "results/microslip_resolution.csv", "paper_figures/microslip_resolution.png",
            "results/sweep/angle_speed.csv", "results/sweep/speed.csv", "results/bench_sweep.csv",
+           "results/sweep_paths.csv", "paper_figures/sweep_paths.png",
            "paper_figures/spin_map.png", "paper_figures/cor_speed.png", "paper_figures/contact_speed.png",
            "results/notebooks/sweeps.html",
            *[f"paper_figures/{f}.{ext}" for f in FIGURES for ext in ("png", "pdf")],
@@ -38,9 +39,10 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
 FIGURE_TOLERANCE = 2.0
 #: Rules whose jobs are timed and so run alone (``threads: workflow.cores``): the test's small run lets them
 #: share the machine, since its timings are not read.
-TIMED_RULES = ("work_precision", "bench", "bench_sweep", "microslip_resolution")
+TIMED_RULES = ("work_precision", "bench", "bench_sweep", "microslip_resolution", "sweep_paths")
 #: Rules whose jobs are benchmarks or heavy studies.
-HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution")
+HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution",
+         "sweep_paths")
 
 
 def planned(run) -> dict:
@@ -123,7 +125,7 @@ def test_samples_rerun_the_histories_not_the_benchmarks(workdir):
 def test_editing_a_drawing_module_redraws_without_recomputing(scratch):
     edit(scratch / "src/sphereimpact/figures/style.py")
     jobs = planned(snakemake(scratch, "-n"))
-    assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 3 and jobs.get("sweep_map") == 3
+    assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 4 and jobs.get("sweep_map") == 3
     assert not {"simulate", *HEAVY} & set(jobs), jobs
 
 

@@ -96,7 +96,7 @@ rule numerics_figure:
     output:
         png=report("paper_figures/{study}.png", caption="../report/numerics_figure.rst", category="Numerics"),
     wildcard_constraints:
-        study="work_precision|stability|microslip_resolution",
+        study="work_precision|stability|microslip_resolution|sweep_paths",
     log:
         "logs/figures/{study}.log",
     conda:

@@ -79,6 +79,23 @@ rule sweep_map:
         "../scripts/sweep_map.py"
 
 
+rule sweep_paths:
+    """The sweep paths that can solve the same scenes, timed against each other at equal target (a benchmark)."""
+    input:
+        code=code("workflow/scripts/sweep_paths.py"),
+    output:
+        csv=report("results/sweep_paths.csv", caption="../report/sweep_paths.rst", category="Sweeps"),
+    params:
+        config=params_for("sweep_paths"),
+    threads: workflow.cores  # timed: no other job shares the machine
+    log:
+        "logs/sweep_paths.log",
+    conda:
+        ENV
+    script:
+        "../scripts/sweep_paths.py"
+
+
 rule bench_sweep:
     """Throughput of the sweep engine against per-scene solving at equal accuracy (a benchmark)."""
     input:

@@ -127,13 +127,41 @@ def microslip_resolution_figure(csv_path: str, outputs) -> None:
         save(fig, outputs)
 
 
+PATH_COLORS = {"lambda-interpolant": "tab:blue", "plane": "tab:orange", "taylor-lanes": "tab:pink",
+               "runge-kutta-lanes": "tab:green"}
+CRITERION_STYLE = {"force": "-", "penetration": "--"}
+
+
+def sweep_paths_figure(csv_path: str, outputs) -> None:
+    """Time per scene (top) and worst error (bottom) against the sweep's size, one column per comparison of
+    the sweep-path study, one line per path and criterion."""
+    frame = pd.read_csv(csv_path)
+    comparisons = list(dict.fromkeys(frame["comparison"]))
+    with plt.rc_context(RC | {"figure.figsize": (5.2 * len(comparisons), 7.0)}):
+        fig, axes = plt.subplots(2, len(comparisons), squeeze=False, sharex=True)
+        for col, comparison in enumerate(comparisons):
+            data = frame[frame["comparison"] == comparison]
+            for (path, criterion), line in data.groupby(["path", "separation"], sort=False):
+                style = dict(color=PATH_COLORS.get(path, "black"), linestyle=CRITERION_STYLE[criterion], marker="o",
+                             markersize=3, label=f"{path} ({criterion})")
+                axes[0, col].loglog(line["scenes"], line["us_per_scene"], **style)
+                axes[1, col].loglog(line["scenes"], line["worst_error"], **style)
+            axes[1, col].axhline(float(data["target"].iloc[0]), color="gray", linewidth=0.8, linestyle=":")
+            axes[0, col].set(ylabel="median time per scene [us]", title=comparison)
+            axes[1, col].set(xlabel="scenes in the sweep", ylabel="worst error (dotted: target)")
+        axes[0, 0].legend(fontsize=6)
+        fig.suptitle("Sweep paths where several apply: eq. 4.2 without gravity (builds included)")
+        fig.tight_layout()
+        save(fig, outputs)
+
+
+#: Study name -> its chart.
+CHARTS = {"work_precision": work_precision_figure, "stability": stability_figure,
+          "microslip_resolution": microslip_resolution_figure, "sweep_paths": sweep_paths_figure}
+
+
 def draw_study(study: str, csv_path: str, outputs) -> None:
-    """The chart of numerical study ``study`` (``work_precision``, ``stability`` or ``microslip_resolution``)."""
-    if study == "microslip_resolution":
-        microslip_resolution_figure(csv_path, outputs)
-    elif study == "work_precision":
-        work_precision_figure(csv_path, outputs)
-    elif study == "stability":
-        stability_figure(csv_path, outputs)
-    else:
-        raise ValueError(f"no chart for study {study!r}")
+    """The chart of numerical study ``study`` (one of :data:`CHARTS`)."""
+    if study not in CHARTS:
+        raise ValueError(f"no chart for study {study!r}; expected one of {', '.join(CHARTS)}")
+    CHARTS[study](csv_path, outputs)
