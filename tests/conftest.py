@@ -47,10 +47,21 @@ def project_copy(work: Path) -> Path:
     return work
 
 
-def snakemake(cwd, *args, configfiles=(), path=()):
-    """Run snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
-    copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path."""
+def start_snakemake(cwd, *args, configfiles=(), path=()) -> subprocess.Popen:
+    """Start snakemake in ``cwd`` on the test config (plus ``configfiles``), importing the package from the
+    copy in ``cwd/src`` (so a test can edit it) with ``path`` first on the module path; :func:`finish` waits."""
     env = os.environ | {"PYTHONPATH": os.pathsep.join([*map(str, path), str(Path(cwd) / "src")])}
     env.pop("PYTHONDONTWRITEBYTECODE", None)  # the copy's bytecode, compiled once, serves its ~50 job processes
-    return subprocess.run(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
-                          capture_output=True, text=True, env=env)
+    return subprocess.Popen(["snakemake", "--cores", "2", *args, "--configfile", TEST_CONFIG, *configfiles], cwd=cwd,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+
+
+def finish(process: subprocess.Popen) -> subprocess.CompletedProcess:
+    """Wait for a :func:`start_snakemake` run; its exit code and output."""
+    out, err = process.communicate()
+    return subprocess.CompletedProcess(process.args, process.returncode, out, err)
+
+
+def snakemake(cwd, *args, configfiles=(), path=()) -> subprocess.CompletedProcess:
+    """Run snakemake in ``cwd`` (see :func:`start_snakemake`) and wait for it."""
+    return finish(start_snakemake(cwd, *args, configfiles=configfiles, path=path))

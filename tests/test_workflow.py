@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from matplotlib.testing.compare import compare_images
 
-from conftest import project_copy, snakemake
+from conftest import finish, project_copy, snakemake, start_snakemake
 
 ROOT = Path(__file__).resolve().parents[1]
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
@@ -58,13 +58,58 @@ def workdir(tmp_path_factory):
     return work
 
 
-@pytest.fixture
-def scratch(workdir, tmp_path):
+def scratch_copy(workdir: Path, copy: Path) -> Path:
     """A copy of the finished pipeline that a test may break."""
-    copy = tmp_path / "copy"
     shutil.copytree(workdir, copy, ignore=shutil.ignore_patterns(".snakemake"))
     shutil.copytree(workdir / ".snakemake", copy / ".snakemake", ignore=shutil.ignore_patterns("conda", "log"))
     return copy
+
+
+def files(root: Path) -> dict:
+    """Relative path -> digest of every file under ``root`` but snakemake's metadata and bytecode."""
+    return {p.relative_to(root).as_posix(): digest(p) for p in root.rglob("*")
+            if p.is_file() and ".snakemake" not in p.parts and "__pycache__" not in p.parts}
+
+
+class _Run:
+    """A snakemake run on its own copy of the finished pipeline, started before the tests that read it."""
+
+    def __init__(self, copy: Path, process, before=None):
+        self.copy, self._process, self.before, self._result = copy, process, before, None
+
+    @property
+    def result(self):
+        if self._result is None:
+            self._result = finish(self._process)
+        return self._result
+
+
+@pytest.fixture(scope="module", autouse=True)
+def overlapping(workdir, tmp_path_factory) -> dict:
+    """The runs on copies of the finished pipeline (a broken input, an edited module, the report, an own
+    study), all started at once after the pipeline, so that they overlap the tests run in ``workdir`` itself
+    (one snakemake process at a time, whatever the cores)."""
+    runs = {}
+
+    def start(name, prepare, *args, snapshot=False, configfiles=()):
+        copy = scratch_copy(workdir, tmp_path_factory.mktemp(name) / "copy")
+        prepare(copy)
+        before = files(copy) if snapshot else None
+        runs[name] = _Run(copy, start_snakemake(copy, *args, configfiles=configfiles), before)
+
+    def corrupt(copy):
+        (copy / "results/runs/normal_modified.csv").write_text("not,a,run\n1,2,3\n")  # a corrupted input
+
+    small = tmp_path_factory.mktemp("own") / "small.yaml"
+    small.write_text("ranges: {speeds: '5:25:10', map_speeds: '10:30:10', map_angles: '20:80:30'}\n")
+    start("own", lambda copy: None, snapshot=True, configfiles=["config/examples/tennis.yaml", str(small)])
+    start("drawing", lambda copy: edit(copy / "src/sphereimpact/figures/style.py"), "-n")
+    start("physics", lambda copy: edit(copy / "src/sphereimpact/normal.py"), "-n")
+    start("failing", corrupt, "paper_figures/fig4_2.png", "--forcerun", "figure")
+    start("report", lambda copy: None, "--report", "results/report.html")
+    yield runs
+    for run in runs.values():
+        run.result  # noqa: B018  (no process outlives the module)
 
 
 def edit(path: Path) -> None:
@@ -122,32 +167,29 @@ def test_samples_rerun_the_histories_not_the_benchmarks(workdir):
     assert not set(HEAVY) & set(jobs), jobs
 
 
-def test_editing_a_drawing_module_redraws_without_recomputing(scratch):
-    edit(scratch / "src/sphereimpact/figures/style.py")
-    jobs = planned(snakemake(scratch, "-n"))
+def test_editing_a_drawing_module_redraws_without_recomputing(overlapping):
+    jobs = planned(overlapping["drawing"].result)
     assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 4 and jobs.get("sweep_map") == 3
     assert not {"simulate", *HEAVY} & set(jobs), jobs
 
 
-def test_editing_the_physics_reruns_what_uses_it(scratch):
-    edit(scratch / "src/sphereimpact/normal.py")
-    jobs = planned(snakemake(scratch, "-n"))
+def test_editing_the_physics_reruns_what_uses_it(overlapping):
+    jobs = planned(overlapping["physics"].result)
     assert jobs.get("simulate") == 4
     assert {"work_precision", "stability", "bench", "sweep_shard", "speed_table", "bench_sweep"} <= set(jobs)
 
 
-def test_a_failing_job_writes_its_traceback_to_its_log(scratch):
-    (scratch / "results/runs/normal_modified.csv").write_text("not,a,run\n1,2,3\n")  # a corrupted input
-    run = snakemake(scratch, "paper_figures/fig4_2.png", "--forcerun", "figure")
-    assert run.returncode != 0
-    log = (scratch / "logs/figures/fig4_2.log").read_text()
+def test_a_failing_job_writes_its_traceback_to_its_log(overlapping):
+    failing = overlapping["failing"]  # the run of fig 4.2 on a corrupted run table
+    assert failing.result.returncode != 0
+    log = (failing.copy / "logs/figures/fig4_2.log").read_text()
     assert "Traceback (most recent call last)" in log and "KeyError: 'separation'" in log
 
 
-def test_html_report_has_every_figure_and_table(scratch):
-    run = snakemake(scratch, "--report", "results/report.html")
-    assert run.returncode == 0, run.stderr[-2000:]
-    html = (scratch / "results/report.html").read_text(errors="replace")
+def test_html_report_has_every_figure_and_table(overlapping):
+    report = overlapping["report"]
+    assert report.result.returncode == 0, report.result.stderr[-2000:]
+    html = (report.copy / "results/report.html").read_text(errors="replace")
     for name in ["fig4_7.png", "work_precision.png", "spin_map.png", "replication.csv", "bench_sweep.csv"]:
         assert name in html, name
 
@@ -176,21 +218,16 @@ def test_merged_sweep_equals_the_sweep_run_at_once(workdir, tmp_path):
     assert (workdir / "results/sweep/angle_speed.csv").read_bytes() == whole.read_bytes()
 
 
-def test_an_own_study_writes_only_its_own_files(scratch, tmp_path):
+def test_an_own_study_writes_only_its_own_files(overlapping):
     """The shipped tennis example (its ranges made small) after the chapter's pipeline: every output of the
     study under results/studies/tennis/, and not one byte of the chapter's files changed, nor a chapter rule
     run."""
-    small = tmp_path / "small.yaml"
-    small.write_text("ranges: {speeds: '5:25:10', map_speeds: '10:30:10', map_angles: '20:80:30'}\n")
-    def files():
-        return {p.relative_to(scratch).as_posix(): digest(p) for p in scratch.rglob("*")
-                if p.is_file() and ".snakemake" not in p.parts and "__pycache__" not in p.parts}
-    before = files()
-    run = snakemake(scratch, configfiles=["config/examples/tennis.yaml", str(small)])
+    own = overlapping["own"]
+    run, scratch, before = own.result, own.copy, own.before
     assert run.returncode == 0, run.stderr[-3000:]
     assert set(planned(run)) <= {"own_ball", "own_bounces", "own_speed", "own_maps", "own_bounce_figure",
                                   "own_figures", "own_page", "all", "total"}, planned(run)
-    after = files()
+    after = files(scratch)
     changed = {p for p in before if after.get(p) != before[p]}
     added = set(after) - set(before)
     assert not changed, sorted(changed)
