@@ -40,7 +40,7 @@ def capped(scene):
 #: (lam, zeta, separation) -> why the default path still misses 1e-9 there (measured).
 KNOWN = {
     # none today: over-damped, the force criterion's t_f carries 4 zeta^2 x the state's error, and the
-    # tolerances are divided by that (sphereimpact.normal.conditioned_tolerances: zeta = 3 missed by 2e-9
+    # tolerances are divided by that (sphereimpact.integrators.normal.conditioned_tolerances: zeta = 3 missed by 2e-9
     # to 7e-9 before); where they reach their floor, steps are bounded too (conditioned_step: zeta 30-100
     # missed t_f by up to 2.2e-8 before, with the root on the interpolant), and the root is corrected on
     # the landed state; lam = 20, zeta = 0.01 missed the COR by 2.2e-9 until the restitution restarts with

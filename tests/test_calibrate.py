@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from sphereimpact import Scene, SolverOptions, simulate
-from sphereimpact.calibrate import calibrate
+from sphereimpact.impact.calibrate import calibrate
 from sphereimpact.cli import run
 
 DAMPED = {"kelvin-voigt": {}, "modified": {}, "linear-hunt-crossley": {}, "hunt-crossley": {"modulus": 1e7}}

@@ -7,7 +7,7 @@ import pytest
 
 from conftest import TIGHT, assert_outputs_close
 from sphereimpact import ImpactError, Scene, SolverOptions, simulate
-from sphereimpact.closed import ClosedFormNormal
+from sphereimpact.integrators.closed_form import ClosedFormNormal
 
 CRITICAL_B = 2.0 * math.sqrt(60000.0 * 0.145)  # b at zeta = 1 for the chapter's k and m
 

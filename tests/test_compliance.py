@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from sphereimpact import ImpactError, Scene, simulate
-from sphereimpact.laws import spring_stiffness
+from sphereimpact.contact.laws import spring_stiffness
 from sphereimpact.sweep import rows, sweep
 
 #: Kharaz, Gorham & Salman (2001): 5 mm alumina on glass (data/kharaz2001.README.md).  E* and G* of the pair
@@ -147,7 +147,7 @@ def test_planar_body_refuses_compliance():
 
 def test_switch_bound_is_an_error_not_a_hang():
     with pytest.raises(ImpactError, match="stick-slip switches"):
-        from sphereimpact.tangential import springs
+        from sphereimpact.contact.tangential import springs
 
         original = springs.MAX_PHASES
         springs.MAX_PHASES = -10**6  # a bound below any contact

@@ -1,4 +1,4 @@
-"""DOP853 in floats (sphereimpact.dop853) against scipy's DOP853, and the stacked dense output against
+"""DOP853 in floats (sphereimpact.ode.dop853) against scipy's DOP853, and the stacked dense output against
 OdeSolution: the same algorithm, so the same steps and events up to round-off, and the same dense values
 bit for bit."""
 
@@ -9,8 +9,8 @@ import pytest
 from scipy.integrate import OdeSolution, solve_ivp
 
 from sphereimpact import Scene, SolverOptions, simulate
-from sphereimpact.dense import StackedDOP853, fast_solution
-from sphereimpact.dop853 import solve
+from sphereimpact.ode.dense import StackedDOP853, fast_solution
+from sphereimpact.ode.dop853 import solve
 
 OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "omega_f", "cor", "force_max")
 

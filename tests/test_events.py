@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from sphereimpact.events import extremum, minimise
+from sphereimpact.ode.events import extremum, minimise
 
 FUNCTIONS = {
     "smooth": (lambda t: -math.sin(t), 1.2, 1.9),
@@ -51,7 +51,7 @@ def test_an_extremum_inside_an_end_interval_is_found():
     best sample at the end point (f = 0): the end interval is refined because f just inside it is below both
     of its samples (before, the end point's 0 was returned, as simulate's force_min was for a brief pull
     just before delta returns to 0)."""
-    from sphereimpact.events import extremum
+    from sphereimpact.ode.events import extremum
 
     def f(t):
         return (1.0 - t) * (20.0 * (1.0 - t) - 1.0)

@@ -3,8 +3,8 @@
 import pytest
 import yaml
 
-from sphereimpact.scene import STANDARD_GRAVITY
-from sphereimpact.solve import simulate
+from sphereimpact.impact.scene import STANDARD_GRAVITY
+from sphereimpact.impact.solve import simulate
 from sphereimpact.study.config import options_for, scene_for
 from sphereimpact.study.replication import RESOLUTION, compare, findings, load_published, pulls
 from sphereimpact.study.runs import outcome_record

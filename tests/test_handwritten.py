@@ -54,4 +54,4 @@ def test_time_split_and_profile_tables():
     profile = profile_call(Scene(angle=60.0), calls=5, top=8)
     assert len(profile) == 8 and profile.own_us.is_monotonic_decreasing
     assert (profile.share > 0).all() and profile.share.sum() <= 1.0
-    assert profile.function.str.contains("taylor.py").any()  # auto integrates eq. 4.2 by its series
+    assert profile.function.str.contains("series.py").any()  # auto integrates eq. 4.2 by its series

@@ -15,7 +15,7 @@ import yaml
 import sphereimpact.sweep.engine as engine
 from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
-from sphereimpact.scene import STANDARD_GRAVITY
+from sphereimpact.impact.scene import STANDARD_GRAVITY
 from sphereimpact.study.config import config_errors
 from sphereimpact.sweep.engine import grid, sweep
 
@@ -289,9 +289,9 @@ def test_damping_beyond_the_lanes_domain_takes_the_single_impact_path():
 def test_a_contact_that_never_ends_is_refused_within_the_evaluation_budget(monkeypatch):
     """eq. 4.1 over-damped (zeta = 54) under the penetration criterion never returns to delta = 0; the budget of
     right-hand-side evaluations stops the search with a message that says so (lowered here to keep the test
-    quick; the default is sphereimpact.normal.MAX_NFEV)."""
+    quick; the default is sphereimpact.integrators.normal.MAX_NFEV)."""
     from sphereimpact import ImpactError, Scene, SolverOptions, simulate
-    from sphereimpact import normal
+    from sphereimpact.integrators import normal
 
     monkeypatch.setattr(normal, "MAX_NFEV", 20_000)
     integrated = SolverOptions(method="DOP853-scalar")

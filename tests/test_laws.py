@@ -45,7 +45,7 @@ def test_registry_declares_the_closed_form_only_where_it_exists():
 def test_ramp_continuation_is_smooth_and_bounded():
     """Past delta = 0 the ramp is its Taylor polynomial: equal to 1 - exp(-u) to 1e-16 for the overshoot of
     one step, bounded far beyond it, and no exponential is evaluated (no overflow warning)."""
-    from sphereimpact.laws import ramp_continued
+    from sphereimpact.contact.laws import ramp_continued
 
     u = -np.logspace(-8, -2, 25)
     np.testing.assert_allclose(ramp_continued(u), -np.expm1(-u), rtol=1e-15, atol=1e-18)

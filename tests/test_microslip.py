@@ -15,7 +15,7 @@ import pytest
 
 from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.sweep.engine import sweep
-from sphereimpact.tangential.microslip import ELEMENTS, TIME_STEPS, march, quasi_static
+from sphereimpact.contact.tangential.microslip import ELEMENTS, TIME_STEPS, march, quasi_static
 
 #: Kharaz et al.'s alumina sphere (see test_compliance.ALUMINA), exact tangential contact.
 ALUMINA = dict(mass=4000.0 * math.pi * 0.005 ** 3 / 6.0, diameter=0.005, speed=3.9, mu=0.092, model="hunt-crossley",

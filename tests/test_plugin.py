@@ -13,7 +13,7 @@ import pytest
 
 from sphereimpact import LAWS, ContactLaw, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
-from sphereimpact.laws.linear import B, K, damping_ratio, natural_frequency
+from sphereimpact.contact.laws.linear import B, K, damping_ratio, natural_frequency
 from sphereimpact.sweep.engine import grid, sweep
 
 NAME = "growing-damping"
@@ -72,7 +72,7 @@ def test_a_law_without_a_scalar_formula_runs_on_scipys_dop853(law):
 
 
 def test_tilted_gravity_and_calibration_reach_the_law(law):
-    from sphereimpact.calibrate import calibrate
+    from sphereimpact.impact.calibrate import calibrate
 
     scene = Scene(model=NAME, b=400.0, angle=20.0, gravity=9.81)
     row = sweep(grid(angle=[20.0]).assign(model=NAME, b=400.0, gravity=9.81)).iloc[0]
@@ -105,7 +105,7 @@ class _AlwaysSliding:
     F = -kappa mu P+, never gripping; its motion follows from the normal impulse."""
 
     def __init__(self, normal, options):
-        from sphereimpact.tangential import Phase, PositiveImpulse
+        from sphereimpact.contact.tangential import Phase, PositiveImpulse
 
         self.normal, self.scene = normal, normal.scene
         self.jp = PositiveImpulse(normal)
@@ -113,7 +113,7 @@ class _AlwaysSliding:
         self.t_roll, self.regime, self.switches = None, "sliding", 0
 
     def at(self, t):
-        from sphereimpact.tangential import from_impulse
+        from sphereimpact.contact.tangential import from_impulse
 
         t = np.atleast_1d(np.asarray(t, dtype=float))
         share = -self.scene.kappa * self.scene.mu
@@ -125,7 +125,7 @@ class _AlwaysSliding:
 
 @pytest.fixture
 def tangential_model():
-    from sphereimpact.tangential import KAPPA, TANGENTIALS, TangentialModel
+    from sphereimpact.contact.tangential import KAPPA, TANGENTIALS, TangentialModel
 
     model = TANGENTIALS.register(TangentialModel("toy-slide", doc="slides under kappa mu P (test model)",
                                                  stiffness="F = -kappa mu P", parameters=(KAPPA,), spring=None,
@@ -163,7 +163,7 @@ def integrator():
     from dataclasses import replace
 
     from sphereimpact.integrators import INTEGRATORS, Integrator
-    from sphereimpact.normal import IntegratedNormal
+    from sphereimpact.integrators.normal import IntegratedNormal
 
     def solve(scene, options):  # DOP853 in plain floats, steps capped at 1/100 of the undamped period
         return IntegratedNormal(scene, replace(options, method="DOP853-scalar",

@@ -268,7 +268,7 @@ def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
 def test_the_command_line_calibrates_each_ball_once(tmp_path):
     """--cor sets the damping of each distinct ball from a normal impact at --cor-speed, then sweeps it; the
     API's calibrate_table does the same."""
-    from sphereimpact.calibrate import calibrate
+    from sphereimpact.impact.calibrate import calibrate
     from sphereimpact.sweep.calibrate import calibrate_table
 
     out = tmp_path / "cor.csv"

@@ -127,7 +127,7 @@ def test_positive_impulse_is_the_quadrature_of_the_positive_force():
     (kelvin-voigt, penetration criterion) and for one that never pulls."""
     from scipy.integrate import cumulative_trapezoid
 
-    from sphereimpact.tangential import PositiveImpulse
+    from sphereimpact.contact.tangential import PositiveImpulse
 
     for scene in (Scene(model="kelvin-voigt", separation="penetration", angle=30), Scene(model="hertz", k=1e9)):
         normal = simulate(scene).motion.normal

@@ -10,11 +10,12 @@ import math
 import numpy as np
 import pytest
 
-from sphereimpact import ImpactError, Scene, SolverOptions, simulate, taylor
-from sphereimpact.laws.linear import modified_series
-from sphereimpact.normal import TaylorNormal
+from sphereimpact import ImpactError, Scene, SolverOptions, simulate
+from sphereimpact.ode import series as taylor
+from sphereimpact.contact.laws.linear import modified_series
+from sphereimpact.integrators.normal import TaylorNormal
 from sphereimpact.numerics.reference import relative_errors, worst_error
-from sphereimpact.taylor import horner, order_for
+from sphereimpact.ode.series import horner, order_for
 
 
 def capped(scene):

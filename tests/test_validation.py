@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 from sphereimpact import simulate
-from sphereimpact.tangential import kappa_from_poisson
+from sphereimpact.contact.tangential import kappa_from_poisson
 from sphereimpact.study.validation import effective_moduli, experiment, load_data, residuals, summary
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -104,7 +104,7 @@ def overlapping(workdir, tmp_path_factory) -> dict:
     small.write_text("ranges: {speeds: '5:25:10', map_speeds: '10:30:10', map_angles: '20:80:30'}\n")
     start("own", lambda copy: None, snapshot=True, configfiles=["config/examples/tennis.yaml", str(small)])
     start("drawing", lambda copy: edit(copy / "src/sphereimpact/figures/style.py"), "-n")
-    start("physics", lambda copy: edit(copy / "src/sphereimpact/normal.py"), "-n")
+    start("physics", lambda copy: edit(copy / "src/sphereimpact/integrators/normal.py"), "-n")
     start("failing", corrupt, "paper_figures/fig4_2.png", "--forcerun", "figure")
     start("report", lambda copy: None, "--report", "results/report.html")
     yield runs

@@ -37,13 +37,13 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
     assert names(package_sources("sphereimpact.figures.catalog")) == {
         "sphereimpact/__init__.py", "figures/__init__.py", "figures/catalog.py",
         # the package's __init__ imports the public API (solve imports planar inside a function: counted)
-        "sphereimpact/events.py", "sphereimpact/registry.py", "laws/__init__.py", "laws/base.py", "laws/linear.py", "laws/hertz.py",
-        "sphereimpact/outcome.py", "sphereimpact/scene.py",
-        "sphereimpact/solve.py", "sphereimpact/normal.py", "sphereimpact/closed.py", "sphereimpact/methods.py",
-        "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py", "tangential/springs.py",
-        "tangential/microslip.py",
-        "sphereimpact/dop853.py", "sphereimpact/dense.py", "sphereimpact/taylor.py",
-        "sphereimpact/planar.py", "sphereimpact/errors.py", "integrators/__init__.py", "integrators/base.py",
+        "ode/events.py", "sphereimpact/registry.py", "contact/__init__.py", "laws/__init__.py",
+        "laws/base.py", "laws/linear.py", "laws/hertz.py", "impact/__init__.py", "impact/outcome.py",
+        "impact/scene.py", "impact/solve.py", "integrators/normal.py", "integrators/closed_form.py",
+        "sphereimpact/methods.py", "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py",
+        "tangential/springs.py", "tangential/microslip.py",
+        "ode/dop853.py", "ode/dense.py", "ode/series.py",
+        "impact/planar.py", "sphereimpact/errors.py", "ode/__init__.py", "integrators/__init__.py", "integrators/base.py",
         "integrators/closed.py", "integrators/taylor.py", "integrators/runge_kutta.py"}
 
 

@@ -16,16 +16,16 @@ import warnings
 import numpy as np
 
 from . import __version__
-from .calibrate import RELATIONS, calibrate
+from .impact.calibrate import RELATIONS, calibrate
 from .errors import BeyondRadiusWarning, ImpactError
 from .integrators import method_names
-from .laws import LAWS, PARAMETER_NAMES
-from .outcome import OUTPUT_KEYS, OUTPUT_UNITS
+from .contact.laws import LAWS, PARAMETER_NAMES
+from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
-from .scene import ATOL_RANGE, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
+from .impact.scene import ATOL_RANGE, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY, Scene, \
     SolverOptions, check_columns, magnitude_problem
-from .solve import BODIES, simulate
-from .tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
+from .impact.solve import BODIES, simulate
+from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
 _D = Scene()
 _O = SolverOptions()

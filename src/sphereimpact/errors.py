@@ -17,7 +17,7 @@ class BeyondRadiusWarning(UserWarning):
 
 
 class StepBudgetError(RuntimeError):
-    """The Taylor method needed more than its step budget (:data:`sphereimpact.taylor.MAX_STEPS`)."""
+    """The Taylor method needed more than its step budget (:data:`sphereimpact.ode.series.MAX_STEPS`)."""
 
 
 class SeriesOverflowError(ArithmeticError):

@@ -1,6 +1,6 @@
 """Snakemake script: the validation figures (see rule validation_figures)."""
 from sphereimpact.figures.validation import compliance_map, kharaz, maw
-from sphereimpact.tangential import kappa_from_poisson
+from sphereimpact.contact.tangential import kappa_from_poisson
 from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], "validation figures"):

@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from ..tangential import kappa_from_poisson
+from ..contact.tangential import kappa_from_poisson
 from ..study.replication import load_published
 from .paper import PUBLISHED_STYLE
 from .style import RC, save

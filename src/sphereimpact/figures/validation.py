@@ -7,7 +7,7 @@ from matplotlib.colors import SymLogNorm
 import numpy as np
 import pandas as pd
 
-from ..tangential import TANGENTIALS
+from ..contact.tangential import TANGENTIALS
 from .style import RC, save
 _PANELS = (("e_t", "tangential COR e_t = v_t'/v_t [-]"), ("omega_rad_s", "rebound spin |ω| [rad/s]"),
            ("rebound_angle_deg", "rebound angle of the centre [deg]"))

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .base import INTEGRATORS, Integrator
-from . import closed, taylor, runge_kutta  # noqa: F401,E402  (registration order: the help's order)
+from . import base
+from .base import Integrator
 
 __all__ = ["AUTO_ORDER", "INTEGRATORS", "Integrator", "choose", "method_names", "normal_motion", "resolve_method"]
 
@@ -18,9 +18,23 @@ __all__ = ["AUTO_ORDER", "INTEGRATORS", "Integrator", "choose", "method_names", 
 AUTO_ORDER = ("closed", "taylor", "DOP853-scalar")
 
 
+def _registry():
+    """The registry with the built-in integrators in it.  They register on first use, not on import: the
+    contact's tangential models import :mod:`.normal` from here while the scene they need is still loading."""
+    from . import closed, taylor, runge_kutta  # noqa: F401  (registration order: the help's order)
+
+    return base.INTEGRATORS
+
+
+def __getattr__(name: str):
+    if name == "INTEGRATORS":
+        return _registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def method_names() -> tuple:
     """Every name ``SolverOptions.method`` accepts: ``auto`` and the registered integrators."""
-    return ("auto", *INTEGRATORS)
+    return ("auto", *_registry())
 
 
 def choose(scene, options):
@@ -32,14 +46,14 @@ def choose(scene, options):
     and do not decline it.
     """
     if options.method != "auto":
-        integrator = INTEGRATORS.named(options.method)
+        integrator = _registry().named(options.method)
         reason = integrator.cannot(scene)
         if reason is not None:
             raise ValueError(f"method {integrator.name!r} {reason}")
         yield integrator
         return
     for name in AUTO_ORDER:
-        integrator = INTEGRATORS[name]
+        integrator = _registry()[name]
         if integrator.cannot(scene) is None and integrator.declines(scene) is None:
             yield integrator
 

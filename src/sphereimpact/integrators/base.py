@@ -14,7 +14,7 @@ def _always(scene) -> None:
 
 @dataclass(frozen=True)
 class Integrator:
-    """One way of solving a scene's normal motion into a :class:`~sphereimpact.normal.NormalMotion`.
+    """One way of solving a scene's normal motion into a :class:`~sphereimpact.integrators.normal.NormalMotion`.
 
     Parameters
     ----------

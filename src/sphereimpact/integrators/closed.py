@@ -1,9 +1,9 @@
-"""``closed``: the law's closed-form normal motion, exact to round-off (kelvin-voigt: :mod:`sphereimpact.closed`)."""
+"""``closed``: the law's closed-form normal motion, exact to round-off (kelvin-voigt: :mod:`sphereimpact.integrators.closed_form`)."""
 
 from __future__ import annotations
 
-from ..closed import CLOSED_FORMS
-from ..laws import LAWS
+from .closed_form import CLOSED_FORMS
+from ..contact.laws import LAWS
 from .base import INTEGRATORS, Integrator
 
 

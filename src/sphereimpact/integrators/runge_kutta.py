@@ -1,13 +1,13 @@
 """``DOP853-scalar`` and scipy's :func:`~scipy.integrate.solve_ivp` methods, through one driver
-(:class:`sphereimpact.normal.IntegratedNormal`: events, the ramp band, landing on t_f, the budget).
+(:class:`sphereimpact.integrators.normal.IntegratedNormal`: events, the ramp band, landing on t_f, the budget).
 
-``DOP853-scalar`` is DOP853's algorithm in plain floats (:mod:`sphereimpact.dop853`) on a law with a scalar
+``DOP853-scalar`` is DOP853's algorithm in plain floats (:mod:`sphereimpact.ode.dop853`) on a law with a scalar
 formula, scipy's DOP853 on any other.
 """
 
 from __future__ import annotations
 
-from ..normal import IntegratedNormal
+from .normal import IntegratedNormal
 from .base import INTEGRATORS, Integrator
 
 SCALAR = INTEGRATORS.register(Integrator(

@@ -1,8 +1,8 @@
-"""``taylor``: the Taylor-series method on a law's series recurrence (:mod:`sphereimpact.taylor`)."""
+"""``taylor``: the Taylor-series method on a law's series recurrence (:mod:`sphereimpact.ode.series`)."""
 
 from __future__ import annotations
 
-from ..normal import CONDITIONED_ZETA_MAX, TaylorNormal
+from .normal import CONDITIONED_ZETA_MAX, TaylorNormal
 from ..errors import SeriesOverflowError
 from .base import INTEGRATORS, Integrator
 

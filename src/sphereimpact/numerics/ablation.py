@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..scene import STANDARD_GRAVITY, Scene, SolverOptions
-from ..solve import simulate
+from ..impact.scene import STANDARD_GRAVITY, Scene, SolverOptions
+from ..impact.solve import simulate
 from .reference import output_scales
 
 #: Outputs followed by the ablation.

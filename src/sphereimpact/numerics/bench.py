@@ -14,8 +14,8 @@ import logging
 import numpy as np
 import pandas as pd
 
-from ..scene import Scene, SolverOptions
-from ..solve import simulate
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import simulate
 from .handwritten import handwritten
 from .reference import reference, worst_error
 from .timing import interleaved_seconds
@@ -97,7 +97,7 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
 
 def microslip_bench(scene: Scene, angles, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
     """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact
-    on the same scene, and a curve over ``angles`` [deg] batched (:func:`~sphereimpact.solve.simulate_many`)
+    on the same scene, and a curve over ``angles`` [deg] batched (:func:`~sphereimpact.impact.solve.simulate_many`)
     beside one impact at a time.
 
     Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
@@ -105,7 +105,7 @@ def microslip_bench(scene: Scene, angles, reference: tuple[int, int], repeats: i
     e_t and spin between batched and one at a time.  ``time`` is per impact; ``time_ratio`` is over the
     row's comparison contender (the rigid contact; one impact at a time).
     """
-    from ..solve import simulate_many
+    from ..impact.solve import simulate_many
 
     rows = []
     default = SolverOptions()
@@ -147,9 +147,9 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     ``simulate`` (the whole call: the stages plus checks) and ``handwritten`` (the script, at simulate's
     tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
     """
-    from ..outcome import Outcome
+    from ..impact.outcome import Outcome
     from ..integrators import normal_motion, resolve_method
-    from ..solve import ReducedMotion
+    from ..impact.solve import ReducedMotion
 
     rows = []
     default = SolverOptions()

@@ -26,7 +26,7 @@ import math
 
 from scipy.integrate import solve_ivp
 
-from ..scene import Scene
+from ..impact.scene import Scene
 from .reference import outputs_from_normal
 
 #: The chapter's laws, written out here as the chapter states them; other laws use their scalar formula.

@@ -1,6 +1,6 @@
 """Reference solutions and the error measure of the accuracy studies.
 
-``kelvin-voigt``: the closed form (:mod:`sphereimpact.closed`), exact to round-off.  Other laws (Hertz,
+``kelvin-voigt``: the closed form (:mod:`sphereimpact.integrators.closed_form`), exact to round-off.  Other laws (Hertz,
 Hunt-Crossley): scipy's DOP853 at rtol 1e-13, for the benchmarks (their accuracy is tested in
 tests/test_laws.py against closed forms and calibration).
 ``modified``: the normal problem in dimensionless form integrated with
@@ -18,9 +18,9 @@ import math
 
 from dataclasses import dataclass
 
-from ..scene import Scene, SolverOptions
-from ..solve import simulate
-from ..tangential import impulse_outcome
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import simulate
+from ..contact.tangential import impulse_outcome
 
 #: Working precisions [decimal digits] of the Taylor reference and of the solve that bounds its error: both
 #: far beyond float64, and their outputs round to the same doubles.
@@ -73,7 +73,7 @@ class Reference:
 
 def outputs_from_normal(scene: Scene, t_m: float, delta_m: float, t_f: float, rate_f: float) -> dict:
     """Every output from the normal events (g = 0, friction impulse mu J), by the impulse algebra
-    (:func:`sphereimpact.tangential.impulse_outcome`).
+    (:func:`sphereimpact.contact.tangential.impulse_outcome`).
 
     Exact where the force does not pull before separation (always under the force criterion).
     """

@@ -14,9 +14,9 @@ import logging
 
 import pandas as pd
 
-from ..scene import Scene, SolverOptions
-from ..solve import simulate
-from ..tangential.microslip import ELEMENTS, TIME_STEPS
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import simulate
+from ..contact.tangential.microslip import ELEMENTS, TIME_STEPS
 from .timing import median_seconds
 
 log = logging.getLogger(__name__)
@@ -42,7 +42,7 @@ def resolution_study(scenes: dict[str, Scene], elements, time_steps, reference: 
         ``e_t``, ``omega_f`` [rad/s], ``error_e_t`` (absolute), ``error_spin`` (relative), ``error`` (the
         larger), ``time`` [s per impact, median of ``repeats``], ``worst_error`` (the setting's worst over
         the scenes), ``meets_target``, ``chosen`` (the default the study supports) and ``package_default``
-        (the package's :data:`~sphereimpact.tangential.microslip.ELEMENTS` and ``TIME_STEPS``).
+        (the package's :data:`~sphereimpact.contact.tangential.microslip.ELEMENTS` and ``TIME_STEPS``).
     """
     rows = []
     for name, scene in scenes.items():

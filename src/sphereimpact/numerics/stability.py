@@ -30,9 +30,9 @@ from scipy.integrate import solve_ivp
 
 from ..errors import BeyondRadiusWarning, ImpactError
 from ..integrators import INTEGRATORS
-from ..normal import separation_function
-from ..scene import Scene, SolverOptions, ivp_method
-from ..solve import simulate
+from ..integrators.normal import separation_function
+from ..impact.scene import Scene, SolverOptions, ivp_method
+from ..impact.solve import simulate
 from .reference import reference, worst_error
 from .timing import median_time
 from .workprecision import METHODS

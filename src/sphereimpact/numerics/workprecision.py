@@ -14,8 +14,8 @@ import pandas as pd
 
 from ..errors import ImpactError
 from ..integrators import INTEGRATORS
-from ..scene import Scene, SolverOptions
-from ..solve import simulate
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import simulate
 from .reference import reference, worst_error
 from .timing import median_time
 

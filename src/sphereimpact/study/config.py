@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 
-from ..calibrate import calibrate
+from ..impact.calibrate import calibrate
 from ..integrators import INTEGRATORS
-from ..laws import LAWS, PARAMETER_NAMES
+from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..methods import DEFAULT_INTEGRATOR
-from ..scene import Scene, SolverOptions
-from ..solve import simulate
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import simulate
 
 #: Config key -> Scene field, for the parameters shared by every case.  k and b are spelled out in the
 #: config because snakemake's --config accepts only keys of two or more characters.
@@ -153,7 +153,7 @@ def _law_errors(config: dict) -> list[str]:
 def _tangential_errors(config: dict) -> list[str]:
     """The tangential models named by the validation and compliance sections: registered; the validation's
     able to serve its law's spring; the compliance map's compliant (with a stiffness to map over)."""
-    from ..tangential import TANGENTIALS
+    from ..contact.tangential import TANGENTIALS
 
     errors = []
     validation = config.get("validation", {})
@@ -209,7 +209,7 @@ def _yaml_number(text: str) -> str:
 def _sweep_errors(config: dict, schema: dict) -> list[str]:
     """The sweep section's ranges, parsed and checked before any job (see :func:`config_errors`)."""
     from ..parsing import parse_range, range_count
-    from ..scene import RULES
+    from ..impact.scene import RULES
     from ..memory import check_size
 
     defaults = {k: v.get("default") for k, v in schema["properties"]["sweep"]["properties"].items()}

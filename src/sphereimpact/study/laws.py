@@ -1,6 +1,6 @@
 """The contact laws compared on the chapter's ball: each calibrated to one COR and contact time, then swept in speed.
 
-Every damped law is fitted (stiffness and damping, :func:`sphereimpact.calibrate.calibrate`) to the same
+Every damped law is fitted (stiffness and damping, :func:`sphereimpact.impact.calibrate.calibrate`) to the same
 normal COR and the same contact time at one speed, the contact time being the chapter's own (eq. 4.2
 with the chapter's k, b and c) there; elastic Hertz is fitted to the contact time alone.  The laws then
 differ only in how they extrapolate: COR, contact time and peak force against impact speed, the force
@@ -15,11 +15,11 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from ..calibrate import calibrate, contact_time
+from ..impact.calibrate import calibrate, contact_time
 from ..parsing import parse_range
-from ..scene import Scene
+from ..impact.scene import Scene
 from ..errors import BeyondRadiusWarning
-from ..solve import simulate
+from ..impact.solve import simulate
 from .config import shared_fields
 
 #: Tension below this fraction of the peak force is round-off, not a pull (as in the replication report).
@@ -33,7 +33,7 @@ def base_scene(config: dict) -> Scene:
 
 
 def fitted_laws(config: dict) -> dict:
-    """Law name -> :class:`~sphereimpact.calibrate.Calibration` at the configured COR and the chapter's
+    """Law name -> :class:`~sphereimpact.impact.calibrate.Calibration` at the configured COR and the chapter's
     contact time (the base scene's t_f)."""
     base = base_scene(config)
     target_time = contact_time(base)

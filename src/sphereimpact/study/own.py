@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import math
 
-from ..calibrate import calibrate
-from ..laws import LAWS, PARAMETER_NAMES
+from ..impact.calibrate import calibrate
+from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range
-from ..scene import PATH_RULES, Scene
-from ..tangential import TANGENTIAL_PARAMETERS
+from ..impact.scene import PATH_RULES, Scene
+from ..contact.tangential import TANGENTIAL_PARAMETERS
 
 #: The chapter's study: the replication.  Any other name is a study of one's own ball.
 CHAPTER = "chapter4"

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
+from ..impact.outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
 from ..parsing import parse_range
-from ..scene import PATH_RULES, Scene
-from ..solve import simulate
+from ..impact.scene import PATH_RULES, Scene
+from ..impact.solve import simulate
 from ..sweep.engine import grid, sweep
 from ..sweep.io import write_table
 from .own import ball_scene, bounce_scene

@@ -20,11 +20,11 @@ import math
 import pandas as pd
 import yaml
 
-from ..events import extremum
+from ..ode.events import extremum
 from ..numerics.workprecision import TARGET
-from ..scene import STANDARD_GRAVITY
-from ..solve import simulate
-from ..tangential import kappa_from_poisson
+from ..impact.scene import STANDARD_GRAVITY
+from ..impact.solve import simulate
+from ..contact.tangential import kappa_from_poisson
 from .config import hertz_twin, options_for, scene_for
 from .tables import load_runs, markdown_table
 

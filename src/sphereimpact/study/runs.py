@@ -7,7 +7,7 @@ from dataclasses import fields
 
 import pandas as pd
 
-from ..solve import simulate
+from ..impact.solve import simulate
 from .config import options_for, scene_for
 
 #: Outputs that vary between identical runs, kept out of every results file.

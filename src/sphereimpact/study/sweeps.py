@@ -9,9 +9,9 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from ..scene import Scene
+from ..impact.scene import Scene
 from ..errors import BeyondRadiusWarning
-from ..solve import simulate
+from ..impact.solve import simulate
 from ..sweep.engine import grid, parse_range, sweep
 from ..sweep.io import write_table
 from .config import options_for, shared_fields

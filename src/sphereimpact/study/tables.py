@@ -6,7 +6,7 @@ import json
 
 import pandas as pd
 
-from ..outcome import OUTPUT_KEYS
+from ..impact.outcome import OUTPUT_KEYS
 
 #: Physical outputs in the summary (solver statistics and timings are left out).
 SUMMARY_KEYS = OUTPUT_KEYS[: OUTPUT_KEYS.index("force_max") + 1]

@@ -4,10 +4,10 @@ Kharaz et al. measured 5 mm alumina spheres on a glass anvil at 3.9 m/s, inciden
 normal (``data/kharaz2001.csv``, source note beside it).  The experiment's scene is built from the
 paper's own numbers: E and nu of sphere and anvil give E* and G*, the density and diameter the mass,
 mu = 0.092; the normal damping (Hunt-Crossley on the Hertz spring) is calibrated to the measured
-e_n = 0.98 at normal incidence (:func:`sphereimpact.calibrate.calibrate`).  Nothing is fitted to the
+e_n = 0.98 at normal incidence (:func:`sphereimpact.impact.calibrate.calibrate`).  Nothing is fitted to the
 oblique data: the tangential stiffness follows from G* / E*.  Every configured tangential model is run
 (the rigid contact, the Mindlin springs, the exact microslip contact), batched over the incidences where
-the model has a batched kernel (:func:`sphereimpact.solve.simulate_many`).
+the model has a batched kernel (:func:`sphereimpact.impact.solve.simulate_many`).
 
 For the chapter's own ball, a map of impact angle x kappa says where the rigid tangential contact is
 within a tolerance of the compliant one, on spin and on rebound velocity.
@@ -23,12 +23,12 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..calibrate import calibrate
+from ..impact.calibrate import calibrate
 from ..parsing import parse_range
-from ..scene import Scene
-from ..solve import simulate_many
+from ..impact.scene import Scene
+from ..impact.solve import simulate_many
 from ..sweep.engine import sweep
-from ..tangential import TANGENTIALS, kappa_from_poisson
+from ..contact.tangential import TANGENTIALS, kappa_from_poisson
 from .config import hertz_twin, scene_for_primary
 
 log = logging.getLogger(__name__)

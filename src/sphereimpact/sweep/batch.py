@@ -5,7 +5,7 @@ Per lane (tau = omega_n t, x = delta omega_n / v_n, y = x'):
     x' = y,   y' = -P_hat(x, y) + gamma,   P_hat = x + 2 zeta y r(lam x),   x(0) = 0, y(0) = 1,
 
 with r = 1 (kelvin-voigt) or the modified ramp continued past x = 0
-(:func:`sphereimpact.laws.ramp_continued`), lam = c v_n / (omega_n R) and
+(:func:`sphereimpact.contact.laws.ramp_continued`), lam = c v_n / (omega_n R) and
 gamma = g cos(beta) / (omega_n v_n).  Each lane takes fixed steps of the
 8th-order Dormand-Prince method (the tableau of :class:`scipy.integrate.DOP853`),
 its step chosen from the accuracy target and the lane's fastest scale at its current state.  Events
@@ -22,7 +22,7 @@ from scipy.integrate import DOP853
 from scipy.special import wrightomega
 
 from ..errors import ImpactError
-from ..laws import ramp_continued
+from ..contact.laws import ramp_continued
 from .outputs import NORMAL_OUTPUTS
 
 #: The laws' kernels these lanes integrate (``ContactLaw.kernel``): P_hat = x + 2 zeta y r(lam x).
@@ -46,7 +46,7 @@ MAX_RAMP_STEP = 2.0
 #: Longest dimensionless step (a contact lasts about pi): loose targets still take a dozen steps.
 MAX_UNIT_STEP = 0.4
 NEWTON_ITERATIONS = 12
-#: Dimensionless horizon: far past any contact that ends (see sphereimpact.normal.horizon).
+#: Dimensionless horizon: far past any contact that ends (see sphereimpact.integrators.normal.horizon).
 HORIZON = 100.0 * np.pi
 
 

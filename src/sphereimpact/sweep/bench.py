@@ -31,9 +31,9 @@ from ..numerics.bench import LAW_SCENES, TOLERANCES
 from ..numerics.handwritten import handwritten
 from ..numerics.reference import relative_errors
 from ..numerics.timing import interleaved_seconds
-from ..scene import Scene, SolverOptions
+from ..impact.scene import Scene, SolverOptions
 from ..errors import BeyondRadiusWarning
-from ..solve import simulate
+from ..impact.solve import simulate
 from .engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
 
 log = logging.getLogger(__name__)

@@ -3,7 +3,7 @@ COR (and contact time) measured at one speed, then kept across the table's angle
 
 from __future__ import annotations
 
-from ..calibrate import calibrate
+from ..impact.calibrate import calibrate
 from .scenes import scene_of, scene_table
 
 #: Columns of a sweep's table that describe the approach or the tangential contact, not the ball and its normal

@@ -1,7 +1,7 @@
 """Vectorised closed form of the kelvin-voigt normal problem without gravity (dimensionless, one lane per scene).
 
 From x(0) = 0, y(0) = 1:  x = E S,  y = E (C - zeta S),  P_hat = x + 2 zeta y = E (2 zeta C + (1 - 2 zeta^2) S),
-with E, C, S as in :mod:`sphereimpact.closed`.  The events are explicit:
+with E, C, S as in :mod:`sphereimpact.integrators.closed_form`.  The events are explicit:
 
 - maximum compression (y = 0): tau_m = atan(w / zeta) / w (zeta < 1, w = sqrt(1 - zeta^2)),
   atanh(q / zeta) / q (zeta > 1, q = sqrt(zeta^2 - 1)), 1 at zeta = 1;

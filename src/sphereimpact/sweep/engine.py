@@ -5,7 +5,7 @@ model for gravity on a slope, compliant contact and scenes the fast paths cannot
 interpolant or per-family solves; the kelvin-voigt closed form; eq. 4.2's interpolants in lam or on the
 (zeta, lam) plane; the batched Taylor and Runge-Kutta lanes).  Every path but the single-impact one gives
 the dimensionless normal motion, from which the tangential velocity, spin and regime follow by the
-single-impact core's impulse algebra (:func:`sphereimpact.tangential.impulse_outcome`), and the outputs
+single-impact core's impulse algebra (:func:`sphereimpact.contact.tangential.impulse_outcome`), and the outputs
 that need the force's history (:data:`FAMILY_OUTPUTS`) from one single-impact solve per dimensionless
 family.  Results do not depend on the chunk size or on sharding: every lane is integrated independently
 and interpolants are built on the whole sweep.
@@ -17,11 +17,11 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ImpactError
-from ..outcome import SCALAR_OUTPUTS
+from ..impact.outcome import SCALAR_OUTPUTS
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..scene import SolverOptions
-from ..solve import normal_motion
-from ..tangential import impulse_outcome
+from ..impact.scene import SolverOptions
+from ..impact.solve import normal_motion
+from ..contact.tangential import impulse_outcome
 from .outputs import NORMAL_OUTPUTS
 from .paths import ORDER, PATHS, Work
 from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
@@ -177,7 +177,7 @@ def _grip_times(normal, impulses: np.ndarray) -> np.ndarray:
     """The instants [s] at which the normal impulse of P+ reaches each of ``impulses`` [N s] (each reached
     by t_f): bracketed on the solver's grid (the impulse never decreases), then Newton's method on
     dJ+/dt = P+, kept inside the bracket, to the last bits."""
-    from ..tangential import PositiveImpulse
+    from ..contact.tangential import PositiveImpulse
 
     impulse = PositiveImpulse(normal)
     times = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
@@ -201,7 +201,7 @@ def _history_outputs(part: pd.DataFrame, d: Numbers, wanted, grips, slip0, grip_
     times by T.  A scene grips when the normal impulse of P+ reaches m |slip0| / (mu (1 + 1/alpha)), which
     ``grip_rate`` = mu (1 + 1/alpha) v_n turns into the family's dimensionless impulse; that instant is found
     on the family's impulse (:func:`_grip_times`)."""
-    from ..events import extremum
+    from ..ode.events import extremum
 
     n = len(part)
     out = {key: np.full(n, np.nan) for key in wanted}

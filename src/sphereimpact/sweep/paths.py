@@ -21,9 +21,9 @@ import numpy as np
 import pandas as pd
 
 from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
-from ..outcome import SCALAR_OUTPUTS
-from ..scene import SEPARATION_CRITERIA, SolverOptions
-from ..solve import simulate, simulate_many
+from ..impact.outcome import SCALAR_OUTPUTS
+from ..impact.scene import SEPARATION_CRITERIA, SolverOptions
+from ..impact.solve import simulate, simulate_many
 from . import batch, closed, plane, series_lanes
 from .outputs import NORMAL_OUTPUTS
 from .scenes import Numbers, _compliant, incidence, scene_of
@@ -47,7 +47,7 @@ LANES_LAM_MAX = 1e3
 #: path, never sets an accuracy.
 LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
 SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
-#: Scenes solved by the single-impact model per call of :func:`~sphereimpact.solve.simulate_many` (a batched
+#: Scenes solved by the single-impact model per call of :func:`~sphereimpact.impact.solve.simulate_many` (a batched
 #: tangential kernel runs them together; progress is reported after each).
 SINGLES_CHUNK = 100
 
@@ -134,7 +134,7 @@ def _beyond_lanes(d: Numbers) -> np.ndarray:
     """Scenes of a batched kernel or closed form that those paths cannot bound: damping beyond
     :data:`LANES_ZETA_MAX`, dimensionless numbers that are not finite (e.g. mass 1e-300, b 1e300), or lam
     beyond :data:`LANES_LAM_MAX` on the Runge-Kutta lanes.  They go to the single-impact path, whose cost is
-    bounded (:data:`sphereimpact.normal.MAX_NFEV`)."""
+    bounded (:data:`sphereimpact.integrators.normal.MAX_NFEV`)."""
     with np.errstate(invalid="ignore"):
         wild = ~(np.isfinite(d.zeta) & np.isfinite(d.lam) & np.isfinite(d.w) & np.isfinite(d.gamma))
         sharp = d.modified & (d.lam > LANES_LAM_MAX) & ~_series_lanes(d)

@@ -14,9 +14,9 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..laws import LAWS, PARAMETER_NAMES
-from ..scene import PATH_RULES, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, check_columns, scale_problem
-from ..tangential import TANGENTIALS
+from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..impact.scene import PATH_RULES, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, check_columns, scale_problem
+from ..contact.tangential import TANGENTIALS
 from . import batch, closed
 
 #: Scene parameters, with the single-impact defaults for missing columns.

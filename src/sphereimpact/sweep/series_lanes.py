@@ -5,8 +5,8 @@ Per lane (the dimensionless problem of :mod:`.batch`, without gravity, law ``mod
     x' = y,   y' = -P_hat,   P_hat = x + 2 zeta y (1 - exp(-lam x)),   x(0) = 0, y(0) = 1.
 
 Each step is the law's Taylor recurrence to order p on every active lane at once (E = exp(-lam x) obeys
-E' = -lam y E: one convolution per order, as :func:`sphereimpact.laws.linear.modified_series` does for one
-impact), its size from the last two coefficients and its ramp band as in :mod:`sphereimpact.taylor`.  On the
+E' = -lam y E: one convolution per order, as :func:`sphereimpact.contact.laws.linear.modified_series` does for one
+impact), its size from the last two coefficients and its ramp band as in :mod:`sphereimpact.ode.series`.  On the
 plane's nodes both these and the Runge-Kutta lanes (:mod:`.batch`) take about 30 steps, but a Taylor step is
 p orders of a few array operations where a Runge-Kutta step is 12 evaluations of the ramp, and events need no
 extra steps.  Their cost is the steps', nearly whatever
@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ImpactError
-from ..taylor import BAND_EDGE, MAX_STEPS, band_limit, order_for
+from ..ode.series import BAND_EDGE, MAX_STEPS, band_limit, order_for
 from .batch import HORIZON
 from .outputs import NORMAL_OUTPUTS
 

@@ -37,9 +37,9 @@ from scipy.fft import dct
 from scipy.optimize import brentq
 
 from ..errors import InterpolationError
-from ..scene import Scene, SolverOptions
-from ..solve import normal_motion
-from ..tangential import PositiveImpulse
+from ..impact.scene import Scene, SolverOptions
+from ..impact.solve import normal_motion
+from ..contact.tangential import PositiveImpulse
 from . import batch, series_lanes
 from .outputs import NORMAL_OUTPUTS
 

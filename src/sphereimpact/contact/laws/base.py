@@ -19,8 +19,8 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from ..dense import is_instant
-from ..registry import Registry as BaseRegistry
+from ...ode.dense import is_instant
+from ...registry import Registry as BaseRegistry
 
 #: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
 PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
@@ -101,7 +101,7 @@ class ContactLaw:
         Published approximate COR-to-damping relations: name -> ``relation(e, p) -> damping value``.
     closed_form : str or None
         The exact solution that solves this law's normal motion: a key of
-        :data:`sphereimpact.closed.CLOSED_FORMS` (``kelvin-voigt``: the linear ODE with the family's
+        :data:`sphereimpact.integrators.closed_form.CLOSED_FORMS` (``kelvin-voigt``: the linear ODE with the family's
         ``zeta``), or None.
     kernel : str or None
         The batched-lanes kernel of :mod:`sphereimpact.sweep.batch` that integrates this law (one of its
@@ -126,7 +126,7 @@ class ContactLaw:
         ``order`` (lists of floats), of the dimensionless normal motion x' = y, y' = -P_hat(x, y) + gamma
         through the point (x, y), ``numbers`` being the law's ``family`` (floats).  Only for a law whose
         P_hat is analytic in x >= 0 and y (a recurrence on its series exists): then the Taylor method
-        (:mod:`sphereimpact.taylor`) integrates it.  None: the law has no series, and ``auto`` takes the
+        (:mod:`sphereimpact.ode.series`) integrates it.  None: the law has no series, and ``auto`` takes the
         Runge-Kutta integrator.
     """
 
@@ -231,5 +231,5 @@ class Registry(BaseRegistry):
         return self.named(name)
 
 
-#: The registered laws (filled by :mod:`sphereimpact.laws`).
+#: The registered laws (filled by :mod:`sphereimpact.contact.laws`).
 LAWS = Registry()

@@ -1,7 +1,7 @@
 """What a tangential contact model is: one object that declares its parameters, what it needs of the normal
 law, and the motion it produces.
 
-The shape is the contact laws' (:mod:`sphereimpact.laws`) and LAMMPS's tangential sub-models: one definition
+The shape is the contact laws' (:mod:`sphereimpact.contact.laws`) and LAMMPS's tangential sub-models: one definition
 per model, chosen by name (``Scene.tangential``, ``--tangential``), every layer asking the definition.
 Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register``.
 
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..laws.base import Parameter, spring_exponent
-from ..registry import Registry as BaseRegistry
+from ...registry import Registry as BaseRegistry
 
 #: The tangential stiffness, three ways: kappa directly, Poisson's ratio of like materials, or (for a Hertz
 #: spring) the effective shear modulus.  One table for the Scene's checks, the sweep's and the help texts.
@@ -62,12 +62,12 @@ class TangentialModel:
         The normal law's spring it needs: ``linear`` (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
     motion : callable
         ``motion(normal, options)``: the tangential motion over the solved normal motion ``normal``
-        (:class:`sphereimpact.normal.NormalMotion`) with solver options ``options``, an object with
+        (:class:`sphereimpact.integrators.normal.NormalMotion`) with solver options ``options``, an object with
         ``t_roll`` [s or None], ``regime``, ``switches``, ``at(t)`` -> (v_t [m/s], omega [rad/s], x_t [m])
         and ``force(t)`` -> the tangential force on the ball [N].
     batched : bool
         The motion follows in closed form from the normal impulse, so sweeps compute it vectorised (the
-        rigid contact); otherwise a sweep solves its scenes with :func:`sphereimpact.solve.simulate_many`.
+        rigid contact); otherwise a sweep solves its scenes with :func:`sphereimpact.impact.solve.simulate_many`.
     many : callable or None
         ``many(normals, options)``: the motions over several solved normal motions at once (a batched
         kernel, cheaper than one at a time), as a list in their order; None: one at a time.
@@ -140,5 +140,5 @@ class Registry(BaseRegistry):
         return [name for name, model in self.items() if parameter in model.parameter_names]
 
 
-#: The registered tangential models (filled by :mod:`sphereimpact.tangential`).
+#: The registered tangential models (filled by :mod:`sphereimpact.contact.tangential`).
 TANGENTIALS = Registry()

@@ -25,10 +25,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..dense import SMALL, is_instant
-from ..errors import ImpactError
-from ..events import first_root, roots
-from ..normal import NormalMotion
+from ...ode.dense import SMALL, is_instant
+from ...errors import ImpactError
+from ...ode.events import first_root, roots
+from ...integrators.normal import NormalMotion
 from .base import TANGENTIALS, TangentialModel
 
 #: More mode switches than this in one contact means something is wrong.

@@ -13,7 +13,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from .errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
+from ..errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
 
 
 def _scalar(f):

@@ -12,7 +12,7 @@ with the same arithmetic, in the same order, as :class:`scipy.integrate._ivp.rk.
 identical to the last bit (tests/test_dense.py): vectorised over all steps at once for arrays, in plain
 float arithmetic for a scalar.  Instants on a step boundary take the earlier step, as OdeSolution does.
 :func:`fast_solution` returns it for a DOP853 solution and the OdeSolution unchanged for any other method;
-:mod:`sphereimpact.dop853` builds it directly.
+:mod:`sphereimpact.ode.dop853` builds it directly.
 """
 
 from __future__ import annotations

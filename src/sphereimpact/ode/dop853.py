@@ -14,7 +14,7 @@ not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost
 
 So it takes the same steps as solve_ivp's DOP853 up to round-off in the sums (tests/test_dop853.py
 compares step sequences, states and events), at a fraction of the cost; the dense output is a
-:class:`~sphereimpact.dense.StackedDOP853`.  The right-hand side and the event functions take
+:class:`~sphereimpact.ode.dense.StackedDOP853`.  The right-hand side and the event functions take
 ``(t, y)`` with y a list of floats and return a sequence (fun) or a float (events).
 """
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .events import extremum
+from ..ode.events import extremum
 from .scene import Scene
 
 #: The outputs of one impact, in the order of the JSON object and tables.

@@ -15,10 +15,10 @@ from functools import cached_property
 
 import numpy as np
 
-from .laws import LAWS, PARAMETER_NAMES, hertz_constant, spring_exponent
-from .laws.base import MODULUS
-from .methods import DEFAULT_INTEGRATOR, ivp_method  # noqa: F401  (re-exported)
-from .tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
+from ..contact.laws import LAWS, PARAMETER_NAMES, hertz_constant, spring_exponent
+from ..contact.laws.base import MODULUS
+from ..methods import DEFAULT_INTEGRATOR, ivp_method  # noqa: F401  (re-exported)
+from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
                          kappa_from_poisson, kappa_from_shear_modulus)
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
@@ -35,7 +35,7 @@ TEXT_FIELDS = ("model", "separation", "tangential")
 #: Numeric Scene fields other than the law's parameters: (allowed range as stated in messages, vectorised
 #: test).  One table for the scalar checks of :class:`Scene` and the array checks of sweeps, so both say the
 #: same thing.  The law's own parameters (k, b, ramp, chi, exponent, modulus) are declared by the law
-#: (:mod:`sphereimpact.laws`) and checked by :func:`law_parameters`.
+#: (:mod:`sphereimpact.contact.laws`) and checked by :func:`law_parameters`.
 RULES = {
     "mass": ("a finite number > 0 kg", lambda x: x > 0),
     "diameter": ("a finite number > 0 m", lambda x: x > 0),
@@ -135,7 +135,7 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
     model : str
         The law's name.
     given : dict of str -> array or None
-        Parameter name (of :data:`sphereimpact.laws.PARAMETER_NAMES`) -> values for each scene, or None
+        Parameter name (of :data:`sphereimpact.contact.laws.PARAMETER_NAMES`) -> values for each scene, or None
         when not given.  NaN in a given column means "not given" only for a law that does not use it.
     radius : float or array
         Ball radius R [m] of each scene (for ``modulus``).
@@ -293,7 +293,7 @@ class Scene:
     mu : float
         Kinetic (Coulomb) friction coefficient [-], >= 0.  Chapter: 0.2.
     model : str
-        Normal force law, a key of :data:`sphereimpact.laws.LAWS` (``kelvin-voigt``, ``modified``,
+        Normal force law, a key of :data:`sphereimpact.contact.laws.LAWS` (``kelvin-voigt``, ``modified``,
         ``linear-hunt-crossley``, ``hertz``, ``hunt-crossley`` or a registered one).
     k, b, ramp, chi, exponent, modulus : float or None
         The law's parameters; each law declares which it uses, their units, ranges and defaults, and a
@@ -308,7 +308,7 @@ class Scene:
     separation : str
         ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
     tangential : str
-        Tangential contact model, a key of :data:`sphereimpact.tangential.TANGENTIALS`: ``rigid``
+        Tangential contact model, a key of :data:`sphereimpact.contact.tangential.TANGENTIALS`: ``rigid``
         (default, the chapter's), ``linear`` (needs a linear-spring law), ``mindlin`` (needs a Hertz spring,
         exponent 3/2) or a registered one; each declares the law it needs.
     kappa, poisson, shear_modulus : float or None
@@ -494,7 +494,7 @@ class Scene:
 
     @property
     def law(self):
-        """The contact law (:class:`sphereimpact.laws.ContactLaw`)."""
+        """The contact law (:class:`sphereimpact.contact.laws.ContactLaw`)."""
         return LAWS[self.model]
 
     @property
@@ -612,7 +612,7 @@ class SolverOptions:
     elements, time_steps : int or None
         Resolution of a tangential model that resolves the contact area (``microslip``): cells of its
         element row, in [8, 100000], and time steps over the contact, in [16, 10000000].  None: the
-        defaults of the convergence study (:mod:`sphereimpact.tangential.microslip`).
+        defaults of the convergence study (:mod:`sphereimpact.contact.tangential.microslip`).
     """
 
     method: str = "auto"
@@ -623,7 +623,7 @@ class SolverOptions:
     time_steps: int | None = None
 
     def __post_init__(self):
-        from .integrators import method_names  # the registry imports the scene: looked up when used
+        from ..integrators import method_names  # the registry imports the scene: looked up when used
 
         _check_choice("method", self.method, method_names())
         object.__setattr__(self, "rtol", _check("rtol", self.rtol, RTOL_RANGE, lambda x: 1e-13 <= x <= 1e-2))
@@ -644,9 +644,9 @@ class SolverOptions:
 
 def __getattr__(name):
     """``METHODS``, the method names (computed: registered integrators included); names that moved to
-    :mod:`sphereimpact.tangential`, kept for one release."""
+    :mod:`sphereimpact.contact.tangential`, kept for one release."""
     if name == "METHODS":
-        from .integrators import method_names
+        from ..integrators import method_names
 
         return method_names()
     moved = {"TANGENTIAL_MODELS": lambda: tuple(TANGENTIALS),
@@ -654,7 +654,7 @@ def __getattr__(name):
     if name in moved:
         import warnings
 
-        warnings.warn(f"sphereimpact.scene.{name} is deprecated: use sphereimpact.tangential.TANGENTIALS",
+        warnings.warn(f"sphereimpact.impact.scene.{name} is deprecated: use sphereimpact.contact.tangential.TANGENTIALS",
                       DeprecationWarning, stacklevel=2)
         return moved[name]()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -68,7 +68,7 @@ def kelvin_voigt_rate(delta, delta_dot, delta_ddot, p):
 
 def kelvin_voigt_series(x: float, y: float, numbers: dict, gamma: float, order: int) -> tuple[list, list]:
     """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -(x + 2 zeta y) + gamma, the
-    dimensionless eq. 4.1 (see :attr:`~sphereimpact.laws.ContactLaw.series`)."""
+    dimensionless eq. 4.1 (see :attr:`~sphereimpact.contact.laws.ContactLaw.series`)."""
     two_zeta = 2.0 * float(numbers["zeta"])
     xs, ys = [x], [y]
     for k in range(order):
@@ -144,7 +144,7 @@ def modified_rate(delta, delta_dot, delta_ddot, p):
 
 def modified_series(x: float, y: float, numbers: dict, gamma: float, order: int) -> tuple[list, list]:
     """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -(x + 2 zeta y (1 - E)) + gamma,
-    E = exp(-lam x), the dimensionless eq. 4.2 (see :attr:`~sphereimpact.laws.ContactLaw.series`).
+    E = exp(-lam x), the dimensionless eq. 4.2 (see :attr:`~sphereimpact.contact.laws.ContactLaw.series`).
 
     E' = -lam y E, so with c_k = sum_i y_i E_(k-i) (the series of y E): E_(k+1) = -lam c_k / (k + 1), and
     the damping term's series is y_0 (1 - E_0) at order 0 (1 - E_0 by expm1: no cancellation near x = 0)
@@ -189,7 +189,7 @@ def linear_hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
 def linear_hunt_crossley_series(x: float, y: float, numbers: dict, gamma: float,
                                 order: int) -> tuple[list, list]:
     """Taylor coefficients of x and y (orders 0..order) at (x, y) of y' = -x (1 + q y) + gamma, q = chi v_n
-    (see :attr:`~sphereimpact.laws.ContactLaw.series`): one convolution (x y) per order."""
+    (see :attr:`~sphereimpact.contact.laws.ContactLaw.series`): one convolution (x y) per order."""
     q = float(numbers["chi_v"])
     xs, ys = [x], [y]
     for k in range(order):

@@ -27,12 +27,12 @@ import math
 
 import numpy as np
 
-from .dense import is_instant
-from .errors import ImpactError
-from .events import first_root
-from .laws import LAWS
+from ..ode.dense import is_instant
+from ..errors import ImpactError
+from ..ode.events import first_root
+from ..contact.laws import LAWS
 from .normal import NormalMotion, no_separation_message, separation_function
-from .scene import Scene
+from ..impact.scene import Scene
 
 #: Uniform and geometric samples used to bracket events.
 GRID_POINTS = 4097

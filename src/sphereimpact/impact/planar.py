@@ -21,10 +21,10 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .errors import ImpactError
-from .normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
+from ..errors import ImpactError
+from ..integrators.normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from .scene import Scene, SolverOptions, ivp_method
-from .tangential import MAX_PHASES, phase_index
+from ..contact.tangential import MAX_PHASES, phase_index
 
 
 class PlanarMotion:

@@ -7,7 +7,7 @@ model integrates:
     m delta'' = -P(delta, delta') + m g cos(beta),  delta(0) = 0,  delta'(0) = v cos(beta).
 
 It is solved in dimensionless form, tau = t / T, x = delta / (v_n T), y = delta' / v_n with T the law's
-natural contact time (1 / omega_n for a linear spring, see :class:`sphereimpact.laws.ContactLaw`), so one
+natural contact time (1 / omega_n for a linear spring, see :class:`sphereimpact.contact.laws.ContactLaw`), so one
 absolute tolerance suits every law, ball and speed.
 Maximum compression and separation are located by :func:`scipy.integrate.solve_ivp`'s
 event root finding on the dense output (Brent's method, a few ulp).
@@ -21,13 +21,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.integrate import OdeSolution, solve_ivp
 
-from . import dop853, taylor
-from .dense import StackedDOP853, fast_solution, is_instant
-from .errors import ImpactError
-from .methods import DEFAULT_INTEGRATOR, ivp_method
+from ..ode import dop853, series
+from ..ode.dense import StackedDOP853, fast_solution, is_instant
+from ..errors import ImpactError
+from ..methods import DEFAULT_INTEGRATOR, ivp_method
 
 if TYPE_CHECKING:
-    from .scene import Scene, SolverOptions
+    from ..impact.scene import Scene, SolverOptions
 
 #: Samples per solver step used when scanning event functions on the dense output.
 SUBSTEPS = 8
@@ -244,7 +244,7 @@ class _DimensionlessNormal(NormalMotion):
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
 
     def state(self, t):
-        if is_instant(t) and isinstance(self._sol, (StackedDOP853, taylor.TaylorDense)):  # in plain floats
+        if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
             x, y = self._sol.single(float(t) * self._w)
             return x * self._d_scale, y * self._v
         z = self._sol(np.asarray(t, dtype=float) * self._w)
@@ -254,7 +254,7 @@ class _DimensionlessNormal(NormalMotion):
 class _Run:
     """The dimensionless normal ODE x' = y, y' = -P / (m omega v) + gamma as one integrator runs it: the
     right-hand side under the evaluation budget (:data:`MAX_NFEV`), the events, the conditioned tolerances and
-    the method (``DOP853-scalar``: :mod:`sphereimpact.dop853` on the law's scalar formula; else
+    the method (``DOP853-scalar``: :mod:`sphereimpact.ode.dop853` on the law's scalar formula; else
     :func:`scipy.integrate.solve_ivp`)."""
 
     def __init__(self, scene: Scene, options: SolverOptions):
@@ -458,7 +458,7 @@ class IntegratedNormal(_DimensionlessNormal):
 
 
 class TaylorNormal(_DimensionlessNormal):
-    """Normal motion integrated by the Taylor-series method (:mod:`sphereimpact.taylor`), for a law with a
+    """Normal motion integrated by the Taylor-series method (:mod:`sphereimpact.ode.series`), for a law with a
     ``series``.
 
     The local tolerance (each step's truncation bound on the O(1) state) is min(rtol, atol), those
@@ -475,7 +475,7 @@ class TaylorNormal(_DimensionlessNormal):
         The law has no series.
     ImpactError
         Maximum compression or separation not found, or more steps than the budget allows.
-    taylor.SeriesOverflowError
+    series.SeriesOverflowError
         The series or the force leaves double precision (``simulate`` then reports it, or under ``auto``
         integrates with DOP853-scalar instead).
     """
@@ -499,13 +499,13 @@ class TaylorNormal(_DimensionlessNormal):
         numbers = {name: float(value) for name, value in scene.family.items()}
         try:
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                sol = taylor.solve(law.series, numbers, gamma, min(rtol, atol),
+                sol = series.solve(law.series, numbers, gamma, min(rtol, atol),
                                    horizon(scene) * w, separation, lam or None, options.max_step * w)
-        except taylor.StepBudgetError:
-            raise ImpactError(f"no separation within {taylor.MAX_STEPS} Taylor steps ({describe_family(scene)}"
+        except series.StepBudgetError:
+            raise ImpactError(f"no separation within {series.MAX_STEPS} Taylor steps ({describe_family(scene)}"
                               f"criterion '{scene.separation}'): the contact is too stiff or too slow to end") from None
         except (OverflowError, ZeroDivisionError):
-            raise taylor.SeriesOverflowError(f"the contact force overflows ({describe_family(scene)}method "
+            raise series.SeriesOverflowError(f"the contact force overflows ({describe_family(scene)}method "
                                              "taylor)") from None
         if sol["tau_f"] is None:
             if sol["tau_m"] is None:

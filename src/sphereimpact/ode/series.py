@@ -34,7 +34,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .dense import is_instant
-from .errors import ImpactError, SeriesOverflowError, StepBudgetError
+from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 
 #: lam x at which the ramp band starts: exp(-37) = 8.5e-17, below round-off of 1 - exp(-lam x).
 BAND_EDGE = 37.0
@@ -134,7 +134,7 @@ def solve(series, numbers: dict, gamma: float, tol: float, end: float, separatio
     Parameters
     ----------
     series : callable
-        The law's ``series`` (see :class:`sphereimpact.laws.ContactLaw`).
+        The law's ``series`` (see :class:`sphereimpact.contact.laws.ContactLaw`).
     numbers : dict
         The law's family numbers, as floats.
     gamma : float

@@ -5,7 +5,7 @@ for kelvin-voigt) and derives tangential velocity and spin from the normal
 impulse (rigid tangential contact), or integrates the tangential spring alone on
 the solved normal force (compliant: ``linear``, ``mindlin``); a normal impact
 (angle 0) has no tangential state at all.  The full
-planar model (:mod:`sphereimpact.planar`) integrates centre position,
+planar model (:mod:`sphereimpact.impact.planar`) integrates centre position,
 velocity and spin with event-driven sliding/rolling, as the cross-check.
 """
 
@@ -19,12 +19,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from .errors import BeyondRadiusWarning, ImpactError
-from .integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
-from .normal import NormalMotion, describe_family
+from ..errors import BeyondRadiusWarning, ImpactError
+from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
+from ..integrators.normal import NormalMotion, describe_family
 from .outcome import Outcome
 from .scene import Scene, SolverOptions
-from .tangential import TANGENTIALS
+from ..contact.tangential import TANGENTIALS
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
 BODIES = ("reduced", "planar")
@@ -33,7 +33,7 @@ BODIES = ("reduced", "planar")
 class ReducedMotion:
     """Normal motion plus the tangential motion it drives, as one contact motion.
 
-    The tangential motion is the scene's tangential model's (:data:`sphereimpact.tangential.TANGENTIALS`):
+    The tangential motion is the scene's tangential model's (:data:`sphereimpact.contact.tangential.TANGENTIALS`):
     from the normal impulse (``rigid``) or integrated on the solved normal force (the compliant models); a
     normal impact has none.
     """

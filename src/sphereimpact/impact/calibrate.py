@@ -19,8 +19,8 @@ from dataclasses import dataclass, field, replace
 
 from scipy.optimize import brentq
 
-from .errors import ImpactError
-from .normal import IntegratedNormal
+from ..errors import ImpactError
+from ..integrators.normal import IntegratedNormal
 from .scene import Scene, SolverOptions, as_number
 
 #: ``exact`` (root find) and the published relations a law may declare.

@@ -1,6 +1,6 @@
 """Tangential compliance: an elastic tangential spring at the contact, capped by Coulomb friction.
 
-The rigid model (:mod:`sphereimpact.tangential.rigid`) lets the contact point slip or roll.  A real contact
+The rigid model (:mod:`sphereimpact.contact.tangential.rigid`) lets the contact point slip or roll.  A real contact
 first deforms tangentially: while it sticks it stores tangential strain and gives it back, which can
 reverse the contact point's tangential velocity before the ball leaves (Maw, Barber & Fawcett 1976,
 Wear 38:101-114).  Here the tangential force F on the ball (along t, the down-slope direction) obeys
@@ -37,13 +37,13 @@ solved normal motion, and only while the contact sticks: J_t is the tangential i
 integral, from which v_t, omega and x_t follow exactly.  Sliding phases are closed-form in the normal
 impulse, as in the rigid model.  Stick and slip switch at roots located on the dense output, never by
 sign() or tanh in a right-hand side: sticking ends when |F| reaches mu P+ (an event of the DOP853-scalar
-integration, :mod:`sphereimpact.dop853`); sliding
+integration, :mod:`sphereimpact.ode.dop853`); sliding
 ends when the stick rule would no longer push |F| past the moving cap, i.e. when
 
     g = sigma s - (d(mu P+)/dt - rho mu P+) / k_t
 
 falls through zero (a root on the normal motion's grid; d P/dt from the law, see
-:func:`sphereimpact.laws.force_rate`).
+:func:`sphereimpact.contact.laws.force_rate`).
 """
 
 from __future__ import annotations
@@ -52,12 +52,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .. import dop853
-from ..dense import is_instant
-from ..errors import ImpactError
-from ..events import first_root
+from ...ode import dop853
+from ...ode.dense import is_instant
+from ...errors import ImpactError
+from ...ode.events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
-from ..normal import NormalMotion
+from ...integrators.normal import NormalMotion
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel
 from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
@@ -76,7 +76,7 @@ STICK_STEPS = 64
 
 @dataclass(frozen=True)
 class CompliantPhase(Phase):
-    """A rigid-model :class:`~sphereimpact.tangential.Phase` (mode ``sticking`` or ``sliding`` here) and what
+    """A rigid-model :class:`~sphereimpact.contact.tangential.Phase` (mode ``sticking`` or ``sliding`` here) and what
     the compliant contact adds.
 
     ``sigma`` is the slip direction of a sliding phase (F = -sigma mu P+); ``force0`` the tangential force
