@@ -301,20 +301,41 @@ class PerFamilyPath(SweepPath):
 # ---------------------------------------------------------------- laws with a batched kernel, without gravity
 
 
-class ClosedPath(SweepPath):
+class _ByCriterion(SweepPath):
+    """A path that takes every remaining row it admits, one task per separation criterion, solved in chunks
+    of ``work.chunk_size`` (progress after each)."""
+
+    def admits(self, d: Numbers) -> np.ndarray:
+        """Mask of the scenes of ``d`` this path can solve."""
+        raise NotImplementedError
+
+    def solve(self, d: Numbers, rows: np.ndarray, separation: str, target: float) -> dict:
+        """:data:`NORMAL_OUTPUTS` of the scenes ``rows`` of ``d`` under ``separation``."""
+        raise NotImplementedError
+
+    def take(self, work, todo, span_todo):
+        d = work.numbers
+        admitted = self.admits(d)
+        tasks = []
+        for separation in SEPARATION_CRITERIA:
+            rows = np.flatnonzero(todo & d.criterion(separation) & admitted)
+            if rows.size:
+                tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
+                    rows, work.chunk_size, lambda i: self.solve(d, i, s, work.target), work.progress)))
+        return Take(tasks, span_todo & self.admits(work.span))
+
+
+class ClosedPath(_ByCriterion):
     """The kelvin-voigt law without gravity: its closed-form events, vectorised (:mod:`.closed`)."""
 
     name = "closed"
     summary = "the linear law's closed-form events"
 
-    def take(self, work, todo, span_todo):
-        d = work.numbers
-        tasks = []
-        for separation in SEPARATION_CRITERIA:
-            rows = np.flatnonzero(todo & d.criterion(separation) & d.closed & (d.gamma == 0))
-            if rows.size:
-                tasks.append(Task(rows, lambda rows=rows, s=separation: closed.events(d.zeta[rows], s)))
-        return Take(tasks, span_todo & work.span.closed & (work.span.gamma == 0))
+    def admits(self, d):
+        return d.closed & (d.gamma == 0)
+
+    def solve(self, d, rows, separation, target):
+        return closed.events(d.zeta[rows], separation)
 
 
 class LambdaInterpolantPath(SweepPath):
@@ -392,42 +413,30 @@ class PlanePath(SweepPath):
         return Take(tasks, taken)
 
 
-class TaylorLanesPath(SweepPath):
-    """Eq. 4.2 without gravity up to critical damping: the batched Taylor-series lanes (:mod:`.series_lanes`),
-    in chunks."""
+class TaylorLanesPath(_ByCriterion):
+    """Eq. 4.2 without gravity up to critical damping: the batched Taylor-series lanes (:mod:`.series_lanes`)."""
 
     name = "taylor-lanes"
     summary = "batched Taylor-series lanes"
 
-    def take(self, work, todo, span_todo):
-        d = work.numbers
-        series = _series_lanes(d)
-        tasks = []
-        for separation in SEPARATION_CRITERIA:
-            rows = np.flatnonzero(todo & d.criterion(separation) & series)
-            if rows.size:
-                tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
-                    rows, work.chunk_size, lambda i: series_lanes.integrate(d.zeta[i], d.lam[i], s, work.target),
-                    work.progress)))
-        return Take(tasks, span_todo & _series_lanes(work.span))
+    def admits(self, d):
+        return _series_lanes(d)
+
+    def solve(self, d, rows, separation, target):
+        return series_lanes.integrate(d.zeta[rows], d.lam[rows], separation, target)
 
 
-class RungeKuttaLanesPath(SweepPath):
-    """Every other scene of a batched kernel: the batched Runge-Kutta lanes (:mod:`.batch`), in chunks."""
+class RungeKuttaLanesPath(_ByCriterion):
+    """Every other scene of a batched kernel: the batched Runge-Kutta lanes (:mod:`.batch`)."""
 
     name = "runge-kutta-lanes"
     summary = "batched Runge-Kutta lanes"
 
-    def take(self, work, todo, span_todo):
-        d = work.numbers
-        tasks = []
-        for separation in SEPARATION_CRITERIA:
-            rows = np.flatnonzero(todo & d.criterion(separation) & d.batched)
-            if rows.size:
-                tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
-                    rows, work.chunk_size, lambda i: batch.integrate(d.zeta[i], d.lam[i], d.gamma[i], d.modified[i],
-                                                                     s, work.target), work.progress)))
-        return Take(tasks, span_todo & work.span.batched)
+    def admits(self, d):
+        return d.batched
+
+    def solve(self, d, rows, separation, target):
+        return batch.integrate(d.zeta[rows], d.lam[rows], d.gamma[rows], d.modified[rows], separation, target)
 
 
 #: The paths in their precedence: the first that takes a row solves it.
