@@ -47,6 +47,25 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         "integrators/closed.py", "integrators/taylor.py", "integrators/runge_kutta.py"}
 
 
+def test_the_import_scan_agrees_with_the_parser(tmp_path):
+    """Source tracking scans the text for imports (a parse of every module cost a second of each snakemake
+    run): on every Python file of the project, and on the awkward forms, it finds what Python's parser
+    finds."""
+    from sphereimpact.study.workflow import _imports, _parsed_imports
+
+    tricky = tmp_path / "tricky.py"
+    tricky.write_text('"""Docs: from os import path."""\nimport numpy as np, json as j\nfrom math import (sin,  # s\n'
+                      "    cos)\nfrom collections import \\\n    OrderedDict\ndef f():\n    import csv\n"
+                      "x = 'import re'\n")
+    files = [tricky, *ROOT.glob("src/**/*.py"), *ROOT.glob("workflow/scripts/*.py"), *ROOT.glob("notebooks/*.py"),
+             *ROOT.glob("tests/*.py"), *ROOT.glob("tools/*.py")]
+    assert len(files) > 100
+    for path in files:
+        assert _imports(path) == _parsed_imports(path), path
+    assert _imports(tricky) == {"numpy", "json", "math", "math.sin", "math.cos", "collections",
+                                "collections.OrderedDict", "csv"}
+
+
 def test_sources_follow_imports_through_the_package():
     figure = names(file_sources(str(ROOT / "workflow/scripts/figure.py")))
     assert {"figures/paper.py", "figures/style.py", "figures/catalog.py", "study/replication.py",

@@ -17,6 +17,7 @@ from __future__ import annotations
 import ast
 import contextlib
 import logging
+import re
 import traceback
 from functools import cache
 from pathlib import Path
@@ -98,23 +99,63 @@ def _module_file(name: str) -> Path | None:
     return None
 
 
+#: Import statements at the start of a line (indented ones too: imports inside functions count): ``import
+#: a.b, c`` and ``from .x import y, (z, ...)``.  A scan of the text, not a parse: a snakemake run resolves the
+#: sources of every rule's scripts, and parsing the package's syntax trees cost a second of each run; the
+#: scan agrees with :func:`_parsed_imports` on every file of the project (tests/test_workflow_support.py).
+_IMPORT = re.compile(r"^[ \t]*(?:import[ \t]+([^\n#;]*)|from[ \t]+(\.*)([\w.]*)[ \t]+import[ \t]+"
+                     r"(\([^)]*\)|(?:[^\n#;\\]|\\\n)*))", re.M)
+
+
+def _package_of(path: Path) -> str:
+    """The package a relative import in ``path`` starts from: its folder (an __init__.py's own package)."""
+    return ".".join(path.parent.relative_to(_PACKAGE.parent).parts) if _PACKAGE in path.parents else ""
+
+
+def _absolute(package: str, level: int, module: str) -> str:
+    if not level:
+        return module
+    anchor = package.split(".")[: len(package.split(".")) - level + 1]
+    return ".".join([*anchor, module] if module else anchor)
+
+
 @cache
 def _imports(path: Path) -> frozenset[str]:
-    """Absolute names of the modules ``path`` imports (relative imports resolved inside the package)."""
-    inside = _PACKAGE in path.parents
-    # the package a relative import starts from: the folder of the file (an __init__.py's own package)
-    package = ".".join(path.parent.relative_to(_PACKAGE.parent).parts) if inside else ""
-    names = set()
+    """Absolute names of the modules ``path`` imports (relative imports resolved inside the package), and
+    ``base.name`` for each ``from base import name`` (``from . import batch`` names a module)."""
+    package, names = _package_of(path), set()
+    for match in _IMPORT.finditer(_code(path.read_text(encoding="utf-8"))):
+        plain, dots, module, imported = match.groups()
+        if plain is not None:
+            names.update(name.split(" as ")[0].strip() for name in plain.split(","))
+            continue
+        base = _absolute(package, len(dots), module)
+        names.add(base)
+        for item in re.sub(r"#[^\n]*|\\\n", " ", imported).strip("() \t\n").split(","):
+            item = item.split(" as ")[0].strip()
+            if item and item != "*":
+                names.add(f"{base}.{item}")
+    return frozenset(names)
+
+
+def _code(text: str) -> str:
+    """``text`` with its string literals blanked (a docstring's example ``from x import y`` is not code)."""
+    return _STRING.sub(lambda m: '""' + "\n" * m.group(0).count("\n"), text)
+
+
+_STRING = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'')
+
+
+def _parsed_imports(path: Path) -> frozenset[str]:
+    """What :func:`_imports` finds, by Python's own parser: the reference its scan is tested against."""
+    package, names = _package_of(path), set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
             names.update(a.name for a in node.names)
         elif isinstance(node, ast.ImportFrom):
-            base = node.module or ""
-            if node.level:
-                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
-                base = ".".join([*anchor, base] if base else anchor)
+            base = _absolute(package, node.level, node.module or "")
             names.add(base)
-            names.update(f"{base}.{a.name}" for a in node.names)  # `from . import batch` names a module
+            names.update(f"{base}.{a.name}" for a in node.names if a.name != "*")
     return frozenset(names)
 
 
