@@ -19,7 +19,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.integrate import OdeSolution, solve_ivp
 
 from ..ode import dop853, series
 from ..ode.dense import StackedDOP853, fast_solution, is_instant
@@ -146,6 +145,8 @@ def _join(first, later):
     """One dense output: ``first`` up to ``later``'s start, then ``later`` (stacked or OdeSolution)."""
     if isinstance(first, StackedDOP853) and isinstance(later, StackedDOP853):
         return first.join(later)
+    from scipy.integrate import OdeSolution  # imported on use (see ode.dop853._load_tableau)
+
     keep = int(np.searchsorted(first.ts, later.ts[0], side="left"))
     return OdeSolution(np.concatenate([first.ts[:keep], later.ts]), first.interpolants[:keep] + later.interpolants)
 
@@ -304,6 +305,8 @@ class _Run:
                     sol = dop853.solve(self.rhs, span, z0, self.rtol, self.atol, max_step=max_step, events=events,
                                        first_step=first_step)
                 else:
+                    from scipy.integrate import solve_ivp  # imported on use (see ode.dop853._load_tableau)
+
                     sol = solve_ivp(self.rhs, span, z0, method=self.method, rtol=self.rtol, atol=self.atol,
                                     dense_output=True, max_step=max_step, events=events, first_step=first_step)
         except OverflowError:  # float arithmetic (x ** n) raises where numpy returns inf

@@ -20,7 +20,6 @@ from __future__ import annotations
 import bisect
 
 import numpy as np
-from scipy.integrate import OdeSolution
 
 
 #: Up to this many instants an array is evaluated instant by instant (same values, bit for bit).
@@ -71,7 +70,7 @@ class StackedDOP853:
         self._y0_list, self._t0_list, self._h_list = self.y_old.tolist(), self.t_old.tolist(), self.h.tolist()
 
     @classmethod
-    def from_solution(cls, solution: OdeSolution) -> "StackedDOP853":
+    def from_solution(cls, solution) -> "StackedDOP853":
         """The stacked form of an ascending OdeSolution of DOP853 interpolants."""
         steps = solution.interpolants
         return cls(solution.ts, [p.F for p in steps], [p.y_old for p in steps], [p.t_old for p in steps],

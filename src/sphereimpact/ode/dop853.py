@@ -25,15 +25,10 @@ from dataclasses import dataclass, field
 from operator import mul
 
 import numpy as np
-from scipy.integrate import DOP853
-from scipy.optimize import brentq
-
 from .dense import StackedDOP853, horner_dop853
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # scipy's RungeKutta step control
 EPS = np.finfo(float).eps
-_STAGES = DOP853.n_stages
-_EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
 
 
 def _dense_rows(matrix, lengths) -> list:
@@ -42,15 +37,26 @@ def _dense_rows(matrix, lengths) -> list:
     return [[float(a) for a in row[:length]] for row, length in zip(np.atleast_2d(matrix), lengths)]
 
 
-_A = _dense_rows(DOP853.A, range(_STAGES))  # stage s: sum over j < s of A[s, j] K_j
-_C = [float(c) for c in DOP853.C]
-_B = _dense_rows(DOP853.B, [_STAGES])[0]
-_E3 = _dense_rows(DOP853.E3, [_STAGES + 1])[0]
-_E5 = _dense_rows(DOP853.E5, [_STAGES + 1])[0]
-_EXTRA = len(DOP853.C_EXTRA)
-_A_EXTRA = _dense_rows(DOP853.A_EXTRA, range(_STAGES + 1, _STAGES + 1 + _EXTRA))
-_C_EXTRA = [float(c) for c in DOP853.C_EXTRA]
-_D = _dense_rows(DOP853.D, [_STAGES + 1 + _EXTRA] * len(DOP853.D))
+_STAGES = _EXPONENT = _A = _C = _B = _E3 = _E5 = _EXTRA = _A_EXTRA = _C_EXTRA = _D = None
+
+
+def _load_tableau() -> None:
+    """scipy's DOP853 tableau as float rows, read on the first solve: importing scipy.integrate costs half a
+    second, which a process that never integrates (a figure, a snakemake parse) should not pay."""
+    global _STAGES, _EXPONENT, _A, _C, _B, _E3, _E5, _EXTRA, _A_EXTRA, _C_EXTRA, _D
+    from scipy.integrate import DOP853
+
+    _STAGES = DOP853.n_stages
+    _EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
+    _A = _dense_rows(DOP853.A, range(_STAGES))  # stage s: sum over j < s of A[s, j] K_j
+    _C = [float(c) for c in DOP853.C]
+    _B = _dense_rows(DOP853.B, [_STAGES])[0]
+    _E3 = _dense_rows(DOP853.E3, [_STAGES + 1])[0]
+    _E5 = _dense_rows(DOP853.E5, [_STAGES + 1])[0]
+    _EXTRA = len(DOP853.C_EXTRA)
+    _A_EXTRA = _dense_rows(DOP853.A_EXTRA, range(_STAGES + 1, _STAGES + 1 + _EXTRA))
+    _C_EXTRA = [float(c) for c in DOP853.C_EXTRA]
+    _D = _dense_rows(DOP853.D, [_STAGES + 1 + _EXTRA] * len(DOP853.D))
 
 
 def _rms(values) -> float:
@@ -87,7 +93,7 @@ def _initial_step(fun, t0, y0, f0, t_bound, max_step, rtol, atol) -> tuple[float
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / (DOP853.error_estimator_order + 1))
+        h1 = (0.01 / max(d1, d2)) ** -_EXPONENT  # 1 / (error_estimator_order + 1), as scipy
     return min(100 * h0, h1, interval, max_step), 1
 
 
@@ -118,6 +124,10 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
         ``t_events`` and ``y_events`` (lists of arrays per event), ``nfev``, ``status`` (1 terminal event,
         0 end of span, -1 step too small) and ``message``.
     """
+    from scipy.optimize import brentq  # scipy's root finder for events, as solve_ivp's (imported on use)
+
+    if _A is None:
+        _load_tableau()
     t, t_bound = float(t_span[0]), float(t_span[1])
     y = [float(v) for v in y0]
     n = len(y)

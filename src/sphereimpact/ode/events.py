@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
 
@@ -26,6 +25,8 @@ def _scalar(f):
 
 
 def _refine(f, a: float, b: float) -> float:
+    from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
+
     return brentq(_scalar(f), a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=200)
 
 

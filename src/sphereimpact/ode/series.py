@@ -31,7 +31,6 @@ import bisect
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .dense import is_instant
 from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
@@ -124,6 +123,8 @@ class TaylorDense:
 
 
 def _root(f, a: float, b: float) -> float:
+    from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
+
     return brentq(f, a, b, xtol=1e-300, rtol=4 * EPS, maxiter=200)
 
 
