@@ -43,7 +43,8 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         "sphereimpact/methods.py", "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py",
         "tangential/springs.py", "tangential/microslip.py",
         "ode/dop853.py", "ode/dense.py", "ode/series.py",
-        "impact/planar.py", "sphereimpact/errors.py", "ode/__init__.py", "integrators/__init__.py", "integrators/base.py",
+        "impact/planar.py", "sphereimpact/errors.py", "ode/__init__.py", "integrators/__init__.py",
+        "integrators/base.py",
         "integrators/closed.py", "integrators/taylor.py", "integrators/runge_kutta.py"}
 
 

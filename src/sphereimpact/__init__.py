@@ -24,13 +24,11 @@ __version__ = "0.1.0"
 
 #: Modules that moved when the package was laid out in layers, old name -> new name.  The old names still
 #: import, with a DeprecationWarning, for one release (:class:`_Moved`).
-MOVED = {"sphereimpact.laws": "sphereimpact.contact.laws", "sphereimpact.tangential": "sphereimpact.contact.tangential",
-         "sphereimpact.scene": "sphereimpact.impact.scene", "sphereimpact.solve": "sphereimpact.impact.solve",
-         "sphereimpact.outcome": "sphereimpact.impact.outcome", "sphereimpact.planar": "sphereimpact.impact.planar",
-         "sphereimpact.calibrate": "sphereimpact.impact.calibrate", "sphereimpact.normal": "sphereimpact.integrators.normal",
-         "sphereimpact.closed": "sphereimpact.integrators.closed_form", "sphereimpact.taylor": "sphereimpact.ode.series",
-         "sphereimpact.dop853": "sphereimpact.ode.dop853", "sphereimpact.dense": "sphereimpact.ode.dense",
-         "sphereimpact.events": "sphereimpact.ode.events"}
+MOVED = {f"sphereimpact.{old}": f"sphereimpact.{new}" for old, new in {
+    "laws": "contact.laws", "tangential": "contact.tangential", "scene": "impact.scene", "solve": "impact.solve",
+    "outcome": "impact.outcome", "planar": "impact.planar", "calibrate": "impact.calibrate",
+    "normal": "integrators.normal", "closed": "integrators.closed_form", "taylor": "ode.series", "dop853": "ode.dop853",
+    "dense": "ode.dense", "events": "ode.events"}.items()}
 
 
 class _Moved(importlib.abc.MetaPathFinder, importlib.abc.Loader):

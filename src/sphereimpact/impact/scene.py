@@ -654,7 +654,7 @@ def __getattr__(name):
     if name in moved:
         import warnings
 
-        warnings.warn(f"sphereimpact.impact.scene.{name} is deprecated: use sphereimpact.contact.tangential.TANGENTIALS",
-                      DeprecationWarning, stacklevel=2)
+        warnings.warn(f"sphereimpact.impact.scene.{name} is deprecated: use "
+                      "sphereimpact.contact.tangential.TANGENTIALS", DeprecationWarning, stacklevel=2)
         return moved[name]()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,4 +1,5 @@
-"""``closed``: the law's closed-form normal motion, exact to round-off (kelvin-voigt: :mod:`sphereimpact.integrators.closed_form`)."""
+"""``closed``: the law's closed-form normal motion, exact to round-off (kelvin-voigt:
+:mod:`sphereimpact.integrators.closed_form`)."""
 
 from __future__ import annotations
 

@@ -12,10 +12,9 @@ apply (:mod:`sphereimpact.sweep.path_study`).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Callable
-
-import warnings
 
 import numpy as np
 import pandas as pd
