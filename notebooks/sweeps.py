@@ -15,16 +15,14 @@
 # them. Nothing here re-simulates.
 #
 # **How the engine works.** In dimensionless form (τ = ω_n t, x = δ ω_n / v_n), the normal problem depends
-# only on ζ = b/(2√(km)) and λ = c v_n/(ω_n R). Each scene takes the cheapest path that is exact for it:
-# - the linear law: explicit closed-form events, vectorised;
-# - one ball's modified-law sweep: Chebyshev series in log λ, built from a few accurate nodes and checked
-#   at the midpoints between them;
-# - anything else: fixed-step 8th-order lanes, integrated together;
-# - gravity on a slope: the single-impact model.
+# only on ζ = b/(2√(km)) and λ = c v_n/(ω_n R). Each scene takes the first of the engine's paths
+# (`sphereimpact.sweep.paths`, listed below in their order) that can solve it; the table's `path` column
+# says which one did.
 #
 # Tangential velocity and spin follow from the normal impulse, as in the single-impact core. Every path is
 # held to the sweep's accuracy target against the single-impact reference on every output
-# (tests/test_sweep.py); the benchmark below measures the error it reaches.
+# (tests/test_sweep.py); the benchmark below measures the error it reaches, and the last section what each
+# path costs where several could serve.
 
 # %%
 import math
@@ -35,14 +33,17 @@ import yaml
 from IPython.display import Image, Markdown, display
 
 from sphereimpact.figures.sweeps import grip_boundary
+from sphereimpact.sweep.paths import PATHS
 
 config = yaml.safe_load(open("results/config.yaml"))  # the configuration the pipeline ran
 angle_speed = pd.read_csv("results/sweep/angle_speed.csv")
 speed = pd.read_csv("results/sweep/speed.csv")
 bench = pd.read_csv("results/bench_sweep.csv")
 map_speed = float(config["sweep"]["map_speed"])
+display(Markdown("\n".join(f"{i}. `{name}`: {summary}" for i, (name, summary) in enumerate(PATHS.items(), 1))))
 display(Markdown(f"Angle × speed sweep: **{len(angle_speed)} scenes**, "
-                 f"{angle_speed.angle.nunique()} angles × {angle_speed.speed.nunique()} speeds."))
+                 f"{angle_speed.angle.nunique()} angles × {angle_speed.speed.nunique()} speeds, solved by "
+                 + ", ".join(f"{name} ({count})" for name, count in angle_speed.path.value_counts().items()) + "."))
 
 # %% [markdown]
 # ## Spin and slip against angle
@@ -155,3 +156,22 @@ for _, row in bench.iterrows():
 # onset. On a few thousand scenes the build is most of the time; on a million it is amortised.
 # The input and output tables are held whole, so the peak memory of a large sweep grows with its size; the
 # integration's own working memory is bounded by the chunk size.
+
+# %% [markdown]
+# ## Which path pays where
+#
+# Only eq. 4.2 without gravity has several paths that can solve the same scenes. `results/sweep_paths.csv`
+# times them against each other at the sweep's target, each interpolant's build included (the engine builds
+# it anew for every sweep), with each one's worst error on a sample against plain-float DOP853 at rtol
+# 1e-13. A row is *dominated* when another path of its comparison, size and criterion is faster and at most
+# as far from the reference.
+
+# %%
+display(Image(filename="paper_figures/sweep_paths.png"))
+paths = pd.read_csv("results/sweep_paths.csv")
+always = sorted(name for name, rows in paths.groupby("path") if rows.dominated.all())
+fastest = paths.loc[paths.groupby(["comparison", "separation", "scenes"], sort=False).seconds.idxmin()]
+display(Markdown(f"Dominated on every row: {', '.join(always) or 'none'}; worst error of any path "
+                 f"{paths.worst_error.max():.1e} against the target {paths.target.max():g}. "
+                 "The fastest path of each comparison:"))
+fastest[["comparison", "separation", "scenes", "path", "us_per_scene", "worst_error"]]

@@ -97,10 +97,12 @@ NOTEBOOKS = {
         "results/sweep/angle_speed.csv",
         "results/sweep/speed.csv",
         "results/bench_sweep.csv",
+        "results/sweep_paths.csv",
         "results/compliance_map.csv",
         "paper_figures/spin_map.png",
         "paper_figures/cor_speed.png",
         "paper_figures/contact_speed.png",
+        "paper_figures/sweep_paths.png",
     ],
 }
 
