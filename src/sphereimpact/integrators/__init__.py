@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import cache
 
 from . import base
 from .base import Integrator
@@ -18,9 +19,11 @@ __all__ = ["AUTO_ORDER", "INTEGRATORS", "Integrator", "choose", "method_names", 
 AUTO_ORDER = ("closed", "taylor", "DOP853-scalar")
 
 
+@cache
 def _registry():
     """The registry with the built-in integrators in it.  They register on first use, not on import: the
-    contact's tangential models import :mod:`.normal` from here while the scene they need is still loading."""
+    contact's tangential models import :mod:`.normal` from here while the scene they need is still loading.
+    Cached: ``choose`` asks for it on every impact."""
     from . import closed, taylor, runge_kutta  # noqa: F401  (registration order: the help's order)
 
     return base.INTEGRATORS

@@ -129,14 +129,14 @@ def _series_lanes(d: Numbers) -> np.ndarray:
         return d.modified & (d.gamma == 0) & series_lanes.covers(d.zeta, d.lam) & np.isfinite(d.w)
 
 
-def _beyond_lanes(d: Numbers) -> np.ndarray:
+def _beyond_lanes(d: Numbers, series: np.ndarray) -> np.ndarray:
     """Scenes of a batched kernel or closed form that those paths cannot bound: damping beyond
     :data:`LANES_ZETA_MAX`, dimensionless numbers that are not finite (e.g. mass 1e-300, b 1e300), or lam
-    beyond :data:`LANES_LAM_MAX` on the Runge-Kutta lanes.  They go to the single-impact path, whose cost is
-    bounded (:data:`sphereimpact.integrators.normal.MAX_NFEV`)."""
+    beyond :data:`LANES_LAM_MAX` on the Runge-Kutta lanes (not the Taylor lanes' ``series`` scenes).  They
+    go to the single-impact path, whose cost is bounded (:data:`sphereimpact.integrators.normal.MAX_NFEV`)."""
     with np.errstate(invalid="ignore"):
         wild = ~(np.isfinite(d.zeta) & np.isfinite(d.lam) & np.isfinite(d.w) & np.isfinite(d.gamma))
-        sharp = d.modified & (d.lam > LANES_LAM_MAX) & ~_series_lanes(d)
+        sharp = d.modified & (d.lam > LANES_LAM_MAX) & ~series
         return d.batched & (wild | (d.zeta > LANES_ZETA_MAX) | sharp)
 
 
@@ -167,8 +167,9 @@ def solved_alone(frame: pd.DataFrame, d: Numbers, target: float, limits: dict | 
     computed on these scenes unless ``limits`` is given: a shard takes the whole sweep's (``span``), so shards
     and chunk sizes do not change which path a scene takes.
     """
-    alone = _one_by_one(frame) | _beyond_lanes(d)
-    lanes = d.batched & ~(d.closed & (d.gamma == 0)) & ~_series_lanes(d) & ~alone  # Runge-Kutta lanes
+    series = _series_lanes(d)
+    alone = _one_by_one(frame) | _beyond_lanes(d, series)
+    lanes = d.batched & ~(d.closed & (d.gamma == 0)) & ~series & ~alone  # Runge-Kutta lanes
     computed = {}
     for separation in SEPARATION_CRITERIA:
         mine = np.flatnonzero(lanes & d.criterion(separation))
@@ -253,7 +254,10 @@ class FamilyInterpolantPath(SweepPath):
         span, d = work.span, work.numbers
         built = {}
         taken = np.zeros(len(span), bool)
-        for key, rows in _family_groups(span, span_todo).items():
+        # grouping is a Python pass over the rows: made once when the scenes to solve are the span's
+        span_groups = _family_groups(span, span_todo)
+        same = not work.sharded and np.array_equal(todo, span_todo)
+        for key, rows in span_groups.items():
             q = np.array([span.family[i][-1] for i in rows])
             if np.unique(q).size < FAMILY_MIN:
                 continue
@@ -264,7 +268,7 @@ class FamilyInterpolantPath(SweepPath):
                 continue
             taken[rows] = True
         tasks = []
-        for key, rows in _family_groups(d, todo).items():
+        for key, rows in (span_groups if same else _family_groups(d, todo)).items():
             if key in built:
                 rows = np.array(rows)
                 q = np.array([d.family[i][-1] for i in rows])
