@@ -38,8 +38,48 @@ def test_no_force_and_no_overflow_outside_contact(name):
 
 
 def test_registry_declares_the_closed_form_only_where_it_exists():
-    assert LAWS["kelvin-voigt"].closed_form == "kelvin-voigt"
+    from sphereimpact.contact.laws.exact import SPRING_DAMPER
+
+    assert LAWS["kelvin-voigt"].closed_form is SPRING_DAMPER
     assert all(law.closed_form is None for name, law in LAWS.items() if name != "kelvin-voigt")
+
+
+@pytest.mark.parametrize("name", list(LAWS))
+def test_the_dimensionless_force_is_the_law(name):
+    """``scaled`` is the law's force in the variables of its frequency and family: P_hat(x, y) m v_n / T equals
+    ``continued`` at delta = x v_n T, delta_dot = y v_n, on both sides of contact, for balls, speeds and
+    parameters far from the chapter's."""
+    rng = np.random.default_rng(7)
+    law = LAWS[name]
+    for speed, mass, b, chi, exponent in zip(rng.uniform(0.5, 30, 4), rng.uniform(0.02, 0.5, 4),
+                                             rng.uniform(1, 300, 4), rng.uniform(0, 0.3, 4), rng.uniform(1, 3, 4)):
+        changes = {"b": b} if "b" in law.parameter_names else {}
+        changes |= {"chi": chi} if "chi" in law.parameter_names else {}
+        changes |= {"exponent": exponent} if "exponent" in law.parameter_names else {}
+        s = law_scene(name, speed=speed, mass=mass, **changes)
+        frequency = float(law.frequency(s))
+        x, y = rng.uniform(-0.05, 1.5, 50), rng.uniform(-1.2, 1.2, 50)
+        delta, delta_dot = x * s.v_normal / frequency, y * s.v_normal
+        expected = law.continued(delta, delta_dot, s) / (s.mass * s.v_normal * frequency)
+        numbers = {key: float(value) for key, value in law.family(s).items()}
+        assert np.allclose(law.scaled(x, y, numbers), expected, rtol=1e-12, atol=1e-14), (speed, mass)
+
+
+def test_a_law_declared_the_old_way_still_works_with_a_warning():
+    """``closed_form`` and ``kernel`` were names for one release: they map to the objects, or are refused."""
+    from dataclasses import replace
+
+    from sphereimpact.contact.laws.exact import SPRING_DAMPER
+
+    kv = LAWS["kelvin-voigt"]
+    with pytest.warns(DeprecationWarning, match="closed_form='kelvin-voigt'"):
+        assert replace(kv, name="old", closed_form="kelvin-voigt").closed_form is SPRING_DAMPER
+    with pytest.warns(DeprecationWarning, match="kernel='modified'"):
+        assert replace(kv, name="old", scaled=None, kernel="modified").scaled is LAWS["modified"].scaled
+    with pytest.raises(ValueError, match="closed_form must be a ClosedForm"):
+        replace(kv, name="old", closed_form="hertz")
+    with pytest.raises(ValueError, match="kernel 'hertz' is not a batched kernel"):
+        replace(kv, name="old", kernel="hertz")
 
 
 def test_ramp_continuation_is_smooth_and_bounded():

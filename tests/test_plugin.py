@@ -88,15 +88,21 @@ def test_the_law_refuses_parameters_it_does_not_declare(law):
 
 
 def test_a_capability_the_sweep_lacks_is_refused_not_borrowed():
-    """A law claiming a batched kernel the lanes do not have is an error, never another law's kernel."""
+    """The batched lanes take a law by its own dimensionless force, never by a claim: a kernel name they lack
+    is refused, and a law whose force equals eq. 4.2 but is its own function is solved per family."""
     from dataclasses import replace
 
-    LAWS.register(replace(GROWING, name="claims-kernel", kernel="my-kernel"))
+    with pytest.raises(ValueError, match="kernel 'my-kernel' is not a batched kernel"):
+        replace(GROWING, name="claims-kernel", kernel="my-kernel")
+    modified = LAWS["modified"]
+    LAWS.register(replace(modified, name="own-form", scaled=lambda x, y, n: modified.scaled(x, y, n)))
     try:
-        with pytest.raises(ValueError, match="declares kernel 'my-kernel'"):
-            sweep(grid(angle=[0.0]).assign(model="claims-kernel"))
+        scenes = grid(angle=[0.0, 30.0], speed=[1.0, 3.0])
+        own, chapter = sweep(scenes.assign(model="own-form")), sweep(scenes)
+        assert set(own["path"]) == {"per-family"} and "per-family" not in set(chapter["path"])
+        assert np.allclose(own["cor"], chapter["cor"], rtol=1e-8)
     finally:
-        del LAWS["claims-kernel"]
+        del LAWS["own-form"]
 
 
 # --- a tangential model registered from outside ----------------------------------------------------------

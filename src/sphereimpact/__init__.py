@@ -28,7 +28,7 @@ MOVED = {f"sphereimpact.{old}": f"sphereimpact.{new}" for old, new in {
     "laws": "contact.laws", "tangential": "contact.tangential", "scene": "impact.scene", "solve": "impact.solve",
     "outcome": "impact.outcome", "planar": "impact.planar", "calibrate": "impact.calibrate",
     "normal": "integrators.normal", "closed": "integrators.closed_form", "taylor": "ode.series", "dop853": "ode.dop853",
-    "dense": "ode.dense", "events": "ode.events"}.items()}
+    "dense": "ode.dense", "events": "ode.events", "sweep.closed": "contact.laws.exact"}.items()}
 
 
 class _Moved(importlib.abc.MetaPathFinder, importlib.abc.Loader):

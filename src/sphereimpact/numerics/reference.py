@@ -1,7 +1,7 @@
 """Reference solutions and the error measure of the accuracy studies.
 
-``kelvin-voigt``: the closed form (:mod:`sphereimpact.integrators.closed_form`), exact to round-off.  Other laws (Hertz,
-Hunt-Crossley): scipy's DOP853 at rtol 1e-13, for the benchmarks (their accuracy is tested in
+``kelvin-voigt``: the law's closed form (:mod:`sphereimpact.contact.laws.exact`), exact to round-off.  Other
+laws (Hertz, Hunt-Crossley): scipy's DOP853 at rtol 1e-13, for the benchmarks (their accuracy is tested in
 tests/test_laws.py against closed forms and calibration).
 ``modified``: the normal problem in dimensionless form integrated with
 mpmath's arbitrary-precision Taylor method (:func:`mpmath.odefun`), with

@@ -2,11 +2,12 @@
 
 Per lane (tau = omega_n t, x = delta omega_n / v_n, y = x'):
 
-    x' = y,   y' = -P_hat(x, y) + gamma,   P_hat = x + 2 zeta y r(lam x),   x(0) = 0, y(0) = 1,
+    x' = y,   y' = -P_hat(x, y) + gamma,   x(0) = 0, y(0) = 1,
 
-with r = 1 (kelvin-voigt) or the modified ramp continued past x = 0
-(:func:`sphereimpact.contact.laws.ramp_continued`), lam = c v_n / (omega_n R) and
-gamma = g cos(beta) / (omega_n v_n).  Each lane takes fixed steps of the
+with P_hat the law's own dimensionless force (``ContactLaw.scaled``): one of :data:`FORMS`, x + 2 zeta y
+(eq. 4.1) or x + 2 zeta y r(lam x) with eq. 4.2's ramp r continued past x = 0, lam = c v_n / (omega_n R);
+gamma = g cos(beta) / (omega_n v_n).  The step policy and the event function below are built for these
+two forms.  Each lane takes fixed steps of the
 8th-order Dormand-Prince method (the tableau of :class:`scipy.integrate.DOP853`),
 its step chosen from the accuracy target and the lane's fastest scale at its current state.  Events
 are roots of y (maximum compression), of the separation function, and of P_hat
@@ -23,10 +24,12 @@ from scipy.special import wrightomega
 
 from ..errors import ImpactError
 from ..contact.laws import ramp_continued
+from ..contact.laws.linear import kelvin_voigt_scaled, modified_scaled
 from .outputs import NORMAL_OUTPUTS
 
-#: The laws' kernels these lanes integrate (``ContactLaw.kernel``): P_hat = x + 2 zeta y r(lam x).
-KERNELS = ("kelvin-voigt", "modified")
+#: The dimensionless forces these lanes integrate (a law's ``ContactLaw.scaled``, by identity) -> whether
+#: it has eq. 4.2's ramp.
+FORMS = {kelvin_voigt_scaled: False, modified_scaled: True}
 
 _A = DOP853.A
 _B = DOP853.B  # the right-hand side is autonomous: the stage times DOP853.C are not needed
@@ -58,6 +61,7 @@ class _Lanes:
         self.kind = "modified" if modified.all() else "linear" if not modified.any() else "mixed"
         self.ramp_lam = np.where(modified, lam, 0.0)  # lam where a ramp limits the step, 0 where none
         self.two_zeta = 2.0 * zeta
+        self.numbers = {"zeta": zeta, "lam": lam}
         self.weightless = not gamma.any()
 
     def take(self, index):
@@ -70,7 +74,10 @@ class _Lanes:
         return ramp if self.kind == "modified" else np.where(self.modified, ramp, 1.0)
 
     def force(self, x, y):
-        return x + self.two_zeta * y * self.ramp(x)
+        """P_hat(x, y): the laws' own dimensionless forces, lane by lane."""
+        if self.kind != "mixed":
+            return (modified_scaled if self.kind == "modified" else kelvin_voigt_scaled)(x, y, self.numbers)
+        return np.where(self.modified, modified_scaled(x, y, self.numbers), kelvin_voigt_scaled(x, y, self.numbers))
 
     def _ratio_terms(self, x):
         """(x > 0, x where positive else 1, ramp there): what Q and its slope share."""

@@ -23,7 +23,7 @@ from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
 from ..impact.outcome import SCALAR_OUTPUTS
 from ..impact.scene import SEPARATION_CRITERIA, SolverOptions
 from ..impact.solve import simulate, simulate_many
-from . import batch, closed, plane, series_lanes
+from . import batch, plane, series_lanes
 from .outputs import NORMAL_OUTPUTS
 from .scenes import Numbers, _compliant, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
@@ -329,16 +329,27 @@ class _ByCriterion(SweepPath):
 
 
 class ClosedPath(_ByCriterion):
-    """The kelvin-voigt law without gravity: its closed-form events, vectorised (:mod:`.closed`)."""
+    """A law with a closed form, without gravity: its weightless events, vectorised (``ClosedForm.events``;
+    eq. 4.1's in :mod:`sphereimpact.contact.laws.exact`)."""
 
     name = "closed"
-    summary = "the linear law's closed-form events"
+    summary = "the law's closed-form events"
 
     def admits(self, d):
         return d.closed & (d.gamma == 0)
 
     def solve(self, d, rows, separation, target):
-        return closed.events(d.zeta[rows], separation)
+        forms = d.exact[rows]
+        first = forms[0]
+        if all(form is first for form in forms):  # one law's closed form (the usual case)
+            return first.events({"zeta": d.zeta[rows], "lam": d.lam[rows]}, separation)
+        out = {name: np.empty(rows.size) for name in NORMAL_OUTPUTS}
+        for form in dict.fromkeys(forms.tolist()):
+            mine = np.flatnonzero(forms == form)
+            for name, value in form.events({"zeta": d.zeta[rows[mine]], "lam": d.lam[rows[mine]]},
+                                           separation).items():
+                out[name][mine] = value
+        return out
 
 
 class LambdaInterpolantPath(SweepPath):

@@ -17,7 +17,7 @@ import pandas as pd
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..impact.scene import PATH_RULES, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, check_columns, scale_problem
 from ..contact.tangential import TANGENTIALS
-from . import batch, closed
+from . import batch
 
 #: Scene parameters, with the single-impact defaults for missing columns.
 SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
@@ -109,11 +109,12 @@ def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
 @dataclass(frozen=True)
 class Numbers:
     """Per scene, what chooses and drives a sweep path: the law's frequency ``w`` = 1 / T [1/s], the normal
-    approach speed ``v_n`` [m/s], the dimensionless gravity ``gamma`` = g_n / (w v_n), the batched kernel's
-    ``zeta`` and ``lam`` (0 without a kernel), masks of the ``modified`` kernel, the kelvin-voigt ``closed``
-    form, a ``batched`` kernel and the ``force`` criterion (compared once here: an elementwise comparison of
-    an object array is not cheap), the ``kernel`` name, the similarity ``family`` as a hashable key (laws
-    without a kernel; None otherwise) and the ``separation`` criterion."""
+    approach speed ``v_n`` [m/s], the dimensionless gravity ``gamma`` = g_n / (w v_n), the family's ``zeta``
+    and ``lam`` where the batched lanes or a closed form read them (0 elsewhere), masks of eq. 4.2's form
+    (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
+    (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
+    itself (``exact``, None without), the similarity ``family`` as a hashable key (laws the lanes do not
+    take; None otherwise) and the ``separation`` criterion."""
 
     w: np.ndarray
     v_n: np.ndarray
@@ -124,7 +125,7 @@ class Numbers:
     closed: np.ndarray
     batched: np.ndarray
     force: np.ndarray
-    kernel: np.ndarray
+    exact: np.ndarray
     family: np.ndarray
     separation: np.ndarray
 
@@ -142,24 +143,22 @@ class Numbers:
 
 def numbers(frame: pd.DataFrame) -> Numbers:
     """The :class:`Numbers` of every scene of a :func:`scene_table`, each from its law's ``frequency`` and
-    ``family`` (ValueError names a law whose kernel or closed form the sweep lacks, and a row whose scales
-    overflow)."""
+    ``family`` (ValueError names a law whose closed form reads numbers the sweep does not carry, and a row
+    whose scales overflow)."""
     beta = np.radians(incidence(frame))
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
-    kernel, family = _objects(n, None), _objects(n, None)
-    modified, linear = np.zeros(n, bool), np.zeros(n, bool)
+    exact, family = _objects(n, None), _objects(n, None)
+    modified, batched = np.zeros(n, bool), np.zeros(n, bool)
     models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
     for model in dict.fromkeys(models.tolist()):
         rows = np.flatnonzero(models == model)
         law = LAWS[model]
-        if law.kernel is not None and law.kernel not in batch.KERNELS:
-            raise ValueError(f"model {model!r} declares kernel {law.kernel!r}, which the batched lanes do not have "
-                             f"({', '.join(batch.KERNELS)}); declare kernel=None to be solved per family")
-        if law.closed_form is not None and law.closed_form != closed.CLOSED_FORM:
-            raise ValueError(f"model {model!r} declares closed form {law.closed_form!r}, which the sweep does not "
-                             f"have ({closed.CLOSED_FORM})")
+        lanes = law.scaled in batch.FORMS
+        if law.closed_form is not None and not set(law.closed_form.reads) <= {"zeta", "lam"}:
+            raise ValueError(f"model {model!r} declares a closed form reading {', '.join(law.closed_form.reads)}; "
+                             f"the sweep carries zeta and lam only: declare closed_form=None to be solved per family")
         view = _law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
         with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
             w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
@@ -168,19 +167,19 @@ def numbers(frame: pd.DataFrame) -> Numbers:
         problem = scale_problem(view.mass, v_n[rows], w[rows], law, rows)
         if problem:
             raise ValueError(problem)
-        kernel[rows] = law.kernel
-        modified[rows], linear[rows] = law.kernel == "modified", law.closed_form == closed.CLOSED_FORM
-        if law.kernel is not None:  # the batched kernels read zeta and (modified) lam
-            zeta[rows] = values["zeta"]
+        exact[rows] = law.closed_form
+        batched[rows], modified[rows] = lanes, lanes and batch.FORMS[law.scaled]
+        if lanes or law.closed_form is not None:  # the lanes and the closed forms read zeta and lam
+            zeta[rows] = values.get("zeta", 0.0)
             lam[rows] = values.get("lam", 0.0)
-        else:  # the family as a key, for the paths of kernel-less laws (10^6 tuples: 0.19 s)
+        if not lanes:  # the family as a key, for the paths of the laws the lanes do not take (10^6 tuples: 0.19 s)
             keys = zip(*values.values()) if values else [()] * rows.size
             family[rows] = [(model, *key) for key in keys]
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
     gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
-    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=linear,
-                   batched=kernel != None, force=separation == "force", kernel=kernel,  # noqa: E711
-                   family=family, separation=separation)
+    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified,
+                   closed=exact != None, batched=batched, force=separation == "force",  # noqa: E711
+                   exact=exact, family=family, separation=separation)
 
 
 def rows(**columns) -> pd.DataFrame:

@@ -14,12 +14,14 @@ sweeps), and is numpy-vectorised.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
 import numpy as np
 
 from ...ode.dense import is_instant
+from .exact import SPRING_DAMPER, ClosedForm
 from ...registry import Registry as BaseRegistry
 
 #: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
@@ -99,16 +101,21 @@ class ContactLaw:
         The parameter that ``cor`` calibration sets (None: the law is elastic and cannot be calibrated).
     cor_relations : mapping of str -> callable
         Published approximate COR-to-damping relations: name -> ``relation(e, p) -> damping value``.
-    closed_form : str or None
-        The exact solution that solves this law's normal motion: a key of
-        :data:`sphereimpact.integrators.closed_form.CLOSED_FORMS` (``kelvin-voigt``: the linear ODE with the family's
-        ``zeta``), or None.
+    scaled : callable or None
+        ``scaled(x, y, numbers) -> P_hat``: the law's force in the dimensionless variables of ``frequency``,
+        P_hat = P / (m v_n / T) at delta = x v_n T, delta_dot = y v_n, with ``numbers`` the law's ``family``
+        (floats or arrays of lanes).  The same law as ``continued`` (tested for every registered law), the
+        form that the sweep's batched lanes integrate: they take a law whose ``scaled`` is one of the forms
+        they were built for (:data:`sphereimpact.sweep.batch.FORMS`, eq. 4.1's and eq. 4.2's), by identity,
+        never by a name; other laws are solved per similarity family by the single-impact integrator,
+        which is exact for every law, or interpolated in the family's last number where many scenes differ
+        only in it (:mod:`sphereimpact.sweep.paths`).
+    closed_form : ClosedForm or None
+        The law's exact solution (:class:`sphereimpact.contact.laws.exact.ClosedForm`: one scene's motion in SI
+        units for the ``closed`` integrator, the weightless events vectorised for sweeps), or None.
     kernel : str or None
-        The batched-lanes kernel of :mod:`sphereimpact.sweep.batch` that integrates this law (one of its
-        ``KERNELS``, reading the family's ``zeta`` and, for ``modified``, ``lam``), or None: then sweeps
-        solve one scene per similarity family with the single-impact integrator, which is exact for
-        every law, or interpolate in the family's last number between such solves where many scenes
-        differ only in it and it is proportional to the approach speed (:mod:`sphereimpact.sweep.paths`).
+        Deprecated: give ``scaled`` instead.  ``kernel="modified"`` (or ``"kelvin-voigt"``) sets ``scaled``
+        to that law's form, with a DeprecationWarning.
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.
@@ -141,7 +148,8 @@ class ContactLaw:
     spring: str = "linear"
     damping: str | None = None
     cor_relations: Mapping[str, Callable] = field(default_factory=dict)
-    closed_form: str | None = None
+    scaled: Callable | None = None
+    closed_form: ClosedForm | None = None
     kernel: str | None = None
     ramp_rate: Callable | None = None
     scalar: Callable | None = None
@@ -158,6 +166,23 @@ class ContactLaw:
             raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
         if self.damping is not None and self.damping not in names:
             raise ValueError(f"law {self.name!r}: damping {self.damping!r} is not one of its parameters")
+        if isinstance(self.closed_form, str):
+            if self.closed_form != "kelvin-voigt":
+                raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's "
+                                 f"is sphereimpact.contact.laws.exact.SPRING_DAMPER); got {self.closed_form!r}")
+            warnings.warn("ContactLaw(closed_form='kelvin-voigt') is deprecated: give closed_form=SPRING_DAMPER "
+                          "(sphereimpact.contact.laws.exact)", DeprecationWarning, stacklevel=3)
+            object.__setattr__(self, "closed_form", SPRING_DAMPER)
+        if self.closed_form is not None and not isinstance(self.closed_form, ClosedForm):
+            raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm or None; "
+                             f"got {type(self.closed_form).__name__}")
+        if self.kernel is not None:
+            if self.kernel not in ("kelvin-voigt", "modified") or self.kernel not in LAWS:
+                raise ValueError(f"law {self.name!r}: kernel {self.kernel!r} is not a batched kernel (kelvin-voigt, "
+                                 f"modified); declare scaled (the law's dimensionless force) instead")
+            warnings.warn(f"ContactLaw(kernel={self.kernel!r}) is deprecated: give scaled=LAWS[{self.kernel!r}].scaled",
+                          DeprecationWarning, stacklevel=3)
+            object.__setattr__(self, "scaled", LAWS[self.kernel].scaled)
 
     @property
     def parameter_names(self) -> tuple:

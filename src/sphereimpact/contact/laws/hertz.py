@@ -72,6 +72,13 @@ def hunt_crossley_scalar(delta: float, delta_dot: float, p) -> float:
     return p.k * _power_scalar(delta, p.exponent) * (1.0 + p.chi * delta_dot)
 
 
+def hunt_crossley_scaled(x, y, numbers):
+    """Dimensionless form P_hat = (n + 1) / 2 sign(x) |x|^n (1 + q y), q = chi v_n; elastic Hertz is q = 0,
+    n = 3/2 (see :attr:`~sphereimpact.contact.laws.ContactLaw.scaled`)."""
+    n = numbers.get("exponent", HERTZ)
+    return 0.5 * (n + 1.0) * _power(np.asarray(x, dtype=float), n) * (1.0 + numbers.get("chi_v", 0.0) * y)
+
+
 def hertz_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = (3/2) k delta^(1/2) delta_dot [N/s]."""
     return HERTZ * p.k * np.sqrt(np.maximum(delta, 0.0)) * np.asarray(delta_dot, dtype=float)
@@ -88,12 +95,13 @@ LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_force, hertz_continued, hertz_frequency,
     family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
-    scalar=hertz_scalar, rate=hertz_rate))
+    scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
     (K, CHI, EXPONENT), hunt_crossley_force, hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scalar=hunt_crossley_scalar,
+    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,
+    scalar=hunt_crossley_scalar,
     rate=hunt_crossley_rate))

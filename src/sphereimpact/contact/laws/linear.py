@@ -19,6 +19,7 @@ from operator import mul
 import numpy as np
 
 from .base import LAWS, ContactLaw, Parameter
+from .exact import SPRING_DAMPER
 
 K = Parameter("k", "N/m", "contact stiffness", "a finite number > 0", lambda x: x > 0, 60000.0)
 B = Parameter("b", "N s/m", "contact damping", "a finite number >= 0", lambda x: x >= 0, 10.5)
@@ -59,6 +60,11 @@ def kelvin_voigt_continued(delta, delta_dot, p):
 def kelvin_voigt_scalar(delta: float, delta_dot: float, p) -> float:
     """k delta + b delta_dot for Python floats."""
     return p.k * delta + p.b * delta_dot
+
+
+def kelvin_voigt_scaled(x, y, numbers):
+    """Dimensionless eq. 4.1, P_hat = x + 2 zeta y (see :attr:`~sphereimpact.contact.laws.ContactLaw.scaled`)."""
+    return x + 2.0 * numbers["zeta"] * y
 
 
 def kelvin_voigt_rate(delta, delta_dot, delta_ddot, p):
@@ -134,6 +140,12 @@ def modified_scalar(delta: float, delta_dot: float, p) -> float:
     return p.k * delta + p.b * delta_dot * ramp_scalar(p.ramp * delta / p.radius)
 
 
+def modified_scaled(x, y, numbers):
+    """Dimensionless eq. 4.2, P_hat = x + 2 zeta y (1 - exp(-lam x)), the ramp continued past x = 0 as in
+    :func:`modified_continued` (see :attr:`~sphereimpact.contact.laws.ContactLaw.scaled`)."""
+    return x + 2.0 * numbers["zeta"] * y * ramp_continued(numbers["lam"] * x)
+
+
 def modified_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot + b [delta_ddot (1 - exp(-u)) + delta_dot^2 (c/R) exp(-u)], u = c delta / R [N/s]."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -180,6 +192,12 @@ def linear_hunt_crossley_scalar(delta: float, delta_dot: float, p) -> float:
     return p.k * delta * (1.0 + p.chi * delta_dot)
 
 
+def linear_hunt_crossley_scaled(x, y, numbers):
+    """Dimensionless form P_hat = x (1 + q y), q = chi v_n
+    (see :attr:`~sphereimpact.contact.laws.ContactLaw.scaled`)."""
+    return x * (1.0 + numbers["chi_v"] * y)
+
+
 def linear_hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
     """dP/dt = k delta_dot (1 + chi delta_dot) + k delta chi delta_ddot [N/s]."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -223,7 +241,7 @@ LAWS.register(ContactLaw(
     (K, B), kelvin_voigt_force, kelvin_voigt_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", closed_form="kelvin-voigt", kernel="kelvin-voigt", scalar=kelvin_voigt_scalar,
+    damping="b", scaled=kelvin_voigt_scaled, closed_form=SPRING_DAMPER, scalar=kelvin_voigt_scalar,
     rate=kelvin_voigt_rate, series=kelvin_voigt_series))
 
 LAWS.register(ContactLaw(
@@ -231,7 +249,7 @@ LAWS.register(ContactLaw(
     (K, B, RAMP), modified_force, modified_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
-    damping="b", kernel="modified", ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
+    damping="b", scaled=modified_scaled, ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
     rate=modified_rate, series=modified_series))
 
 LAWS.register(ContactLaw(
@@ -239,5 +257,5 @@ LAWS.register(ContactLaw(
     (K, CHI), linear_hunt_crossley_force, linear_hunt_crossley_continued, natural_frequency,
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    damping="chi", cor_relations=hunt_crossley_relations(), scalar=linear_hunt_crossley_scalar,
-    rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series))
+    damping="chi", cor_relations=hunt_crossley_relations(), scaled=linear_hunt_crossley_scaled,
+    scalar=linear_hunt_crossley_scalar, rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series))

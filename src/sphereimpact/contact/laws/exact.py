@@ -1,0 +1,208 @@
+"""Eq. 4.1's exact solution, the closed form a law declares (``ContactLaw.closed_form``).
+
+Inside contact m delta'' + b delta' + k delta = m g_n is linear.  With the static offset d_s = m g_n / k,
+x = delta - d_s, sigma = zeta omega_n, the solution from x(0) = x0, x'(0) = v0 is
+
+    x(t)  = E(t) [x0 C(t) + (v0 + sigma x0) S(t)]
+    x'(t) = E(t) [v0 C(t) - (omega_n^2 x0 + sigma v0) S(t)]
+
+with, for zeta <= 1 (under- and critically damped, omega_d = omega_n sqrt(1 - zeta^2)),
+E = exp(-sigma t), C = cos(omega_d t), S = sin(omega_d t) / omega_d (= t at zeta = 1);
+and for zeta > 1 (q = omega_n sqrt(zeta^2 - 1), r1 = -omega_n / (zeta + sqrt(zeta^2 - 1)) the slow
+root), E = exp(r1 t), C = (1 + exp(-2 q t)) / 2, S = -expm1(-2 q t) / (2 q).  These forms never subtract
+nearly equal numbers (x'(t) over-damped is written with C - sigma S = (r1 - r2 exp(-2 q t)) / (2 q), see
+:meth:`SpringDamperMotion._basis`), so they are accurate to a few ulp in every regime, including zeta -> 1
+from either side and zeta in the thousands.
+
+Two forms of the one solution live here: :class:`SpringDamperMotion`, one scene in SI units (the ``closed``
+integrator wraps it, :mod:`sphereimpact.integrators.closed_form`), and :func:`events`, the weightless
+motion's dimensionless events for many damping ratios at once (the sweep's ``closed`` path).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ImpactError
+from ...ode.dense import is_instant
+
+
+class SpringDamperMotion:
+    """Eq. 4.1's exact motion delta(t) of one scene from first touch, in SI units.
+
+    Parameters
+    ----------
+    scene
+        Anything with ``omega_n`` [rad/s], ``zeta`` [-], ``mass`` [kg], ``g_normal`` [m/s^2], ``k`` [N/m],
+        ``b`` [N s/m], ``v_normal`` [m/s] and ``separation`` (a :class:`sphereimpact.Scene`).
+
+    Attributes
+    ----------
+    weightless : bool
+        No gravity along the normal: :meth:`events` gives t_m and t_f as formulas.
+    scan_end : float
+        [s] A time past any separation of a contact that ends, for root searches with gravity.
+
+    Raises
+    ------
+    ImpactError
+        When the over-damped contact's slow rate omega_n / (2 zeta) underflows double precision.
+    """
+
+    def __init__(self, scene):
+        self.scene = scene
+        w, zeta = scene.omega_n, scene.zeta
+        self._w2, self._sigma = w * w, zeta * w
+        self._offset = scene.mass * scene.g_normal / scene.k
+        self._x0, self._v0 = -self._offset, scene.v_normal
+        self.weightless = self._offset == 0.0
+        if zeta <= 1.0:
+            self._under, self._freq = True, w * math.sqrt(max(0.0, 1.0 - zeta * zeta))
+            self.scan_end = min(2 * math.pi / self._freq if self._freq > 0 else math.inf,
+                                60.0 / self._sigma if self._sigma > 0 else math.inf)
+        else:
+            root = math.sqrt(zeta * zeta - 1.0)
+            self._under, self._freq = False, w * root
+            self._slow = -w / (zeta + root)
+            if not self._slow < 0.0:  # w / (2 zeta) underflowed
+                raise ImpactError(f"the over-damped contact's slow rate omega_n / (2 zeta) underflows double "
+                                  f"precision (zeta = {zeta:.3g}): outside what the model computes")
+            self.scan_end = 60.0 / -self._slow
+
+    def events(self) -> tuple[float, float | None]:
+        """t_m and t_f [s] in closed form, for a contact without gravity (x0 = 0); t_f None when the
+        criterion never ends contact (penetration, critically or over-damped: delta never returns to 0).
+
+        Under-damped, with theta = omega_d t: delta = E v0 sin(theta) / omega_d and delta_dot = E v0
+        (cos(theta) - sigma sin(theta) / omega_d), so maximum compression is at theta = atan2(omega_d,
+        sigma); delta returns to 0 at theta = pi; P = k delta + b delta_dot = E v0 (A sin(theta) + b
+        cos(theta)), A = (k - b sigma) / omega_d, falls to 0 at theta = pi - atan2(b, A), before pi (P
+        starts at b v0 > 0).  Critically and over-damped, with the roots r1 (slow) and r2 of m r^2 + b r
+        + k = 0: delta = v0 (e^(r1 t) - e^(r2 t)) / (r1 - r2) > 0 for every t > 0, maximum compression at
+        t_m = ln(r2 / r1) / (r1 - r2) = acosh(zeta) / q, and since k + b r = -m r^2, P = 0 at
+        e^((r1 - r2) t) = (r2 / r1)^2: t_f = 2 t_m (1 / omega_n and 2 / omega_n at zeta = 1).  No root
+        search, so no cancellation (a search on P = k delta + b delta_dot, two terms 1e6 times their
+        difference at zeta = 5361, would miss t_f by 1 %).
+        """
+        s, w, zeta = self.scene, self.scene.omega_n, self.scene.zeta
+        if self._under and self._freq > 0.0:
+            wd = self._freq
+            t_m = math.atan2(wd, self._sigma) / wd
+            if s.separation == "penetration":
+                return t_m, math.pi / wd
+            return t_m, (math.pi - math.atan2(s.b, (s.k - s.b * self._sigma) / wd)) / wd
+        root = math.sqrt((zeta - 1.0) * (zeta + 1.0))  # no cancellation as zeta -> 1
+        t_m = 1.0 / w if root == 0.0 else math.acosh(zeta) / (w * root)
+        return t_m, None if s.separation == "penetration" else 2.0 * t_m
+
+    def _basis(self, t):
+        """(E, C, S, C - sigma S) at t: under-damped directly; over-damped with D = exp(-2 q t), C - sigma S =
+        (r1 - r2 D) / (2 q), r2 = -(sigma + q): 1 - sigma / q = r1 / q is computed as r1 itself, where the
+        direct form subtracts nearly equal numbers (at zeta = 5361 it would lose 9 digits of delta_dot)."""
+        if self._under:
+            e, c, s = np.exp(-self._sigma * t), np.cos(self._freq * t), t * np.sinc(self._freq * t / math.pi)
+            return e, c, s, c - self._sigma * s
+        q, q2t = self._freq, 2.0 * self._freq * t  # q > 0 for zeta > 1; expm1 keeps S exact as q t -> 0
+        d = np.exp(-q2t)
+        return (np.exp(self._slow * t), 0.5 * (1.0 + d), -np.expm1(-q2t) / (2.0 * q),
+                (self._slow + (self._sigma + q) * d) / (2.0 * q))
+
+    def state(self, t):
+        """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]."""
+        if self._under and is_instant(t):  # one instant (root and extremum searches): plain floats
+            t = float(t)
+            e, c = math.exp(-self._sigma * t), math.cos(self._freq * t)
+            s = math.sin(self._freq * t) / self._freq if self._freq * t != 0.0 else t
+            damped = c - self._sigma * s
+        else:
+            t = np.asarray(t, dtype=float)
+            e, c, s, damped = self._basis(t)
+        x0, v0 = self._x0, self._v0
+        x = e * (x0 * c + (v0 + self._sigma * x0) * s)
+        xd = e * (v0 * damped - self._w2 * x0 * s)
+        return x + self._offset, xd
+
+
+def _state(zeta, tau):
+    """Dimensionless (x, y) at tau from x(0) = 0, y(0) = 1 (tau = omega_n t, x = delta omega_n / v_n,
+    y = delta_dot / v_n): x = E S, y = E (C - zeta S) with E, C, S above, stable in every regime."""
+    under = zeta <= 1
+    w = np.sqrt(np.abs(1.0 - zeta * zeta))
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        e_under, c_under, s_under = np.exp(-zeta * tau), np.cos(w * tau), tau * np.sinc(w * tau / np.pi)
+        slow = -1.0 / (zeta + w)  # r1 = -(zeta - q), computed without cancellation
+        q2t = 2.0 * w * tau
+        e_over, c_over = np.exp(slow * tau), 0.5 * (1.0 + np.exp(-q2t))
+        s_over = np.where(w > 0, -np.expm1(-q2t) / np.where(w > 0, 2.0 * w, 1.0), tau)
+    e, c, s = (np.where(under, a, b) for a, b in ((e_under, e_over), (c_under, c_over), (s_under, s_over)))
+    return e * s, e * (c - zeta * s)
+
+
+def events(zeta, separation: str) -> dict:
+    """Dimensionless outputs ``tau_m``, ``x_m``, ``tau_f``, ``y_f``, ``y_p`` of the weightless motion, one
+    per damping ratio in ``zeta``.
+
+    P_hat = x + 2 zeta y = E (2 zeta C + (1 - 2 zeta^2) S), so the events are explicit: maximum
+    compression (y = 0) at tau_m = atan(w / zeta) / w (zeta < 1, w = sqrt(1 - zeta^2)), atanh(q / zeta) / q
+    (zeta > 1, q = sqrt(zeta^2 - 1)), 1 at zeta = 1; delta = 0 at tau = pi / w (zeta < 1; never for
+    zeta >= 1); P_hat = 0 at (pi - atan2(2 zeta w, 1 - 2 zeta^2)) / w (zeta < 1),
+    atanh(2 zeta q / (2 zeta^2 - 1)) / q (zeta > 1), 2 at zeta = 1.
+
+    Raises
+    ------
+    ImpactError
+        For damping ratios >= 1 under the ``penetration`` criterion (delta never returns to 0).
+    """
+    zeta = np.asarray(zeta, dtype=float)
+    w = np.sqrt(np.abs(1.0 - zeta * zeta))
+    under, over = zeta < 1, zeta > 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        safe_w = np.where(w > 0, w, 1.0)
+        tau_m = np.where(under, np.arctan2(w, zeta) / safe_w,
+                         np.where(over, np.arctanh(w / zeta) / safe_w, 1.0))
+        tau_force = np.where(under, (np.pi - np.arctan2(2 * zeta * w, 1 - 2 * zeta * zeta)) / safe_w,
+                             np.where(over, np.arctanh(2 * zeta * w / (2 * zeta * zeta - 1)) / safe_w, 2.0))
+    if separation == "penetration":
+        if not under.all():
+            raise ImpactError(f"no separation: delta never returns to 0 under the 'penetration' criterion for "
+                              f"{int((~under).sum())} scene(s) with zeta >= 1 (first: zeta = {zeta[~under][0]:.3g})")
+        tau_f = np.pi / w
+    else:
+        tau_f = tau_force
+    x_m = _state(zeta, tau_m)[0]
+    y_f = _state(zeta, tau_f)[1]
+    y_p = _state(zeta, np.minimum(tau_force, tau_f))[1]
+    return {"tau_m": tau_m, "x_m": x_m, "tau_f": tau_f, "y_f": y_f, "y_p": y_p}
+
+
+@dataclass(frozen=True)
+class ClosedForm:
+    """An exact solution of a law's normal motion, in the two forms the layers need.
+
+    Attributes
+    ----------
+    name : str
+        What it solves, for messages (``linear spring-damper``).
+    motion : callable
+        ``motion(scene)``: one scene's exact motion in SI units, with ``weightless``, ``scan_end`` [s],
+        ``state(t) -> (delta [m], delta_dot [m/s])`` and, when weightless, ``events() -> (t_m, t_f or None)``
+        [s] (see :class:`SpringDamperMotion`).
+    events : callable
+        ``events(numbers, separation) -> dict`` of the weightless motion's dimensionless outputs
+        (:data:`sphereimpact.sweep.outputs.NORMAL_OUTPUTS`), vectorised over the arrays of ``numbers``.
+    reads : tuple of str
+        The family numbers ``events`` reads (a law declaring this closed form must have them).
+    """
+
+    name: str
+    motion: object
+    events: object
+    reads: tuple
+
+
+#: Eq. 4.1's closed form (the kelvin-voigt law's): the linear ODE with the family's zeta.
+SPRING_DAMPER = ClosedForm("linear spring-damper", SpringDamperMotion,
+                           lambda numbers, separation: events(numbers["zeta"], separation), ("zeta",))
