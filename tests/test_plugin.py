@@ -204,3 +204,33 @@ def test_a_registered_integrator_is_served_by_simulate_and_cli_and_refuses_what_
         simulate(Scene(model=NAME, b=400.0, angle=30.0), SolverOptions(method="toy-capped"))
     assert run(["simulate", "--model", NAME, "--b", "400", "--method", "toy-capped"]) == 2
     assert "needs a law with a scalar formula" in capsys.readouterr().err
+
+
+def test_a_registered_stepper_is_driven_like_the_built_in_ones():
+    """An integrator that declares only a ``stepper`` gets the driver's events, ramp band and landing on t_f:
+    scipy's DOP853 wrapped from outside gives exactly what the built-in ``DOP853`` gives, and is called."""
+    from scipy.integrate import solve_ivp
+
+    from sphereimpact.integrators import INTEGRATORS, Integrator
+    from sphereimpact.integrators.normal import IntegratedNormal
+
+    calls = []
+
+    def stepper(rhs, span, z0, rtol, atol, max_step, events, first_step):
+        calls.append(span)
+        return solve_ivp(rhs, span, z0, method="DOP853", rtol=rtol, atol=atol, dense_output=True,
+                         max_step=max_step, events=events, first_step=first_step)
+
+    INTEGRATORS.register(Integrator("toy-stepper", "scipy's DOP853 from outside (test)", IntegratedNormal,
+                                    ivp="DOP853", stepper=stepper))
+    try:
+        for scene in (Scene(angle=60.0), Scene(model="hertz", modulus=1e7, angle=30.0)):
+            out = simulate(scene, SolverOptions(method="toy-stepper"))
+            ref = simulate(scene, SolverOptions(method="DOP853"))
+            assert {k: getattr(out, k) for k in OUTPUTS} == {k: getattr(ref, k) for k in OUTPUTS}
+            assert out.method == "toy-stepper" and ref.method == "DOP853"
+        assert len(calls) >= 4  # a first run, the ramp band's restart and the landing, per scene
+    finally:
+        del INTEGRATORS["toy-stepper"]
+    with pytest.raises(ValueError, match="method 'taylor' is not a step-by-step integrator"):
+        IntegratedNormal(Scene(), SolverOptions(method="taylor"))

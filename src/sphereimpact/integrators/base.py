@@ -36,6 +36,17 @@ class Integrator:
     ivp : str or None
         The :func:`scipy.integrate.solve_ivp` method that runs this algorithm where a plain-float or
         reduced-only path cannot (the planar body, naive formulations); None: the reduced body only.
+    stepper : callable or None
+        For a step-by-step integrator that :class:`~sphereimpact.integrators.normal.IntegratedNormal` drives
+        (events, ramp band, landing on t_f, budget): ``stepper(rhs, span, z0, rtol, atol, max_step, events,
+        first_step)`` returning what :func:`scipy.integrate.solve_ivp` returns with ``dense_output=True``.
+        None: the integrator solves the motion its own way (``closed``, ``taylor``).
+    floats : bool
+        The stepper works in plain Python floats on the law's ``scalar`` formula; for a law without one the
+        driver runs the integrator named by ``ivp`` instead (the same algorithm in numpy).
+    multistep : bool
+        The stepper restarts at low order (BDF, LSODA): its landing on t_f is no better than its interpolant,
+        so the driver takes no Newton correction there.
     """
 
     name: str
@@ -45,6 +56,9 @@ class Integrator:
     declines: Callable = _always
     overflows: tuple = ()
     ivp: str | None = None
+    stepper: Callable | None = None
+    floats: bool = False
+    multistep: bool = False
 
 
 #: The integrators by name, in registration order (the order of ``--method``'s help).

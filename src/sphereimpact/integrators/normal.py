@@ -20,10 +20,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..ode import dop853, series
+from ..ode import series
 from ..ode.dense import StackedDOP853, fast_solution, is_instant
 from ..errors import ImpactError
-from ..methods import DEFAULT_INTEGRATOR, ivp_method
+from ..methods import DEFAULT_INTEGRATOR
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene, SolverOptions
@@ -42,9 +42,6 @@ BAND_SPEED = 0.25
 #: delta = 0 when |x(t_f)| < LANDING_DELTA x_m, else P = 0 inside contact.
 LANDINGS = 4
 LANDING_DELTA = 1e-6
-#: Methods whose landing restarts at low order (BDF from order 1): their landed state is no better than the
-#: interpolant, so they take no Newton correction.
-MULTISTEP = ("BDF", "LSODA")
 #: Most right-hand-side evaluations one normal motion may take: a bound on any input's cost, far above what
 #: the accepted domain needs (an over-damped contact held until delta = 0 needs about zeta^2).
 MAX_NFEV = 1_000_000
@@ -255,8 +252,8 @@ class _DimensionlessNormal(NormalMotion):
 class _Run:
     """The dimensionless normal ODE x' = y, y' = -P / (m omega v) + gamma as one integrator runs it: the
     right-hand side under the evaluation budget (:data:`MAX_NFEV`), the events, the conditioned tolerances and
-    the method (``DOP853-scalar``: :mod:`sphereimpact.ode.dop853` on the law's scalar formula; else
-    :func:`scipy.integrate.solve_ivp`)."""
+    the integrator's stepper (``Integrator.stepper``; a plain-float one runs as its ``ivp`` method for a law
+    without a scalar formula)."""
 
     def __init__(self, scene: Scene, options: SolverOptions):
         self.scene = scene
@@ -265,9 +262,14 @@ class _Run:
         gamma, p_scale = scene.g_normal / (w * v), scene.mass * w * v
         law = scene.stage_force  # smooth past separation: the crossing step stays accurate
         scalar = scene.law.scalar  # the same law without numpy's per-call cost, when the law has one
-        # DOP853-scalar needs the law's scalar formula; without one, scipy's DOP853 is the same algorithm
-        method = DEFAULT_INTEGRATOR if options.method == "auto" else options.method  # auto, when integrated
-        self.method = ivp_method(method) if scalar is None else method
+        from . import INTEGRATORS  # the registry imports this module: looked up on use
+
+        integrator = INTEGRATORS.named(DEFAULT_INTEGRATOR if options.method == "auto" else options.method)
+        if integrator.stepper is None:
+            raise ValueError(f"method {integrator.name!r} is not a step-by-step integrator")
+        if integrator.floats and scalar is None:  # the same algorithm in numpy
+            integrator = INTEGRATORS.named(integrator.ivp)
+        self.method, self.stepper, self.multistep = integrator.name, integrator.stepper, integrator.multistep
         sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
         calls = [0]
 
@@ -301,14 +303,7 @@ class _Run:
         """One solver run over ``span`` (tau) from ``z0``; ImpactError past the budget or on overflow."""
         try:
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                if self.method == "DOP853-scalar":
-                    sol = dop853.solve(self.rhs, span, z0, self.rtol, self.atol, max_step=max_step, events=events,
-                                       first_step=first_step)
-                else:
-                    from scipy.integrate import solve_ivp  # imported on use (see ode.dop853._load_tableau)
-
-                    sol = solve_ivp(self.rhs, span, z0, method=self.method, rtol=self.rtol, atol=self.atol,
-                                    dense_output=True, max_step=max_step, events=events, first_step=first_step)
+                sol = self.stepper(self.rhs, span, z0, self.rtol, self.atol, max_step, events, first_step)
         except OverflowError:  # float arithmetic (x ** n) raises where numpy returns inf
             raise ImpactError(f"the contact force overflows ({describe_family(self.scene)}method {self.method}): "
                               "the scene lies outside what the solver resolves") from None
@@ -379,7 +374,7 @@ def _land(run: _Run, dense, tau_f: float, cap: float, on_delta: bool):
     the COR).  The root itself was found on that interpolant; where the separation function is a small
     difference of large terms (over-damped under the force criterion) Newton's method on the landed state
     corrects it, landing again while a correction exceeds the tolerance (at most :data:`LANDINGS` times; not
-    for the :data:`MULTISTEP` methods).  Returns (last run, tau_f, its evaluations).
+    for a multistep integrator, ``Integrator.multistep``).  Returns (last run, tau_f, its evaluations).
     """
     tau_k, crossing, tau_end = float(dense.ts[-2]), dense, _step_end(dense)
     nfev = 0
@@ -394,32 +389,32 @@ def _land(run: _Run, dense, tau_f: float, cap: float, on_delta: bool):
         slope = (ending(crossing(min(tau_f + h, tau_end))) - ending(crossing(max(tau_f - h, tau_k)))) / (
             min(tau_f + h, tau_end) - max(tau_f - h, tau_k))
         correction = -ending(tail.y[:, -1]) / slope if slope != 0 else 0.0
-        if not abs(correction) > run.rtol * tau_f or attempt == LANDINGS - 1 or run.method in MULTISTEP:
+        if not abs(correction) > run.rtol * tau_f or attempt == LANDINGS - 1 or run.multistep:
             break
         tau_f = min(max(tau_f + correction, tau_k), tau_end)
     return tail, tau_f, nfev
 
 
 class IntegratedNormal(_DimensionlessNormal):
-    """Normal motion integrated by DOP853 in plain floats or a :func:`scipy.integrate.solve_ivp` method: one
-    run to separation (:class:`_Run`), restarted with bounded steps in the ramp band (:class:`_RampBand`),
-    then landed on t_f (:func:`_land`).
+    """Normal motion integrated step by step by an integrator's stepper (DOP853 in plain floats, scipy's
+    :func:`~scipy.integrate.solve_ivp` methods): one run to separation (:class:`_Run`), restarted with bounded
+    steps in the ramp band (:class:`_RampBand`), then landed on t_f (:func:`_land`).
 
     Parameters
     ----------
     scene : Scene
     options : SolverOptions
-        ``method`` must be a solve_ivp method or ``DOP853-scalar`` (not ``closed``).
+        ``method`` names an integrator with a ``stepper`` (``auto``: the default one).
 
     Raises
     ------
+    ValueError
+        For an integrator without a stepper (``closed``, ``taylor``).
     ImpactError
         When the solver fails, or maximum compression or separation is not found.
     """
 
     def __init__(self, scene: Scene, options: SolverOptions):
-        if options.method == "closed":
-            raise ValueError("method 'closed' is not a solve_ivp method")
         self.scene = scene
         run = _Run(scene, options)
         band = _RampBand.of(scene, run.d_scale)
