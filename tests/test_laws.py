@@ -211,3 +211,19 @@ def test_hertz_laws_meet_the_contract_at_the_default_tolerance(model, params, an
     errors = relative_errors(simulate(scene).to_dict(), exact, scene,
                              ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "omega_f", "cor"))
     assert max(errors.values()) < 1e-9, errors
+
+
+def test_the_batched_series_of_eq_4_2_is_its_series():
+    """The Taylor lanes' recurrence (many lanes at once) gives the one-impact recurrence's coefficients, lane
+    by lane, at random states, damping ratios and ramp rates (the convolution is summed in another order:
+    agreement to rounding)."""
+    from sphereimpact.contact.laws.linear import modified_series, modified_series_batched
+
+    rng = np.random.default_rng(3)
+    x, y = rng.uniform(-0.01, 1.2, 40), rng.uniform(-1, 1, 40)
+    zeta, lam = rng.uniform(0.01, 1, 40), 10 ** rng.uniform(-1, 3, 40)
+    z = modified_series_batched(x, y, 2.0 * zeta, lam, 14)
+    for i in range(40):
+        xs, ys = modified_series(x[i], y[i], {"zeta": zeta[i], "lam": lam[i]}, 0.0, 14)
+        scale = np.maximum(np.abs(xs) + np.abs(ys), 1e-300)
+        assert np.all(np.abs(z[:, 0, i] - xs) <= 1e-12 * scale) and np.all(np.abs(z[:, 1, i] - ys) <= 1e-12 * scale)

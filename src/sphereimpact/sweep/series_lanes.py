@@ -4,9 +4,9 @@ Per lane (the dimensionless problem of :mod:`.batch`, without gravity, law ``mod
 
     x' = y,   y' = -P_hat,   P_hat = x + 2 zeta y (1 - exp(-lam x)),   x(0) = 0, y(0) = 1.
 
-Each step is the law's Taylor recurrence to order p on every active lane at once (E = exp(-lam x) obeys
-E' = -lam y E: one convolution per order, as :func:`sphereimpact.contact.laws.linear.modified_series` does for one
-impact), its size from the last two coefficients and its ramp band as in :mod:`sphereimpact.ode.series`.  On the
+Each step is the law's Taylor recurrence to order p on every active lane at once
+(:func:`sphereimpact.contact.laws.linear.modified_series_batched`, beside the one-impact
+:func:`~sphereimpact.contact.laws.linear.modified_series`), its size from the last two coefficients and its ramp band as in :mod:`sphereimpact.ode.series`.  On the
 plane's nodes both these and the Runge-Kutta lanes (:mod:`.batch`) take about 30 steps, but a Taylor step is
 p orders of a few array operations where a Runge-Kutta step is 12 evaluations of the ramp, and events need no
 extra steps.  Their cost is the steps', nearly whatever
@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..contact.laws.linear import modified_series_batched
 from ..errors import ImpactError
 from ..ode.series import BAND_EDGE, MAX_STEPS, band_limit, order_for
 from .batch import HORIZON
@@ -55,30 +56,6 @@ SETTLED = 1e-14
 def covers(zeta, lam):
     """Whether the lanes take (zeta, lam): their tested domain, 0 < zeta <= ZETA_MAX and lam <= LAM_MAX."""
     return (zeta > 0) & (zeta <= ZETA_MAX) & (lam <= LAM_MAX)
-
-
-def _series(x, y, two_zeta, lam, order: int):
-    """Taylor coefficients of x and y at (x, y) (see the module docstring), shape (order + 1, 2, lanes):
-    [:, 0] of x, [:, 1] of y, so one Horner pass evaluates both."""
-    n = x.size
-    z, es = np.empty((order + 1, 2, n)), np.empty((order + 1, n))
-    xs, ys = z[:, 0], z[:, 1]
-    xs[0], ys[0] = x, y
-    u = lam * x
-    es[0] = np.exp(-u)
-    damping = y * -np.expm1(-u)  # y (1 - E) at order 0, without cancellation near x = 0
-    for k in range(order):
-        if k:
-            c = np.einsum("in,in->n", ys[:k + 1], es[k::-1])  # the series of y E at order k
-            damping = ys[k] - c
-            es[k + 1] = c * (-lam / (k + 1))
-        else:
-            es[1] = -lam * y * es[0]
-        xs[k + 1] = ys[k] * (1.0 / (k + 1))
-        np.multiply(two_zeta, damping, out=ys[k + 1])
-        ys[k + 1] += xs[k]
-        ys[k + 1] *= -1.0 / (k + 1)
-    return z
 
 
 def _horner(coefficients, s):
@@ -206,7 +183,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
         if not lane.size:
             break
         with np.errstate(over="ignore", invalid="ignore"):  # checked just below
-            z = _series(x, y, two_zeta, lam_a, order)
+            z = modified_series_batched(x, y, two_zeta, lam_a, order)
         xs, ys = z[:, 0], z[:, 1]
         top, below = np.abs(z[-1]).max(axis=0), np.abs(z[-2]).max(axis=0)
         if not np.all(np.isfinite(top) & np.isfinite(below)):

@@ -174,6 +174,32 @@ def modified_series(x: float, y: float, numbers: dict, gamma: float, order: int)
     return xs, ys
 
 
+def modified_series_batched(x, y, two_zeta, lam, order: int):
+    """:func:`modified_series` without gravity for many lanes at once (the sweep's Taylor lanes): x, y,
+    two_zeta = 2 zeta and lam are arrays of equal length.  Returns the coefficients of orders 0 to ``order``
+    as one array of shape (order + 1, 2, lanes), [:, 0] of x and [:, 1] of y, so one Horner pass evaluates
+    both; the same recurrence, with the convolution c_k as one einsum over the lanes."""
+    n = x.size
+    z, es = np.empty((order + 1, 2, n)), np.empty((order + 1, n))
+    xs, ys = z[:, 0], z[:, 1]
+    xs[0], ys[0] = x, y
+    u = lam * x
+    es[0] = np.exp(-u)
+    damping = y * -np.expm1(-u)  # y (1 - E) at order 0, without cancellation near x = 0
+    for k in range(order):
+        if k:
+            c = np.einsum("in,in->n", ys[:k + 1], es[k::-1])  # the series of y E at order k
+            damping = ys[k] - c
+            es[k + 1] = c * (-lam / (k + 1))
+        else:
+            es[1] = -lam * y * es[0]
+        xs[k + 1] = ys[k] * (1.0 / (k + 1))
+        np.multiply(two_zeta, damping, out=ys[k + 1])
+        ys[k + 1] += xs[k]
+        ys[k + 1] *= -1.0 / (k + 1)
+    return z
+
+
 # --- Hunt-Crossley damping on a linear spring ---------------------------------------------------------
 def linear_hunt_crossley_force(delta, delta_dot, p):
     """P = k delta (1 + chi delta_dot) [N] for delta > 0: starts from zero, pulls where delta_dot < -1/chi."""
