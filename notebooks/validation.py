@@ -40,7 +40,7 @@ from IPython.display import Image, Markdown, display
 config = yaml.safe_load(open("results/config.yaml"))  # the configuration the pipeline ran
 section = config["validation"]
 residuals = pd.read_csv("results/validation.csv")
-summary = pd.read_csv("results/validation_summary.csv").set_index("model")
+summary = pd.read_csv("results/validation_summary.csv").set_index("tangential")
 curves = pd.read_csv("results/validation_curves.csv")
 derived = pd.read_csv("results/validation_maw.csv")
 targets = section["targets"]
@@ -58,8 +58,8 @@ display(Image(filename="paper_figures/validation_kharaz.png"))
 low = targets["min_incidence"]
 status = {True: "met", False: "**missed**"}
 rows = []
-for model, r in summary.iterrows():
-    rows.append(f"| `{model}` | {r.e_t_rms:.4f} ({status[r.e_t_met]}) | {r.e_t_rms_all:.4f} ({status[r.e_t_all_met]}) "
+for tangential, r in summary.iterrows():
+    rows.append(f"| `{tangential}` | {r.e_t_rms:.4f} ({status[r.e_t_met]}) | {r.e_t_rms_all:.4f} ({status[r.e_t_all_met]}) "
                 f"| {r.e_t_worst:.3f} ({status[r.e_t_point_met]}) | {100 * r.spin_worst_relative:.1f} % "
                 f"({status[r.spin_met]}) | {r.rebound_angle_rms_deg:.2f}° ({status[r.rebound_angle_met]}) "
                 f"| {r.targets_met} of {r.targets} |")
@@ -68,7 +68,7 @@ display(Markdown(
     f"(≤ {targets['e_t_rms_all']:g}) | worst e_t point (≤ {targets['e_t_point']:g}) | worst spin residual above "
     f"{targets['spin_above']:g} rad/s (≤ {100 * targets['spin_relative']:g} %) | rebound-angle RMS "
     f"(≤ {targets['rebound_angle_rms']:g}°) | targets |\n|---|---|---|---|---|---|---|\n" + "\n".join(rows)))
-table = residuals.pivot_table(index=["quantity", "incidence_deg", "measured"], columns="model",
+table = residuals.pivot_table(index=["quantity", "incidence_deg", "measured"], columns="tangential",
                               values="predicted").reset_index()
 display(table.round(4))
 
@@ -84,20 +84,20 @@ display(table.round(4))
 # point's tangential velocity (Maw, Barber & Fawcett 1976). The rigid model cannot produce that at all.
 
 # %%
-grip = curves[(curves.model == "rigid") & (curves.regime == "rolling")].incidence_deg.max()
-at = residuals[(residuals.quantity == "e_t") & (residuals.incidence_deg.between(15, 25))].set_index("model")
+grip = curves[(curves.tangential == "rigid") & (curves.regime == "rolling")].incidence_deg.max()
+at = residuals[(residuals.quantity == "e_t") & (residuals.incidence_deg.between(15, 25))].set_index("tangential")
 spin_at = residuals[(residuals.quantity == "omega_rad_s") & (residuals.incidence_deg.between(15, 25))].set_index(
-    "model")
+    "tangential")
 lines = [f"- The rigid model grips up to **{grip:g}°** (the last model angle that ends rolling).",
          f"- At {at.incidence_deg.iloc[0]:g}°: measured e_t {at.measured.iloc[0]:.3f}; "
          + ", ".join(f"{m} {at.loc[m, 'predicted']:.3f} ({100 * at.loc[m, 'relative']:+.1f} %)" for m in summary.index),
          f"- At {spin_at.incidence_deg.iloc[0]:g}°: measured spin {spin_at.measured.iloc[0]:.0f} rad/s; "
          + ", ".join(f"{m} {spin_at.loc[m, 'predicted']:.0f} ({100 * spin_at.loc[m, 'relative']:+.1f} %)"
                      for m in summary.index)]
-for model in summary.index:
-    reversed_ = curves[(curves.model == model) & (curves.rebound_angle_contact_deg < 0)].incidence_deg
+for tangential in summary.index:
+    reversed_ = curves[(curves.tangential == tangential) & (curves.rebound_angle_contact_deg < 0)].incidence_deg
     if len(reversed_):
-        lines.append(f"- `{model}` reverses the contact point's tangential velocity from {reversed_.min():g}° to "
+        lines.append(f"- `{tangential}` reverses the contact point's tangential velocity from {reversed_.min():g}° to "
                      f"{reversed_.max():g}°.")
 display(Markdown("\n".join(lines)))
 
@@ -114,14 +114,14 @@ display(Markdown("\n".join(lines)))
 
 # %%
 small = residuals[(residuals.quantity == "e_t") & (residuals.incidence_deg < low)]
-display(small.pivot_table(index=["incidence_deg", "measured"], columns="model", values="predicted").round(4))
-exact = residuals[residuals.model == "microslip"]
+display(small.pivot_table(index=["incidence_deg", "measured"], columns="tangential", values="predicted").round(4))
+exact = residuals[residuals.tangential == "microslip"]
 low_e_t = exact[(exact.quantity == "e_t") & (exact.incidence_deg < low)]
 display(Markdown(
     f"Below {low:g}° the exact contact predicts e_t = "
     + ", ".join(f"{r.predicted:.3f} at {r.incidence_deg:g}° (measured {r.measured:.3f})" for r in low_e_t.itertuples())
-    + f"; the springs predict {small[small.model == 'mindlin'].predicted.min():.3f} to "
-    f"{small[small.model == 'mindlin-displacement'].predicted.max():.3f}."))
+    + f"; the springs predict {small[small.tangential == 'mindlin'].predicted.min():.3f} to "
+    f"{small[small.tangential == 'mindlin-displacement'].predicted.max():.3f}."))
 
 # %% [markdown]
 # ## The exact contact's remaining residuals, in numbers
@@ -163,7 +163,7 @@ display(Markdown(
 #    (αR) for any tangential model, so each measured spin implies a friction coefficient:
 
 # %%
-sliding = curves[(curves.model == "rigid") & (curves.regime == "sliding")].incidence_deg.min()
+sliding = curves[(curves.tangential == "rigid") & (curves.regime == "sliding")].incidence_deg.min()
 gross = derived[derived.incidence_deg >= sliding]
 display(Markdown(
     f"From {sliding:g}° up (where the rigid contact slides throughout), the measured spins imply μ = "
@@ -214,10 +214,10 @@ cmap = pd.read_csv("results/compliance_map.csv")
 tol = config["compliance"]["tolerance"]
 cases = [c["angle"] for c in config["cases"].values() if c["angle"] > 0]
 lines = []
-for model, part in cmap.groupby("tangential", sort=False):
+for tangential, part in cmap.groupby("tangential", sort=False):
     rubber = part[(part.kappa - part.kappa.iloc[(part.kappa - 2 / 3).abs().argmin()]).abs() < 1e-12]
     within = rubber[rubber.rigid_within]
-    lines.append(f"- `{model}` ({part.model.iloc[0]} law), κ = {rubber.kappa.iloc[0]:.4f}: the rigid model is "
+    lines.append(f"- `{tangential}` ({part.model.iloc[0]} law), κ = {rubber.kappa.iloc[0]:.4f}: the rigid model is "
                  + (f"within {100 * tol:g} % from **{within.angle.min():g}°** up" if len(within) else "never within tolerance"))
     for angle in cases:
         row = rubber.iloc[(rubber.angle - angle).abs().argmin()]

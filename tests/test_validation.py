@@ -45,27 +45,27 @@ def test_rigid_model_fails_below_grip_and_compliance_fixes_it(exp, data):
     """The issue's measurement: at 20 deg the rigid contact rolls (e_t = 5/7 for a solid sphere) where 0.597
     was measured; the compliant contact is within the data's scatter plus 0.03; spin likewise."""
     table = residuals(exp, data[data["incidence_deg"].between(19, 22)], ["rigid", "mindlin"]).set_index(
-        ["model", "quantity"])
+        ["tangential", "quantity"])
     assert table.loc[("rigid", "e_t"), "predicted"] == pytest.approx(5 / 7, rel=1e-9)
     assert table.loc[("rigid", "e_t"), "residual"] > 0.1
     assert abs(table.loc[("mindlin", "e_t"), "residual"]) < 0.03
     assert table.loc[("rigid", "omega_rad_s"), "relative"] < -0.25
     assert abs(table.loc[("mindlin", "omega_rad_s"), "relative"]) < 0.10
-    reversed_ = simulate(exp.model("mindlin").with_(angle=20.0))
+    reversed_ = simulate(exp.with_tangential("mindlin").with_(angle=20.0))
     assert reversed_.ve_t < 0 and simulate(exp.scene.with_(angle=20.0)).ve_t == 0.0
 
 
 def test_above_grip_both_models_agree_with_each_other_and_the_data(exp, data):
     high = data[(data["incidence_deg"] > 38) & (data["quantity"] == "e_t")]
     table = residuals(exp, high, ["rigid", "mindlin"])
-    rigid, compliant = (table[table["model"] == m]["predicted"].to_numpy() for m in ("rigid", "mindlin"))
+    rigid, compliant = (table[table["tangential"] == m]["predicted"].to_numpy() for m in ("rigid", "mindlin"))
     assert compliant == pytest.approx(rigid, rel=1e-12)
     assert table["residual"].abs().max() < 0.01  # within the digitisation scatter (0.003) and e_n, mu's
 
 
 def test_summary_arithmetic():
     table = pd.DataFrame({
-        "model": ["m"] * 7, "quantity": ["e_t", "e_t", "e_t", "omega_rad_s", "omega_rad_s", "rebound_angle_deg",
+        "tangential": ["m"] * 7, "quantity": ["e_t", "e_t", "e_t", "omega_rad_s", "omega_rad_s", "rebound_angle_deg",
                                          "rebound_angle_deg"],
         "incidence_deg": [2.0, 10.0, 20.0, 10.0, 20.0, 5.0, 30.0], "measured": [0.8, 0.7, 0.6, 150.0, 500.0, 3.0, 20.0],
         "predicted": [0.9, 0.73, 0.56, 100.0, 550.0, 4.0, 19.0]})
@@ -116,7 +116,7 @@ def test_the_cli_reproduces_the_data_within_every_target(data, capsys):
         v_t = 3.9 * math.sin(math.radians(max(point.incidence_deg, 1e-3)))
         value = {"e_t": out["vc_t"] / v_t, "omega_rad_s": abs(out["omega_f"]),
                  "rebound_angle_deg": out["rebound_angle"]}[point.quantity]
-        rows.append({"model": "cli", "quantity": point.quantity, "incidence_deg": point.incidence_deg,
+        rows.append({"tangential": "cli", "quantity": point.quantity, "incidence_deg": point.incidence_deg,
                      "measured": point.value, "predicted": value, "residual": value - point.value,
                      "relative": (value - point.value) / point.value})
     out = summary(pd.DataFrame(rows), SECTION["targets"]).iloc[0]

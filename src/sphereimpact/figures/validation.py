@@ -28,10 +28,11 @@ def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
     low = float(summary["min_incidence"].iloc[0])
     with plt.rc_context(RC | {"figure.figsize": (6.4, 8.4)}):
         fig, axes = plt.subplots(3, 1, sharex=True)
-        styles = _styles(curves["model"].unique())
+        styles = _styles(curves["tangential"].unique())
         for ax, (key, label) in zip(axes, _PANELS):
-            for model, rows in curves.groupby("model", sort=False):
-                ax.plot(rows["incidence_deg"], rows[key], label=f"{model} tangential contact", **styles[model])
+            for tangential, rows in curves.groupby("tangential", sort=False):
+                ax.plot(rows["incidence_deg"], rows[key], label=f"{tangential} tangential contact",
+                        **styles[tangential])
             points = data[data["quantity"] == key]
             ax.plot(points["incidence_deg"], points["value"], "o", color="C3", ms=5, label="Kharaz et al. (2001)")
             ax.axvspan(0, low, color="0.92", zorder=0)
@@ -39,7 +40,7 @@ def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
         axes[0].legend(loc="lower right", fontsize=8)
         axes[-1].set_xlabel("incidence from the normal [deg]")
         axes[-1].set_xlim(0, max(62.0, float(data["incidence_deg"].max()) + 2))
-        text = "targets met: " + ", ".join(f"{r.model} {r.targets_met}/{r.targets}" for r in summary.itertuples())
+        text = "targets met: " + ", ".join(f"{r.tangential} {r.targets_met}/{r.targets}" for r in summary.itertuples())
         axes[0].set_title(f"5 mm alumina on glass, 3.9 m/s (shaded: below {low:g}°)\n{text}", fontsize=8)
         fig.tight_layout()
         save(fig, outputs)
@@ -50,9 +51,9 @@ def maw(curves_csv: str, derived_csv: str, outputs) -> None:
     curves, derived = pd.read_csv(curves_csv), pd.read_csv(derived_csv)
     with plt.rc_context(RC):
         fig, ax = plt.subplots()
-        styles = _styles(curves["model"].unique())
-        for model, rows in curves.groupby("model", sort=False):
-            ax.plot(rows["psi1"], rows["psi2"], label=f"{model} tangential contact", **styles[model])
+        styles = _styles(curves["tangential"].unique())
+        for tangential, rows in curves.groupby("tangential", sort=False):
+            ax.plot(rows["psi1"], rows["psi2"], label=f"{tangential} tangential contact", **styles[tangential])
         ax.plot(derived["psi1"], derived["psi2"], "s", color="C3", ms=5,
                 label="Kharaz et al., from e_t and spin (derived)")
         ax.axhline(0.0, color="0.3", lw=0.6)

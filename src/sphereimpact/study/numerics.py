@@ -47,7 +47,7 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     from .validation import experiment
 
     section = config["numerics"]["microslip"]
-    exact = experiment(config["validation"]).model("microslip").with_(angle=_first_oblique(section["angles"]))
+    exact = experiment(config["validation"]).with_tangential("microslip").with_(angle=_first_oblique(section["angles"]))
     reference = (section["reference"]["elements"], section["reference"]["time_steps"])
     microslip = microslip_bench(exact, parse_range(config["validation"]["angles"]), reference, bench["repeats"])
     pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip], ignore_index=True).to_csv(
@@ -83,7 +83,7 @@ def microslip_scenes(config: dict) -> dict:
     from .validation import experiment
 
     section = config["numerics"]["microslip"]
-    exact = experiment(config["validation"]).model("microslip")
+    exact = experiment(config["validation"]).with_tangential("microslip")
     scenes = {f"{angle:g} deg": exact.with_(angle=angle) for angle in section["angles"]}
     oblique = _first_oblique(section["angles"])
     for kappa in section["kappas"]:

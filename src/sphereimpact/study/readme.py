@@ -139,7 +139,7 @@ def validation_block(summary_csv: str, residual_csv: str) -> str:
     def cell(value: str, row, name: str) -> str:
         return f"{value} ({met[bool(getattr(row, f'{name}_met'))]})"
 
-    rows = [(f"`{r.model}`", cell(f"{r.e_t_rms:.4f}", r, "e_t"), cell(f"{r.e_t_rms_all:.4f}", r, "e_t_all"),
+    rows = [(f"`{r.tangential}`", cell(f"{r.e_t_rms:.4f}", r, "e_t"), cell(f"{r.e_t_rms_all:.4f}", r, "e_t_all"),
              cell(f"{r.e_t_worst:.3f}", r, "e_t_point"), cell(f"{100 * r.spin_worst_relative:.1f} %", r, "spin"),
              cell(f"{r.rebound_angle_rms_deg:.2f}°", r, "rebound_angle"), f"{r.targets_met} of {r.targets}")
             for r in summary.itertuples()]
@@ -149,14 +149,14 @@ def validation_block(summary_csv: str, residual_csv: str) -> str:
         f"e_t RMS, all angles (≤ {first.e_t_all_target:g})", f"worst e_t point (≤ {first.e_t_point_target:g})",
         f"worst spin residual (≤ {100 * first.spin_target:g} %)",
         f"rebound angle RMS (≤ {first.rebound_angle_target:g}°)", "targets met"), rows)
-    rigid = table[(table["model"] == "rigid") & (table["incidence_deg"] >= low)]
+    rigid = table[(table["tangential"] == "rigid") & (table["incidence_deg"] >= low)]
     worst = rigid.loc[rigid.groupby("quantity")["relative"].apply(lambda x: x.abs().idxmax())]
     rows = []
     for r in worst.itertuples():
         others = table[(table["quantity"] == r.quantity) & (table["incidence_deg"] == r.incidence_deg)
-                       & (table["model"] != "rigid")]
+                       & (table["tangential"] != "rigid")]
         rows.append((r.quantity, f"{r.incidence_deg:g}°", f"{r.measured:.4g}", f"{r.predicted:.4g} ({100 * r.relative:+.0f} %)",
-                     "; ".join(f"{o.model} {o.predicted:.4g} ({100 * o.relative:+.0f} %)" for o in others.itertuples())))
+                     "; ".join(f"{o.tangential} {o.predicted:.4g} ({100 * o.relative:+.0f} %)" for o in others.itertuples())))
     points = _table(("quantity", "incidence", "measured", "rigid", "compliant"), rows)
     return "\n\n".join([
         f"Kharaz, Gorham & Salman (2001), 5 mm alumina on glass at 3.9 m/s (`results/validation_summary.csv`): "

@@ -65,7 +65,7 @@ class Experiment:
     kappa: float
     beta: float
 
-    def model(self, tangential: str) -> Scene:
+    def with_tangential(self, tangential: str) -> Scene:
         """The scene with tangential model ``tangential``, its stiffness (if it has one) from the materials' G*."""
         if "shear_modulus" in TANGENTIALS.model(tangential).parameter_names:
             return self.scene.with_(tangential=tangential, shear_modulus=self.g_star)
@@ -118,18 +118,18 @@ def _outcomes(scene: Scene, angles) -> list:
     return simulate_many([_oblique(scene, angle) for angle in angles])
 
 
-def curves(exp: Experiment, angles, models) -> pd.DataFrame:
+def curves(exp: Experiment, angles, tangentials) -> pd.DataFrame:
     """Model curves against incidence: e_t, spin, rebound angles, switches, and Maw's psi_1 and psi_2.
 
     psi_1 = kappa tan(theta) / mu and psi_2 = kappa tan(theta_c) / mu, theta_c the contact point's rebound
     angle (Maw, Barber & Fawcett 1976; kappa = 2 (1 - nu) / (2 - nu) for like materials, 4 G*/E* here).
     """
     rows = []
-    for model in models:
-        log.info("validation: tangential model %s", model)
-        scene = exp.model(model)
+    for tangential in tangentials:
+        log.info("validation: tangential model %s", tangential)
+        scene = exp.with_tangential(tangential)
         for angle, out in zip(angles, _outcomes(scene, angles)):
-            rows.append({"model": model, "incidence_deg": float(angle),
+            rows.append({"tangential": tangential, "incidence_deg": float(angle),
                          **{q: f(out.scene, out) for q, f in QUANTITIES.items()},
                          "rebound_angle_contact_deg": out.rebound_angle_contact, "cor": out.cor,
                          "switches": out.switches, "regime": out.regime,
@@ -138,19 +138,19 @@ def curves(exp: Experiment, angles, models) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def residuals(exp: Experiment, data: pd.DataFrame, models, angle_uncertainty: float = 0.0) -> pd.DataFrame:
-    """Each data point against each model at its own incidence: predicted, residual, relative residual, and
+def residuals(exp: Experiment, data: pd.DataFrame, tangentials, angle_uncertainty: float = 0.0) -> pd.DataFrame:
+    """Each data point against each tangential model at its own incidence: predicted, residual, relative residual, and
     ``angle_effect``, how far the prediction moves when the incidence moves by the digitised angle's
     uncertainty [deg] either way (the larger of the two)."""
     rows = []
     theta = data["incidence_deg"].to_numpy(dtype=float)
-    for model in models:
-        log.info("validation: tangential model %s", model)
-        scene = exp.model(model)
+    for tangential in tangentials:
+        log.info("validation: tangential model %s", tangential)
+        scene = exp.with_tangential(tangential)
         outs = _outcomes(scene, np.concatenate([theta, theta - angle_uncertainty, theta + angle_uncertainty]))
         for i, row in enumerate(data.itertuples(index=False)):
             value, low, high = (QUANTITIES[row.quantity](out.scene, out) for out in outs[i::len(theta)])
-            rows.append({"model": model, "quantity": row.quantity, "incidence_deg": row.incidence_deg,
+            rows.append({"tangential": tangential, "quantity": row.quantity, "incidence_deg": row.incidence_deg,
                          "measured": row.value, "predicted": value, "residual": value - row.value,
                          "relative": (value - row.value) / row.value,
                          "angle_effect": max(abs(low - value), abs(high - value))})
@@ -158,7 +158,7 @@ def residuals(exp: Experiment, data: pd.DataFrame, models, angle_uncertainty: fl
 
 
 def summary(table: pd.DataFrame, targets: dict) -> pd.DataFrame:
-    """Per model: each of the targets, its measured value and whether it is met.
+    """Per tangential model: each of the targets, its measured value and whether it is met.
 
     e_t RMS over incidence >= ``min_incidence`` and over every angle, the worst e_t residual of any point,
     spin's worst relative residual where more than ``spin_above`` rad/s was measured, the centre's
@@ -166,7 +166,7 @@ def summary(table: pd.DataFrame, targets: dict) -> pd.DataFrame:
     """
     rows = []
     low = targets["min_incidence"]
-    for model, group in table.groupby("model", sort=False):
+    for tangential, group in table.groupby("tangential", sort=False):
         above = group[group["incidence_deg"] >= low]
         e_t_all = group[group["quantity"] == "e_t"]["residual"]
         e_t = above[above["quantity"] == "e_t"]["residual"]
@@ -179,7 +179,7 @@ def summary(table: pd.DataFrame, targets: dict) -> pd.DataFrame:
         checks = {"e_t": ("e_t_rms", "e_t_rms"), "e_t_all": ("e_t_rms_all", "e_t_rms_all"),
                   "e_t_point": ("e_t_worst", "e_t_point"), "spin": ("spin_worst_relative", "spin_relative"),
                   "rebound_angle": ("rebound_angle_rms_deg", "rebound_angle_rms")}
-        row = {"model": model, **measures}
+        row = {"tangential": tangential, **measures}
         for name, (measure, target) in checks.items():
             row[f"{name}_target"] = targets[target]
             row[f"{name}_met"] = bool(measures[measure] <= targets[target])
@@ -228,13 +228,13 @@ def write_validation(config: dict, data_path: str, residual_csv: str, summary_cs
     section = config["validation"]
     exp = experiment(section)
     data = load_data(data_path)
-    models = section["tangential"]
-    table = residuals(exp, data, models, section["angle_uncertainty"])
+    tangentials = section["tangential"]
+    table = residuals(exp, data, tangentials, section["angle_uncertainty"])
     table.to_csv(residual_csv, **CSV)
     summary(table, section["targets"]).assign(
         kappa=exp.kappa, e_star=exp.e_star, g_star=exp.g_star, chi=exp.scene.chi, mass=exp.scene.mass,
         dundurs_beta=exp.beta).to_csv(summary_csv, **CSV)
-    curves(exp, parse_range(section["angles"]), models).to_csv(curves_csv, **CSV)
+    curves(exp, parse_range(section["angles"]), tangentials).to_csv(curves_csv, **CSV)
     derived_maw_points(data, exp).to_csv(maw_csv, **CSV)
 
 
