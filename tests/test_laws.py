@@ -227,3 +227,27 @@ def test_the_batched_series_of_eq_4_2_is_its_series():
         xs, ys = modified_series(x[i], y[i], {"zeta": zeta[i], "lam": lam[i]}, 0.0, 14)
         scale = np.maximum(np.abs(xs) + np.abs(ys), 1e-300)
         assert np.all(np.abs(z[:, 0, i] - xs) <= 1e-12 * scale) and np.all(np.abs(z[:, 1, i] - ys) <= 1e-12 * scale)
+
+
+def test_the_lanes_event_functions_are_the_laws_force_per_compression():
+    """Both batched lanes end contact on Q = P_hat / x (tension, or the force criterion's end), each in its own
+    cancellation-free form; Q x is the law's own dimensionless force, and Q tends to 1 + 2 zeta lam y as
+    x -> 0+ on eq. 4.2."""
+    from sphereimpact.contact.laws.linear import kelvin_voigt_scaled, modified_scaled
+    from sphereimpact.sweep import batch, series_lanes
+
+    rng = np.random.default_rng(11)
+    n = 400
+    x, y = 10 ** rng.uniform(-6, 0.3, n), rng.uniform(-1.2, 1.2, n)
+    zeta, lam, ramped = rng.uniform(0.01, 1, n), 10 ** rng.uniform(-1, 3, n), rng.random(n) < 0.5
+    numbers = {"zeta": zeta, "lam": lam}
+    force = np.where(ramped, modified_scaled(x, y, numbers), kelvin_voigt_scaled(x, y, numbers))
+    scale = 1.0 + np.abs(2.0 * zeta * y) / x
+    runge_kutta = batch._Lanes(zeta, lam, np.zeros(n), ramped).ratio(x, y)
+    assert np.all(np.abs(runge_kutta - force / x) <= 1e-13 * scale)
+    taylor = series_lanes.ratio(x, y, 2.0 * zeta, lam)
+    assert np.all(np.abs(taylor - force / x)[ramped] <= 1e-13 * scale[ramped])
+    at_touch = 1.0 + 2.0 * zeta * lam * y
+    assert np.allclose(series_lanes.ratio(np.zeros(n), y, 2.0 * zeta, lam), at_touch, rtol=1e-14, atol=1e-14)
+    limit = batch._Lanes(zeta, lam, np.zeros(n), ramped).ratio(np.zeros(n), y)
+    assert np.array_equal(limit[ramped], at_touch[ramped]) and np.all(limit[~ramped] == -np.inf)
