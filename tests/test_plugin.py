@@ -234,3 +234,32 @@ def test_a_registered_stepper_is_driven_like_the_built_in_ones():
         del INTEGRATORS["toy-stepper"]
     with pytest.raises(ValueError, match="method 'taylor' is not a step-by-step integrator"):
         IntegratedNormal(Scene(), SolverOptions(method="taylor"))
+
+
+def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
+    """A law may bring its own exact solution (a ClosedForm): the ``closed`` integrator and the sweep's closed
+    path use it, also in a sweep that mixes two laws' closed forms (here eq. 4.1's solution declared anew)."""
+    from dataclasses import replace
+
+    from sphereimpact.contact.laws.exact import ClosedForm, SpringDamperMotion, events
+
+    calls = []
+
+    def counted(numbers, separation):
+        calls.append(len(numbers["zeta"]))
+        return events(numbers["zeta"], separation)
+
+    LAWS.register(replace(LAWS["kelvin-voigt"], name="kv-again",
+                          closed_form=ClosedForm("eq. 4.1 again", SpringDamperMotion, counted, ("zeta",))))
+    try:
+        scene = Scene(model="kv-again", angle=30.0)
+        assert simulate(scene, SolverOptions(method="closed")).to_dict() | {"wall_time": 0, "model": 0} == \
+            simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="closed")).to_dict() | {
+                "wall_time": 0, "model": 0}
+        scenes = grid(angle=[0.0, 30.0, 60.0], speed=[1.0, 3.0], b=[5.0, 50.0])
+        mixed = sweep(scenes.assign(model=["kv-again", "kelvin-voigt"] * 6))
+        alone = sweep(scenes.assign(model="kelvin-voigt"))
+        assert set(mixed["path"]) == {"closed"} and sum(calls) == 6
+        assert mixed.drop(columns="model").equals(alone.drop(columns="model"))
+    finally:
+        del LAWS["kv-again"]

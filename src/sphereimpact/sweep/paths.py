@@ -25,7 +25,7 @@ from ..impact.scene import SEPARATION_CRITERIA, SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import NORMAL_OUTPUTS
-from .scenes import Numbers, _compliant, incidence, scene_of
+from .scenes import CLOSED_FORMS, Numbers, _compliant, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
 #: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
@@ -339,15 +339,15 @@ class ClosedPath(_ByCriterion):
         return d.closed & (d.gamma == 0)
 
     def solve(self, d, rows, separation, target):
-        forms = d.exact[rows]
-        first = forms[0]
-        if all(form is first for form in forms):  # one law's closed form (the usual case)
-            return first.events({"zeta": d.zeta[rows], "lam": d.lam[rows]}, separation)
+        codes = d.exact[rows]
+        groups = np.unique(codes)
+        if groups.size == 1:  # one law's closed form (the usual case)
+            return CLOSED_FORMS[groups[0]].events({"zeta": d.zeta[rows], "lam": d.lam[rows]}, separation)
         out = {name: np.empty(rows.size) for name in NORMAL_OUTPUTS}
-        for form in dict.fromkeys(forms.tolist()):
-            mine = np.flatnonzero(forms == form)
-            for name, value in form.events({"zeta": d.zeta[rows[mine]], "lam": d.lam[rows[mine]]},
-                                           separation).items():
+        for code in groups:
+            mine = codes == code
+            numbers = {"zeta": d.zeta[rows[mine]], "lam": d.lam[rows[mine]]}
+            for name, value in CLOSED_FORMS[code].events(numbers, separation).items():
                 out[name][mine] = value
         return out
 

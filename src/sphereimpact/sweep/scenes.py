@@ -113,7 +113,7 @@ class Numbers:
     and ``lam`` where the batched lanes or a closed form read them (0 elsewhere), masks of eq. 4.2's form
     (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
     (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
-    itself (``exact``, None without), the similarity ``family`` as a hashable key (laws the lanes do not
+    as an index into :data:`CLOSED_FORMS` (``exact``, -1 without), the similarity ``family`` as a hashable key (laws the lanes do not
     take; None otherwise) and the ``separation`` criterion."""
 
     w: np.ndarray
@@ -141,6 +141,22 @@ class Numbers:
         return self.force if separation == "force" else ~self.force
 
 
+#: The laws' closed forms met by :func:`numbers`, in order: :attr:`Numbers.exact` indexes it, so a path groups
+#: rows by closed form with integer arithmetic, not by comparing objects row by row.
+CLOSED_FORMS: list = []
+
+
+def _closed_form_code(form) -> int:
+    """The index of ``form`` in :data:`CLOSED_FORMS` (appended when new), -1 for None."""
+    if form is None:
+        return -1
+    for code, known in enumerate(CLOSED_FORMS):
+        if known is form:
+            return code
+    CLOSED_FORMS.append(form)
+    return len(CLOSED_FORMS) - 1
+
+
 def numbers(frame: pd.DataFrame) -> Numbers:
     """The :class:`Numbers` of every scene of a :func:`scene_table`, each from its law's ``frequency`` and
     ``family`` (ValueError names a law whose closed form reads numbers the sweep does not carry, and a row
@@ -149,7 +165,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
-    exact, family = _objects(n, None), _objects(n, None)
+    exact, family = np.full(n, -1), _objects(n, None)
     modified, batched = np.zeros(n, bool), np.zeros(n, bool)
     models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
     for model in dict.fromkeys(models.tolist()):
@@ -167,7 +183,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
         problem = scale_problem(view.mass, v_n[rows], w[rows], law, rows)
         if problem:
             raise ValueError(problem)
-        exact[rows] = law.closed_form
+        exact[rows] = _closed_form_code(law.closed_form)
         batched[rows], modified[rows] = lanes, lanes and batch.FORMS[law.scaled]
         if lanes or law.closed_form is not None:  # the lanes and the closed forms read zeta and lam
             zeta[rows] = values.get("zeta", 0.0)
@@ -177,9 +193,8 @@ def numbers(frame: pd.DataFrame) -> Numbers:
             family[rows] = [(model, *key) for key in keys]
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
     gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
-    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified,
-                   closed=exact != None, batched=batched, force=separation == "force",  # noqa: E711
-                   exact=exact, family=family, separation=separation)
+    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=exact >= 0,
+                   batched=batched, force=separation == "force", exact=exact, family=family, separation=separation)
 
 
 def rows(**columns) -> pd.DataFrame:
