@@ -69,17 +69,27 @@ def by_phase(phases, t, evaluate, rows: tuple = ()) -> np.ndarray:
     return out
 
 
+def kick(v, omega, impulse, mass, radius, alpha):
+    """(v + J_t / m, omega - J_t R / I): the centre's velocity [m/s] and spin [rad/s] after a tangential impulse
+    J_t [N s] at the contact point, I = alpha m R^2 (written J_t / (alpha m R): no R^2 to underflow).
+
+    The impulse algebra, once: the single impact's phases (:func:`from_impulse`), the sweep's and the
+    references' end states (:func:`impulse_outcome`) all call it.  Floats or arrays.
+    """
+    return v + impulse / mass, omega - impulse / (alpha * mass * radius)
+
+
 def from_impulse(scene, p, dt, impulse, integral=None):
     """(v_t [m/s], omega [rad/s]) and, given ``integral``, x_t [m], at dt [s] into phase p from the tangential
     impulse on the ball since its start (``impulse`` J_t [N s]) and that impulse's time integral (K_t [N s^2]):
 
         v = v0 + g_t dt + J_t / m,   omega = omega0 - J_t R / I,   x = x0 + v0 dt + g_t dt^2 / 2 + K_t / m.
 
-    The one place the rigid (J_t = -mu dJ+) and the compliant tangential motions turn impulse into motion.
+    How the rigid (J_t = -mu dJ+) and the compliant tangential motions turn impulse into motion
+    (:func:`kick`, with gravity along the flat).
     """
     s = scene
-    v = p.v0 + s.g_tangent * dt + impulse / s.mass
-    omega = p.omega0 - impulse / (s.inertia_factor * s.mass * s.radius)  # R J / I, no R^2 to underflow
+    v, omega = kick(p.v0 + s.g_tangent * dt, p.omega0, impulse, s.mass, s.radius, s.inertia_factor)
     if integral is None:
         return v, omega
     return v, omega, p.x0 + p.v0 * dt + 0.5 * s.g_tangent * dt * dt + integral / s.mass
@@ -110,8 +120,9 @@ def impulse_outcome(v_t, spin, impulse, mass, radius, alpha, mu):
     slip0 = np.asarray(v_t - spin * radius)
     sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
     slides = mu * (1.0 + 1.0 / alpha) * impulse / mass < np.abs(slip0)
-    vc_t = np.where(slides, v_t - sigma * mu * impulse / mass, (v_t + alpha * radius * spin) / (1.0 + alpha))
-    omega = np.where(slides, spin + sigma * mu * impulse / (alpha * mass * radius), vc_t / radius)  # no R^2
+    slid_v, slid_omega = kick(v_t, spin, -sigma * mu * impulse, mass, radius, alpha)
+    vc_t = np.where(slides, slid_v, (v_t + alpha * radius * spin) / (1.0 + alpha))  # rolling: L about the contact
+    omega = np.where(slides, slid_omega, vc_t / radius)
     return vc_t, omega, np.where(slides, vc_t - omega * radius, 0.0), slides
 
 
