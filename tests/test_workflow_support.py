@@ -39,7 +39,7 @@ def test_the_figure_catalogue_pulls_in_no_drawing_code():
         # the package's __init__ imports the public API (solve imports planar inside a function: counted)
         "ode/events.py", "sphereimpact/registry.py", "contact/__init__.py", "laws/__init__.py",
         "laws/base.py", "laws/exact.py", "laws/linear.py", "laws/hertz.py", "impact/__init__.py", "impact/outcome.py",
-        "impact/scene.py", "impact/solve.py", "integrators/normal.py", "integrators/closed_form.py",
+        "impact/scene.py", "impact/inputs.py", "impact/solve.py", "integrators/normal.py", "integrators/closed_form.py",
         "sphereimpact/methods.py", "tangential/__init__.py", "tangential/base.py", "tangential/rigid.py",
         "tangential/springs.py", "tangential/microslip.py",
         "ode/dop853.py", "ode/dense.py", "ode/series.py",

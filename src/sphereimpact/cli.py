@@ -22,8 +22,8 @@ from .integrators import method_names
 from .contact.laws import LAWS, PARAMETER_NAMES
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
-from .impact.scene import (ATOL_RANGE, PATH_RULES, RESOLUTION, RTOL_RANGE, RULES, SEPARATION_CRITERIA, STANDARD_GRAVITY,
-                           Scene, SolverOptions, check_columns, magnitude_problem)
+from .impact.inputs import PATH_RULES, RULES, SEPARATION_CRITERIA, check_columns, magnitude_problem
+from .impact.scene import ATOL_RANGE, RESOLUTION, RTOL_RANGE, STANDARD_GRAVITY, Scene, SolverOptions
 from .impact.solve import BODIES, simulate
 from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 

@@ -20,7 +20,8 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import ImpactError
 from ..integrators.normal import IntegratedNormal
-from .scene import Scene, SolverOptions, as_number
+from .inputs import as_number
+from .scene import Scene, SolverOptions
 
 #: ``exact`` (root find) and the published relations a law may declare.
 RELATIONS = ("exact", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier")

@@ -209,7 +209,7 @@ def _yaml_number(text: str) -> str:
 def _sweep_errors(config: dict, schema: dict) -> list[str]:
     """The sweep section's ranges, parsed and checked before any job (see :func:`config_errors`)."""
     from ..parsing import parse_range, range_count
-    from ..impact.scene import RULES
+    from ..impact.inputs import RULES
     from ..memory import check_size
 
     defaults = {k: v.get("default") for k, v in schema["properties"]["sweep"]["properties"].items()}

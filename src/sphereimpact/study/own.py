@@ -16,7 +16,8 @@ import math
 from ..impact.calibrate import calibrate
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range
-from ..impact.scene import PATH_RULES, Scene
+from ..impact.inputs import PATH_RULES
+from ..impact.scene import Scene
 from ..contact.tangential import TANGENTIAL_PARAMETERS
 
 #: The chapter's study: the replication.  Any other name is a study of one's own ball.

@@ -11,7 +11,8 @@ import pandas as pd
 
 from ..impact.outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
 from ..parsing import parse_range
-from ..impact.scene import PATH_RULES, Scene
+from ..impact.inputs import PATH_RULES
+from ..impact.scene import Scene
 from ..impact.solve import simulate
 from ..sweep.engine import grid, sweep
 from ..sweep.io import write_table

@@ -25,7 +25,8 @@ import numpy as np
 import pandas as pd
 
 from ..numerics.timing import interleaved_seconds
-from ..impact.scene import SEPARATION_CRITERIA, Scene, SolverOptions
+from ..impact.inputs import SEPARATION_CRITERIA
+from ..impact.scene import Scene, SolverOptions
 from . import batch, plane, series_lanes
 from .outputs import NORMAL_OUTPUTS
 from .similarity import LambdaInterpolant, _errors, dimensionless_motion

@@ -21,7 +21,8 @@ import pandas as pd
 
 from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
 from ..impact.outcome import SCALAR_OUTPUTS
-from ..impact.scene import SEPARATION_CRITERIA, SolverOptions
+from ..impact.inputs import SEPARATION_CRITERIA
+from ..impact.scene import SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import NORMAL_OUTPUTS

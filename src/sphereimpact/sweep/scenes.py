@@ -15,7 +15,8 @@ import numpy as np
 import pandas as pd
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
-from ..impact.scene import PATH_RULES, TANGENTIAL_PARAMETERS, TEXT_FIELDS, Scene, check_columns, scale_problem
+from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, scale_problem
+from ..impact.scene import TANGENTIAL_PARAMETERS, Scene
 from ..contact.tangential import TANGENTIALS
 from . import batch
 

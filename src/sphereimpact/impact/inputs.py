@@ -1,0 +1,258 @@
+"""What each input of an impact may be: allowed ranges and choices, checked for one scene (by
+:class:`~sphereimpact.impact.scene.Scene`) and for a table's columns (by sweeps), from one table of rules so
+both say the same thing, with one line naming the parameter and its allowed range."""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+from ..contact.laws import LAWS, PARAMETER_NAMES, hertz_constant
+from ..contact.laws.base import MODULUS
+from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
+
+#: Separation criteria: ``force`` ends contact when P returns to 0 (a
+#: unilateral contact cannot pull), ``penetration`` when delta returns to 0.
+SEPARATION_CRITERIA = ("force", "penetration")
+
+#: Scene fields that hold names, not numbers.
+TEXT_FIELDS = ("model", "separation", "tangential")
+
+
+#: Numeric Scene fields other than the law's parameters: (allowed range as stated in messages, vectorised
+#: test).  One table for the scalar checks of :class:`Scene` and the array checks of sweeps, so both say the
+#: same thing.  The law's own parameters (k, b, ramp, chi, exponent, modulus) are declared by the law
+#: (:mod:`sphereimpact.contact.laws`) and checked by :func:`law_parameters`.
+RULES = {
+    "mass": ("a finite number > 0 kg", lambda x: x > 0),
+    "diameter": ("a finite number > 0 m", lambda x: x > 0),
+    "inertia_factor": ("a finite number in (0, 2/3] (2/3 = 0.6666666666666666)", lambda x: (x > 0) & (x <= 2 / 3)),
+    "angle": ("a finite number in [0, 90) degrees", lambda x: (x >= 0) & (x < 90)),
+    "speed": ("a finite number > 0 m/s", lambda x: x > 0),
+    "mu": ("a finite number >= 0", lambda x: x >= 0),
+    "gravity": ("a finite number >= 0 m/s^2", lambda x: x >= 0),
+    "spin": ("a finite number rad/s (positive: topspin, negative: backspin)", lambda x: x == x),
+}
+#: The approach described by the ball's path instead of the flat's tilt (optional Scene fields, NaN in a table
+#: where not given): (allowed range, vectorised test).
+PATH_RULES = {
+    "incidence": ("a finite number in [0, 90) degrees from the flat's normal", lambda x: (x >= 0) & (x < 90)),
+    "angle_to_surface": ("a finite number in (0, 90] degrees", lambda x: (x > 0) & (x <= 90)),
+}
+
+
+def as_number(name: str, value) -> float:
+    """``value`` as a Python float when it is a real number: int, float, a numpy scalar or a 0-d array.
+
+    Booleans are refused (``True`` is not a number a user means), and so is anything else, with a
+    ``TypeError`` naming the parameter and the type found.
+    """
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number; got {type(value).__name__} {value!r}")
+    return float(value)
+
+
+def _check(name: str, value, allowed: str, ok) -> float:
+    """``value`` as a float; ``ValueError`` unless it is finite and satisfies ``ok``."""
+    number = as_number(name, value)
+    if not math.isfinite(number) or not ok(number):
+        raise ValueError(f"{name} must be {allowed}; got {value!r}")
+    return number
+
+
+#: sqrt of the largest double: the largest speed or diameter whose square is finite.
+SQUARE_LIMIT = math.sqrt(np.finfo(float).max)
+
+
+def magnitude_problem(mass, speed, diameter) -> str | None:
+    """Why squares of these (arrays, or numbers) would overflow double precision, naming the parameters and
+    the first bad row, or None.  The outputs hold v^2, R^2, m v^2 and I = alpha m R^2 (energies, spin):
+    beyond double precision they are inf or NaN, never a result."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        m, v, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, speed, diameter)))
+        checks = ((v * v, f"speed must be below {SQUARE_LIMIT:.4g} m/s (its square overflows double precision)", v),
+                  (d * d, f"diameter must be below {SQUARE_LIMIT:.4g} m (its square overflows double precision)", d),
+                  (m * v * v, "mass and speed: the kinetic energy m v^2 overflows double precision (lower either)",
+                   None),
+                  (m * (0.5 * d) * (0.5 * d), "mass and diameter: the moment of inertia alpha m R^2 overflows double "
+                                              "precision (lower either)", None))
+        for square, message, value in checks:
+            bad = ~np.isfinite(square)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                row = f" (row {i})" if m.size > 1 else ""
+                got = f"; got {float(value[i])!r}" if value is not None else \
+                    f"; got mass {float(m[i])!r}, speed {float(v[i])!r}, diameter {float(d[i])!r}"
+                return message + got + row
+    return None
+
+
+def scale_problem(mass, v_normal, frequency, law, rows=None) -> str | None:
+    """Which of the contact's scales leaves double precision's normal range (arrays or numbers; the first
+    bad row named, as ``rows`` numbers them if given), or None.  The motion is solved in
+    x = delta / (v_n T), y = delta_dot / v_n, tau = t / T, with forces in units of m v_n / T
+    (T = 1 / frequency, the law's contact time)."""
+    with np.errstate(all="ignore"):
+        m, v, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, v_normal, frequency)))
+        scales = {"contact time T": 1.0 / w, "contact's deflection scale v_n T": v / w,
+                  "contact's acceleration scale v_n / T": w * v, "contact's force scale m v_n / T": m * w * v}
+        for what, value in scales.items():
+            bad = ~(np.isfinite(value) & (value >= np.finfo(float).tiny))
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                uses = ", ".join(["mass", "speed", "angle", *law.parameter_names])
+                row = f" (row {i if rows is None else int(rows[i])})" if value.size > 1 or rows is not None else ""
+                return (f"the {what} = {float(value[i]):.3g} is outside double precision's normal range "
+                        f"(it follows from {uses}){row}: outside what the model computes")
+    return None
+
+
+def _check_choice(name: str, value, choices) -> None:
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {', '.join(choices)}; got {value!r}")
+
+
+def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
+    """The law parameters of scenes of one law: checked, defaults filled, ``modulus`` turned into ``k``.
+
+    Parameters
+    ----------
+    model : str
+        The law's name.
+    given : dict of str -> array or None
+        Parameter name (of :data:`sphereimpact.contact.laws.PARAMETER_NAMES`) -> values for each scene, or None
+        when not given.  NaN in a given column means "not given" only for a law that does not use it.
+    radius : float or array
+        Ball radius R [m] of each scene (for ``modulus``).
+    rows : array of int, optional
+        The scenes' rows in a table, for messages.
+
+    Returns
+    -------
+    dict of str -> float array
+        Every name of PARAMETER_NAMES; NaN for the parameters the law does not use.
+
+    Raises
+    ------
+    ValueError
+        A parameter the law does not use, a required one missing, or a value out of its range, in one line
+        naming the parameter, the law and (for tables) the row.
+    """
+    law = LAWS.law(model)
+    shape = np.shape(radius)
+    where = (lambda i: "") if rows is None else (lambda i: f" (row {int(rows[i])})")
+    values, present = {}, {}
+    for name in PARAMETER_NAMES:
+        value = given.get(name)
+        present[name] = value is not None
+        values[name] = np.broadcast_to(np.asarray(value if present[name] else np.nan, dtype=float), shape).copy()
+    uses = law.parameter_names
+    for name in PARAMETER_NAMES:
+        if name not in uses and present[name]:
+            extra = np.flatnonzero(~np.isnan(values[name]).ravel()) if rows is not None else [0]
+            if len(extra):
+                raise ValueError(f"{name} is not a parameter of model {model!r} (its parameters: {', '.join(uses)})"
+                                 f"{where(extra[0])}")
+    if law.spring == "hertz" and present["modulus"]:
+        _check_array(MODULUS, values["modulus"], where)
+        from_modulus = hertz_constant(values["modulus"], radius)
+        if present["k"] and np.any(values["k"] != from_modulus):  # equal: a scene copied with both
+            raise ValueError(f"give k or modulus for model {model!r}, not both (k = (4/3) modulus sqrt(R))")
+        values["k"] = from_modulus
+        present["k"] = True
+    for parameter in law.parameters:
+        name = parameter.name
+        if not present[name]:
+            if parameter.default is None:
+                alternative = " (or modulus, the effective modulus E* [Pa])" if law.spring == "hertz" and name == "k" else ""
+                raise ValueError(f"{name} is required by model {model!r}: {parameter.doc} [{parameter.unit}]"
+                                 f"{alternative}")
+            values[name][...] = parameter.default
+        _check_array(parameter, values[name], where)
+    return values
+
+
+def _check_array(parameter, values: np.ndarray, where) -> None:
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.isfinite(values) & parameter.ok(values))
+    if np.any(bad):
+        i = int(np.flatnonzero(np.ravel(bad))[0])
+        raise ValueError(f"{parameter.name} must be {parameter.range_text}; got {float(np.ravel(values)[i])!r}"
+                         f"{where(i)}")
+
+
+def check_columns(columns: dict) -> dict:
+    """Validate arrays of scene parameters (as :class:`Scene` does one value), naming the first bad row.
+
+    Parameters
+    ----------
+    columns : dict of str -> array_like
+        Scene field -> values; numeric fields must be numbers, ``model``, ``separation`` and ``tangential``
+        strings.  (The tangential parameters are checked per scene, by :class:`Scene`.)  Law
+        parameters (k, b, ...) are checked against each row's law (missing ones take the law's default).
+
+    Returns
+    -------
+    dict of str -> float array
+        The law parameters of every row (:func:`law_parameters`), when ``model`` and ``diameter`` are given.
+
+    Raises
+    ------
+    ValueError
+        ``"<name> must be <range>; got <value> (row <i>)"``.
+    """
+    for name, values in columns.items():
+        if name in RULES or name in PATH_RULES:
+            optional = name in PATH_RULES  # a path field is NaN in the rows that do not give it
+            allowed, ok = (PATH_RULES if optional else RULES)[name]
+            raw = np.asarray(values)
+            if raw.dtype == bool or (raw.dtype == object and any(isinstance(v, (bool, np.bool_)) for v in raw.flat)):
+                raise TypeError(f"{name} must be real numbers; got a boolean")
+            try:
+                arr = np.asarray(values, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be {allowed}; got a non-numeric value") from None
+            with np.errstate(invalid="ignore"):
+                bad = ~(np.isfinite(arr) & ok(arr))
+            if optional:
+                bad &= ~np.isnan(arr)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise ValueError(f"{name} must be {allowed}; got {float(arr[i])!r} (row {i})")
+        elif name in TEXT_FIELDS:
+            choices = {"model": tuple(LAWS), "separation": SEPARATION_CRITERIA, "tangential": tuple(TANGENTIALS)}[name]
+            unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
+            if unknown:
+                raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
+        elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS:
+            raw = np.asarray(values)
+            if raw.dtype == bool:
+                raise TypeError(f"{name} must be real numbers; got a boolean")
+            try:
+                np.asarray(values, dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be a number; got a non-numeric value") from None
+        else:
+            raise ValueError(f"unknown scene parameter {name!r}; expected one of "
+                             f"{', '.join([*RULES, *PATH_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
+    if all(name in columns for name in ("mass", "speed", "diameter")):
+        problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])
+        if problem:
+            raise ValueError(problem)
+    if "model" not in columns or "diameter" not in columns:
+        return {}
+    models = np.asarray(columns["model"], dtype=object).ravel()
+    radius = 0.5 * np.broadcast_to(np.asarray(columns["diameter"], dtype=float), models.shape)
+    out = {name: np.full(models.shape, np.nan) for name in PARAMETER_NAMES}
+    for model in dict.fromkeys(models.tolist()):
+        rows = np.flatnonzero(models == model)
+        given = {name: np.broadcast_to(np.asarray(columns[name], dtype=float), models.shape)[rows]
+                 for name in PARAMETER_NAMES if name in columns}
+        resolved = law_parameters(model, given, radius[rows], rows=rows)
+        for name in PARAMETER_NAMES:
+            out[name][rows] = resolved[name]
+    return out
