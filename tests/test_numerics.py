@@ -10,7 +10,7 @@ from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.numerics.ablation import ablation
 from sphereimpact.numerics.bench import speedups
 from sphereimpact.numerics.reference import reference, relative_errors, worst_error
-from sphereimpact.numerics.workprecision import METHODS, TARGET, choose_default
+from sphereimpact.numerics.workprecision import METHODS, TARGET, choose_default, work_precision
 
 CHAPTER = {f"{a}deg-{m}": Scene(angle=a, model=m) for a in (0.0, 60.0) for m in ("modified", "kelvin-voigt")}
 
@@ -54,6 +54,18 @@ def test_choose_default_picks_the_cheapest_setting_meeting_the_target():
                                                                                           status="ok")
     choice = choose_default(frame, 1e-9)
     assert (choice["method"], choice["rtol"], choice["time"]) == ("Y", 1e-8, 4.0)
+
+
+def test_work_precision_charts_the_closed_form_exactly_where_the_law_has_one():
+    """The chart gets a ``closed`` point for every case whose law declares an exact solution (asked of the
+    law, not of its name), and that point meets the 24-digit reference to round-off."""
+    cases = {"kv": Scene(model="kelvin-voigt", angle=30.0), "hertz": Scene(model="hertz", k=8.8e5, angle=30.0)}
+    frame = work_precision(cases, tolerances=(1e-6,), methods=("DOP853-scalar",))
+    closed = frame[frame["body"] == "closed"]
+    assert list(closed["case"]) == [name for name, scene in cases.items() if scene.law.closed_form is not None]
+    assert list(closed["case"]) == ["kv"] and (closed["error"] < 1e-13).all()
+    reduced = frame[frame["body"] == "reduced"]
+    assert set(reduced["case"]) == set(cases) and (reduced["error"].between(1e-9, 1e-4)).all()
 
 
 def test_speedups_at_equal_accuracy():

@@ -242,6 +242,8 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
     from dataclasses import replace
 
     from sphereimpact.contact.laws.exact import ClosedForm, SpringDamperMotion, events
+    from sphereimpact.numerics.reference import reference
+    from sphereimpact.numerics.workprecision import work_precision
 
     calls = []
 
@@ -261,5 +263,8 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
         alone = sweep(scenes.assign(model="kelvin-voigt"))
         assert set(mixed["path"]) == {"closed"} and sum(calls) == 6
         assert mixed.drop(columns="model").equals(alone.drop(columns="model"))
+        assert reference(scene).how == "closed form"
+        chart = work_precision({"again": scene}, tolerances=(1e-6,), methods=("DOP853-scalar",))
+        assert list(chart["body"]) == ["closed", "reduced"] and chart["error"].iloc[0] == 0.0
     finally:
         del LAWS["kv-again"]

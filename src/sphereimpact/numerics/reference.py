@@ -119,11 +119,11 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
 
 
 def reference(scene: Scene) -> Reference:
-    """The reference outputs of ``scene``: the closed form (kelvin-voigt), Taylor at :data:`FINE_DIGITS`
-    bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's DOP853 at rtol 1e-13, bounded
-    by its distance from rtol 1e-12 (a second implementation beside the package's DOP853-scalar, not an
-    exact one)."""
-    if scene.model == "kelvin-voigt":
+    """The reference outputs of ``scene``: the law's closed form where it declares one (kelvin-voigt),
+    Taylor at :data:`FINE_DIGITS` bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's
+    DOP853 at rtol 1e-13, bounded by its distance from rtol 1e-12 (a second implementation beside the
+    package's DOP853-scalar, not an exact one)."""
+    if scene.law.closed_form is not None:
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")
     if scene.model != "modified":
