@@ -31,3 +31,11 @@ def test_the_public_api_is_where_it_was():
     from sphereimpact.sweep import sweep  # noqa: F401
     from sphereimpact.impact.calibrate import calibrate  # noqa: F401
     assert simulate(Scene(angle=60.0)).cor == pytest.approx(0.865, abs=1e-3)  # the chapter's oblique case
+
+
+def test_the_input_rules_still_import_from_the_scene_module():
+    """impact/inputs.py took the input rules out of impact/scene.py, which re-exports them unchanged."""
+    from sphereimpact.impact import inputs, scene
+    for name in ("RULES", "PATH_RULES", "SEPARATION_CRITERIA", "SQUARE_LIMIT", "TEXT_FIELDS", "as_number",
+                 "check_columns", "law_parameters", "magnitude_problem", "scale_problem"):
+        assert getattr(scene, name) is getattr(inputs, name), name

@@ -19,8 +19,9 @@ from ..methods import DEFAULT_INTEGRATOR, ivp_method  # noqa: F401  (re-exported
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
                          kappa_from_poisson, kappa_from_shear_modulus)
 # the input rules moved to .inputs; re-exported here, where they were
-from .inputs import (PATH_RULES, RULES, SEPARATION_CRITERIA, TEXT_FIELDS, _check, _check_choice,  # noqa: F401
-                     as_number, check_columns, law_parameters, magnitude_problem, scale_problem)
+from .inputs import (PATH_RULES, RULES, SEPARATION_CRITERIA, SQUARE_LIMIT, TEXT_FIELDS,  # noqa: F401
+                     _check, _check_choice, as_number, check_columns, law_parameters, magnitude_problem,
+                     scale_problem)
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
@@ -354,7 +355,8 @@ class SolverOptions:
     method : str
         ``auto`` or a registered integrator (:data:`sphereimpact.integrators.INTEGRATORS`).  ``auto``: the
         law's closed form if it has one (kelvin-voigt: exact, and the cheapest), else the Taylor method if it
-        has a series (eq. 4.2, linear Hunt-Crossley; zeta up to 100), else DOP853-scalar.  ``closed`` is exact and only for kelvin-voigt.
+        has a series (eq. 4.2, linear Hunt-Crossley; zeta up to 100), else DOP853-scalar.  ``closed`` is exact,
+        for a law that declares a closed form (of the built-in laws, kelvin-voigt).
     rtol, atol : float
         Relative and absolute tolerances of :func:`scipy.integrate.solve_ivp`, rtol in [1e-13, 1e-2] and
         atol in [1e-16, 1e-2].
