@@ -7,7 +7,7 @@ import pytest
 
 from sphereimpact import SolverOptions, simulate
 from sphereimpact.numerics.reference import relative_errors
-from sphereimpact.sweep import batch, engine, paths, plane, series_lanes, similarity
+from sphereimpact.sweep import batch, chebyshev, engine, paths, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.sweep.outputs import NORMAL_OUTPUTS as OUTPUTS
 from sphereimpact.sweep.similarity import InterpolationError, _errors
@@ -66,9 +66,9 @@ def test_points_pulling_below_the_tension_piece_are_integrated(monkeypatch):
 
 def test_a_point_has_the_same_value_however_many_are_evaluated_with_it():
     interpolant = plane.PlaneInterpolant(*BALLS, "force", 1e-8)
-    zeta, lam = inside(BALLS, 2 * plane.EVAL_BLOCK + 37, seed=3)
+    zeta, lam = inside(BALLS, 2 * chebyshev.EVAL_BLOCK + 37, seed=3)
     whole = interpolant(zeta, lam)
-    for size in (1, 5, plane.EVAL_BLOCK - 1, plane.EVAL_BLOCK + 1):
+    for size in (1, 5, chebyshev.EVAL_BLOCK - 1, chebyshev.EVAL_BLOCK + 1):
         parts = [interpolant(zeta[i:i + size], lam[i:i + size]) for i in range(0, min(zeta.size, 40 * size), size)]
         for key in OUTPUTS:
             got = np.concatenate([part[key] for part in parts])
@@ -93,7 +93,7 @@ def test_a_plane_that_cannot_reach_the_target_refuses_and_the_engine_integrates(
     assert integrated.equals(sweep(scenes))
 
 
-def _refusing(*args):
+def _refusing(*args, **kwargs):
     raise InterpolationError("refused")
 
 
@@ -109,7 +109,7 @@ def test_engine_takes_the_plane_for_many_balls_and_shards_equal_the_whole(monkey
     monkeypatch.setattr(paths, "PLANE_MIN", 100)
     built = []
     original = plane.PlaneInterpolant
-    monkeypatch.setattr(plane, "PlaneInterpolant", lambda *a: built.append(a) or original(*a))
+    monkeypatch.setattr(plane, "PlaneInterpolant", lambda *a, **k: built.append(a) or original(*a, **k))
     scenes = random_balls(400, seed=5)
     whole = sweep(scenes)
     assert sorted(args[4] for args in built) == ["force", "penetration"]

@@ -115,7 +115,7 @@ class _AlwaysSliding:
 
         self.normal, self.scene = normal, normal.scene
         self.jp = PositiveImpulse(normal)
-        self._phase = Phase("sliding", 0.0, normal.t_f, self.scene.v_tangent, 0.0, 0.0)
+        self._phase = Phase("sliding", 0.0, normal.t_f, self.scene.v_tangent, self.scene.spin, 0.0)
         self.t_roll, self.regime, self.switches = None, "sliding", 0
 
     def at(self, t):
@@ -129,13 +129,27 @@ class _AlwaysSliding:
         return -self.scene.kappa * self.scene.mu * np.maximum(self.normal.force(t), 0.0)
 
 
-@pytest.fixture
-def tangential_model():
-    from sphereimpact.contact.tangential import KAPPA, TANGENTIALS, TangentialModel
+def _always_sliding_end(rows, impulse, instants):
+    """The toy model's end state for many scenes at once: the kick of a tangential impulse -kappa mu J+."""
+    from sphereimpact.contact.tangential import kick
 
+    vc_t, omega = kick(rows.v_tangent, rows.spin, -rows.kappa * rows.mu * impulse, rows.mass, rows.radius,
+                       rows.inertia_factor)
+    n = vc_t.size
+    return {"vc_t": vc_t, "omega_f": omega, "t_roll": np.full(n, np.nan), "switches": np.zeros(n, int),
+            "regime": np.full(n, "sliding", dtype=object)}
+
+
+@pytest.fixture(params=["one by one", "swept"])
+def tangential_model(request):
+    """The toy model, solved scene by scene in sweeps or with its own vectorised end state (``swept``)."""
+    from sphereimpact.contact.tangential import KAPPA, TANGENTIALS, SweptTangential, TangentialModel
+
+    swept = SweptTangential(levels=lambda rows: np.full(rows.mass.size, np.nan), end=_always_sliding_end)
     model = TANGENTIALS.register(TangentialModel("toy-slide", doc="slides under kappa mu P (test model)",
                                                  stiffness="F = -kappa mu P", parameters=(KAPPA,), spring=None,
-                                                 motion=_AlwaysSliding))
+                                                 motion=_AlwaysSliding,
+                                                 swept=swept if request.param == "swept" else None))
     yield model
     del TANGENTIALS["toy-slide"]
 
@@ -149,18 +163,43 @@ def test_a_registered_tangential_model_is_served_by_simulate_sweep_and_cli(tange
     assert out.regime == "sliding" and out.switches == 0
     steep = scene.with_(angle=60.0)  # where the rigid contact slides throughout, half its friction: half its spin
     assert simulate(steep).omega_f == pytest.approx(0.5 * simulate(steep.with_(tangential="rigid")).omega_f, rel=1e-9)
-    table = sweep(grid(angle=[0.0, 30.0, 60.0]).assign(tangential="toy-slide", kappa=0.5))
+    table = sweep(grid(incidence=[0.0, 30.0, 60.0], speed=[1.0, 3.0], spin=[-40.0, 0.0],
+                       gravity=[0.0, 9.81]).assign(tangential="toy-slide", kappa=0.5))  # a level flat
+    moving = set(table.loc[(table["incidence"] > 0) | (table["spin"] != 0), "path"])  # with tangential motion
+    assert moving == ({"single"} if tangential_model.swept is None else {"taylor-lanes", "runge-kutta-lanes"})
     for row in table.to_dict("records"):
-        one = simulate(Scene(angle=row["angle"], tangential="toy-slide", kappa=0.5))
-        for key in OUTPUTS:
+        one = simulate(Scene(incidence=row["incidence"], speed=row["speed"], spin=row["spin"], gravity=row["gravity"],
+                             tangential="toy-slide", kappa=0.5), SolverOptions(rtol=1e-12, atol=1e-12))
+        for key in (*OUTPUTS, "switches", "work_t", "rebound_angle"):
             assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
+        assert row["regime"] == one.regime
     assert run(["simulate", "--angle", "30", "--tangential", "toy-slide", "--kappa", "0.5", "--json"]) == 0
     cli = json.loads(capsys.readouterr().out)
     assert cli["vc_t"] == out.vc_t and cli["omega_f"] == out.omega_f
     assert run(["simulate", "--angle", "30", "--tangential", "toy-slide", "--poisson", "0.5"]) == 2
     assert "poisson sets kappa of tangential 'linear' or 'mindlin'" in capsys.readouterr().err
-    with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only"):
+    with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only; tangential "
+                                         "'toy-slide' is solved by body 'reduced'"):
         simulate(scene, body="planar")
+
+
+def test_the_planar_body_serves_the_contacts_it_implements_and_refuses_a_copy():
+    """The planar body implements the rigid Coulomb contact, as an object: a registered copy of the rigid
+    model under another name (which a flag would have let through to the built-in contact) is refused."""
+    from dataclasses import replace
+
+    from sphereimpact.contact.tangential import TANGENTIALS
+
+    TANGENTIALS.register(replace(TANGENTIALS["rigid"], name="rigid-copy"))
+    try:
+        scene = Scene(angle=30.0, tangential="rigid-copy")
+        assert simulate(scene).omega_f == simulate(scene.with_(tangential="rigid")).omega_f
+        assert simulate(scene.with_(tangential="rigid"), body="planar").omega_f == pytest.approx(
+            simulate(scene).omega_f, rel=1e-8)
+        with pytest.raises(ValueError, match="tangential 'rigid-copy' is solved by body 'reduced'"):
+            simulate(scene, body="planar")
+    finally:
+        del TANGENTIALS["rigid-copy"]
 
 
 # --- an integrator registered from outside ---------------------------------------------------------------
@@ -238,12 +277,15 @@ def test_a_registered_stepper_is_driven_like_the_built_in_ones():
 
 def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
     """A law may bring its own exact solution (a ClosedForm): the ``closed`` integrator and the sweep's closed
-    path use it, also in a sweep that mixes two laws' closed forms (here eq. 4.1's solution declared anew)."""
+    path use it, also in a sweep that mixes two laws' closed forms (here eq. 4.1's solution declared anew).
+    Without its ``jet`` the closed path gives the events only: rows that need the force's extremes or the
+    grip instant take another exact path (the Runge-Kutta lanes here), and agree."""
     from dataclasses import replace
 
-    from sphereimpact.contact.laws.exact import ClosedForm, SpringDamperMotion, events
+    from sphereimpact.contact.laws.exact import ClosedForm, SpringDamperMotion, events, jet
     from sphereimpact.numerics.reference import reference
     from sphereimpact.numerics.workprecision import work_precision
+    from sphereimpact.sweep.engine import FAST_OUTPUTS
 
     calls = []
 
@@ -252,7 +294,9 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
         return events(numbers["zeta"], separation)
 
     LAWS.register(replace(LAWS["kelvin-voigt"], name="kv-again",
-                          closed_form=ClosedForm("eq. 4.1 again", SpringDamperMotion, counted, ("zeta",))))
+                          closed_form=ClosedForm("eq. 4.1 again", SpringDamperMotion, counted, ("zeta",), jet)))
+    LAWS.register(replace(LAWS["kelvin-voigt"], name="kv-events",
+                          closed_form=ClosedForm("eq. 4.1's events only", SpringDamperMotion, counted, ("zeta",))))
     try:
         scene = Scene(model="kv-again", angle=30.0)
         assert simulate(scene, SolverOptions(method="closed")).to_dict() | {"wall_time": 0, "model": 0} == \
@@ -263,8 +307,14 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
         alone = sweep(scenes.assign(model="kelvin-voigt"))
         assert set(mixed["path"]) == {"closed"} and sum(calls) == 6
         assert mixed.drop(columns="model").equals(alone.drop(columns="model"))
+        events_only = sweep(scenes.assign(model="kv-events"))
+        assert set(events_only["path"]) == {"runge-kutta-lanes"}
+        assert set(sweep(scenes.assign(model="kv-events"), outputs=FAST_OUTPUTS)["path"]) == {"closed"}
+        for key in ("t_roll", "force_max", "force_min", "omega_f", "cor"):
+            assert np.allclose(events_only[key], alone[key], rtol=1e-8, atol=1e-9 * alone["force_max"].max(),
+                               equal_nan=True), key
         assert reference(scene).how == "closed form"
         chart = work_precision({"again": scene}, tolerances=(1e-6,), methods=("DOP853-scalar",))
         assert list(chart["body"]) == ["closed", "reduced"] and chart["error"].iloc[0] == 0.0
     finally:
-        del LAWS["kv-again"]
+        del LAWS["kv-again"], LAWS["kv-events"]

@@ -101,7 +101,7 @@ def test_family_interpolated_sweep_keeps_shards_equal_and_meets_the_contract(mon
     scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.0)).assign(
         model="linear-hunt-crossley", k=6.0e4, chi=0.05)
     built = []
-    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
+    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a, **k: built.append(a) or similarity.FamilyInterpolant(*a, **k))
     whole = sweep(scenes)
     assert len(built) == 1  # 450 distinct chi v_n >= FAMILY_MIN: one interpolant
     shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
@@ -130,7 +130,7 @@ def test_random_balls_of_a_kernel_less_law_meet_the_contract(model, monkeypatch)
                            "mass": rng.uniform(0.05, 0.5, n), "speed": rng.uniform(0.5, 20, n),
                            "angle": rng.uniform(0, 85, n), "separation": rng.choice(["force", "penetration"], n)})
     built = []
-    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a: built.append(a) or similarity.FamilyInterpolant(*a))
+    monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a, **k: built.append(a) or similarity.FamilyInterpolant(*a, **k))
     table = sweep(scenes)
     assert len(built) == 2
     keys = ["t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t"]

@@ -10,7 +10,7 @@ from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
 from sphereimpact.sweep.paths import SIMILARITY_MIN
 from sphereimpact.sweep.engine import (
-    FAMILY_OUTPUTS,
+    HISTORY_OUTPUTS,
     FAST_OUTPUTS,
     SCENE_COLUMNS,
     SWEEP_OUTPUTS,
@@ -154,7 +154,7 @@ def test_history_outputs_on_every_path(scenes):
     simulate's on every fast path; the fast outputs alone leave those columns out."""
     table = sweep(scenes)
     assert_contract(table, sample=len(table))
-    assert not set(FAMILY_OUTPUTS) & set(sweep(scenes, outputs=FAST).columns)
+    assert not set(HISTORY_OUTPUTS) & set(sweep(scenes, outputs=FAST).columns)
     assert list(sweep(scenes, outputs=["cor"]).columns) == [*SCENE_COLUMNS, "cor", "path"]
     with pytest.raises(ValueError, match="outputs must be some of"):
         sweep(scenes, outputs=["spin_rate"])
@@ -168,13 +168,41 @@ def test_table_layout():
 
 @pytest.mark.parametrize("scenes, message", [
     ({"angle": [10.0, 95.0]}, r"angle must be a finite number in \[0, 90\) degrees; got 95.0 \(row 1\)"),
-    ({"mass": [0.1, np.nan]}, r"mass must be a finite number > 0 kg; got nan \(row 1\)"),
+    ({"mass": [0.1, -1.0]}, r"mass must be a finite number > 0 kg; got -1.0 \(row 1\)"),
+    ({"mass": [0.1, np.inf]}, r"mass must be a finite number > 0 kg; got inf \(row 1\)"),
+    ({"model": ["hertz", "hertz"], "k": [np.nan, 1e6]}, r"k is required by model 'hertz'.*\(row 0\)"),
+    ({"model": ["hertz"] * 2, "k": [1e6, 2e6], "modulus": [np.nan, 1e7]},
+     r"give k or modulus for model 'hertz', not both .*\(row 1\)"),
     ({"model": ["hooke"]}, "model must be one of kelvin-voigt, modified, linear-hunt-crossley"),
     ({"colour": ["red"]}, "unknown scene parameter 'colour'"),
 ])
 def test_bad_scene_tables_name_the_parameter(scenes, message):
     with pytest.raises(ValueError, match=message):
         sweep(scenes)
+
+
+def test_one_table_however_its_rows_are_described():
+    """An empty cell (NaN, None) is a parameter that row does not give: rows describing the approach by
+    incidence, by angle to the surface or by the flat's tilt, and Hertz rows by k or by modulus, sweep as
+    one table, each row as its scene alone (and as simulate), and the sweep's own table reads back."""
+    table = pd.DataFrame({
+        "angle": [30.0, np.nan, np.nan, np.nan, 0.0, np.nan],
+        "incidence": [np.nan, 30.0, np.nan, 20.0, np.nan, np.nan],
+        "angle_to_surface": [np.nan, np.nan, 60.0, np.nan, 70.0, np.nan],
+        "model": ["modified", None, "hertz", "hertz", "hertz", np.nan],
+        "k": [np.nan, 6e4, 1.2e6, np.nan, np.nan, np.nan],
+        "modulus": [np.nan, np.nan, np.nan, 1e7, 1e7, np.nan],
+        "mass": [np.nan, 0.1, 0.145, np.nan, 0.2, 0.145]})
+    swept = sweep(table)
+    for i, row in table.iterrows():
+        given = {k: v for k, v in row.items() if v is not None and v == v}
+        alone = sweep(pd.DataFrame([given])).iloc[0]
+        assert list(swept[list(SCENE_COLUMNS)].iloc[i].dropna()) == list(alone[list(SCENE_COLUMNS)].dropna())
+        scene = Scene(**given)
+        one = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12)).to_dict()
+        for got in (swept.iloc[i], alone):  # the same scene, within the target, alone or with the others
+            assert max(relative_errors(got, one, scene, KEYS).values()) <= CONTRACT, i
+    assert swept.equals(sweep(swept[list(SCENE_COLUMNS)]))
 
 
 def test_never_separating_scene_is_an_error():

@@ -125,7 +125,8 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
         The law's name.
     given : dict of str -> array or None
         Parameter name (of :data:`sphereimpact.contact.laws.PARAMETER_NAMES`) -> values for each scene, or None
-        when not given.  NaN in a given column means "not given" only for a law that does not use it.
+        when not given.  In a table's column (``rows`` given) NaN means "not given" for that row (a table may
+        give one row's Hertz law by k and another's by modulus); for one scene, NaN is a bad value.
     radius : float or array
         Ball radius R [m] of each scene (for ``modulus``).
     rows : array of int, optional
@@ -145,33 +146,38 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
     law = LAWS.law(model)
     shape = np.shape(radius)
     where = (lambda i: "") if rows is None else (lambda i: f" (row {int(rows[i])})")
-    values, present = {}, {}
+    values, present = {}, {}  # present: per scene, whether the parameter was given
     for name in PARAMETER_NAMES:
         value = given.get(name)
-        present[name] = value is not None
-        values[name] = np.broadcast_to(np.asarray(value if present[name] else np.nan, dtype=float), shape).copy()
+        values[name] = np.broadcast_to(np.asarray(np.nan if value is None else value, dtype=float), shape).copy()
+        present[name] = np.full(shape, value is not None) if rows is None else ~np.isnan(values[name])
     uses = law.parameter_names
     for name in PARAMETER_NAMES:
-        if name not in uses and present[name]:
-            extra = np.flatnonzero(~np.isnan(values[name]).ravel()) if rows is not None else [0]
+        if name not in uses and present[name].any():
+            extra = np.flatnonzero(present[name].ravel())
             if len(extra):
                 raise ValueError(f"{name} is not a parameter of model {model!r} (its parameters: {', '.join(uses)})"
                                  f"{where(extra[0])}")
-    if law.spring == "hertz" and present["modulus"]:
-        _check_array(MODULUS, values["modulus"], where)
+    if law.spring == "hertz" and present["modulus"].any():
+        by_modulus = present["modulus"]
+        _check_array(MODULUS, np.where(by_modulus, values["modulus"], 1.0), where)
         from_modulus = hertz_constant(values["modulus"], radius)
-        if present["k"] and np.any(values["k"] != from_modulus):  # equal: a scene copied with both
-            raise ValueError(f"give k or modulus for model {model!r}, not both (k = (4/3) modulus sqrt(R))")
-        values["k"] = from_modulus
-        present["k"] = True
+        both = by_modulus & present["k"]
+        if np.any(values["k"][both] != np.broadcast_to(from_modulus, shape)[both]):  # equal: a copied scene
+            raise ValueError(f"give k or modulus for model {model!r}, not both (k = (4/3) modulus sqrt(R))"
+                             f"{where(int(np.flatnonzero(np.ravel(both & (values['k'] != from_modulus)))[0]))}")
+        values["k"] = np.where(by_modulus, from_modulus, values["k"])
+        present["k"] = present["k"] | by_modulus
     for parameter in law.parameters:
         name = parameter.name
-        if not present[name]:
+        missing = ~present[name]
+        if missing.any():
             if parameter.default is None:
                 alternative = " (or modulus, the effective modulus E* [Pa])" if law.spring == "hertz" and name == "k" else ""
+                first = int(np.flatnonzero(missing.ravel())[0])
                 raise ValueError(f"{name} is required by model {model!r}: {parameter.doc} [{parameter.unit}]"
-                                 f"{alternative}")
-            values[name][...] = parameter.default
+                                 f"{alternative}{where(first)}")
+            values[name][missing] = parameter.default
         _check_array(parameter, values[name], where)
     return values
 

@@ -42,6 +42,92 @@ HISTORY_COLUMNS = {
 
 
 @dataclass(frozen=True)
+class EndState:
+    """What a solver computed of one impact, or of many (each field a float, or arrays of one length), in SI
+    units: the scene's incoming state, the normal motion's events and the tangential motion's end.
+    :func:`outputs` derives every output from it, for ``simulate`` and for every sweep path alike.
+
+    Attributes
+    ----------
+    mass, radius, inertia_factor : float or array
+        m [kg], R [m] and alpha = I / (m R^2) [-].
+    v_normal, v_tangent, spin, g_tangent : float or array
+        Approach speed along the normal and along the flat [m/s], incoming spin [rad/s], gravity along the
+        flat [m/s^2].
+    t_m, delta_m, t_f : float or array
+        Time of maximum compression [s], maximum compression [m], contact duration [s].
+    vc_n, vc_t, omega_f : float or array
+        The centre's velocity after impact along the normal and the flat [m/s], spin after impact [rad/s].
+    u_t : float or array
+        The centre's displacement along the flat over the contact [m] (its work against gravity along the
+        flat; any value where ``g_tangent`` is 0).
+    force_min, force_max : float or array
+        Extremes of the normal force over the contact [N] (NaN where not computed).
+    t_roll : float or array
+        First instant the contact point stops slipping [s], NaN where it never does.
+    switches : int or array
+        Changes of tangential mode.
+    regime : str or array of str
+        The tangential mode at separation (see :class:`Outcome`).
+    """
+
+    mass: object
+    radius: object
+    inertia_factor: object
+    v_normal: object
+    v_tangent: object
+    spin: object
+    g_tangent: object
+    t_m: object
+    delta_m: object
+    t_f: object
+    vc_n: object
+    vc_t: object
+    omega_f: object
+    u_t: object
+    force_min: object
+    force_max: object
+    t_roll: object
+    switches: object
+    regime: object
+
+    @classmethod
+    def of_scene(cls, scene, **motion) -> "EndState":
+        """The end state of one impact of ``scene`` (a :class:`Scene`), given what its motion computed."""
+        return cls(mass=scene.mass, radius=scene.radius, inertia_factor=scene.inertia_factor,
+                   v_normal=scene.v_normal, v_tangent=scene.v_tangent, spin=scene.spin, g_tangent=scene.g_tangent,
+                   **motion)
+
+
+def outputs(end: EndState) -> dict:
+    """Every scalar output (:data:`SCALAR_OUTPUTS`) of an end state: the one place they are derived from what a
+    solver computed, for one impact (floats) or many (arrays).
+
+    ve_t = vc_t - omega_f R and ve_n = vc_n (the contact point), cor = vc_n / v_n, the rebound angles from the
+    normal atan2(vc_t, vc_n) and atan2(ve_t, vc_n) [deg], ``beyond_radius`` = delta_m > R, and work_t, the work
+    of the tangential contact force [J]: the change of tangential and rotational kinetic energy less the work
+    of gravity along the flat, m g_t u_t.
+    """
+    inertia = end.inertia_factor * end.mass * end.radius ** 2
+    ve_t = end.vc_t - end.omega_f * end.radius
+    work = (0.5 * end.mass * (end.vc_t * end.vc_t - end.v_tangent ** 2) + 0.5 * inertia * end.omega_f * end.omega_f
+            - end.mass * end.g_tangent * end.u_t - 0.5 * inertia * end.spin * end.spin)
+    return {"t_m": end.t_m, "delta_m": end.delta_m, "t_f": end.t_f, "vc_t": end.vc_t, "vc_n": end.vc_n,
+            "ve_t": ve_t, "ve_n": end.vc_n, "omega_f": end.omega_f, "cor": end.vc_n / end.v_normal,
+            "regime": end.regime, "t_roll": end.t_roll, "force_min": end.force_min, "force_max": end.force_max,
+            "beyond_radius": end.delta_m > end.radius, "switches": end.switches,
+            "rebound_angle": _degrees_atan2(end.vc_t, end.vc_n), "rebound_angle_contact": _degrees_atan2(ve_t, end.vc_n),
+            "work_t": work}
+
+
+def _degrees_atan2(y, x):
+    """atan2(y, x) in degrees, for floats (math) or arrays (numpy)."""
+    if np.ndim(y) == 0 and np.ndim(x) == 0:
+        return math.degrees(math.atan2(y, x))
+    return np.degrees(np.arctan2(y, x))
+
+
+@dataclass(frozen=True)
 class Outcome:
     """The result of one impact (SI units).
 
@@ -112,28 +198,25 @@ class Outcome:
 
     @classmethod
     def from_motion(cls, motion, wall_time: float) -> "Outcome":
-        """Read the outputs off a solved contact motion (reduced or planar).
+        """Read the outputs off a solved contact motion (reduced or planar), through :func:`outputs`.
 
-        ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``,
+        ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``, ``switches``,
         ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
         """
         s = motion.scene
         both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call: [0] at t_m, [1] at t_f
-        delta_m = float(both["delta"][0])
-        vc_t, vc_n, omega = float(both["vc_t"][1]), float(both["vc_n"][1]), float(both["omega"][1])
-        ve_t = vc_t - omega * s.radius
         forces = motion.force(motion.grid)
-        work = (0.5 * s.mass * (vc_t * vc_t - s.v_tangent ** 2) + 0.5 * s.inertia * omega * omega
-                - s.mass * s.g_tangent * float(both["u_t"][1]) - 0.5 * s.inertia * s.spin * s.spin)
-        return cls(
-            t_m=motion.t_m, delta_m=delta_m, t_f=motion.t_f,
-            vc_t=vc_t, vc_n=vc_n, ve_t=ve_t, ve_n=vc_n, omega_f=omega,
-            cor=vc_n / s.v_normal, regime=motion.regime, t_roll=motion.t_roll,
+        end = EndState.of_scene(
+            s, t_m=motion.t_m, delta_m=float(both["delta"][0]), t_f=motion.t_f, vc_n=float(both["vc_n"][1]),
             force_min=extremum(motion.force, motion.grid, "min", forces)[1],
             force_max=extremum(motion.force, motion.grid, "max", forces)[1],
-            beyond_radius=bool(delta_m > s.radius), switches=int(motion.switches),
-            rebound_angle=math.degrees(math.atan2(vc_t, vc_n)), rebound_angle_contact=math.degrees(math.atan2(ve_t, vc_n)),
-            work_t=work, wall_time=wall_time, scene=s, motion=motion, **motion.stats)
+            vc_t=float(both["vc_t"][1]), omega_f=float(both["omega"][1]), u_t=float(both["u_t"][1]),
+            t_roll=math.nan if motion.t_roll is None else motion.t_roll, switches=int(motion.switches),
+            regime=motion.regime)
+        values = outputs(end)
+        values["t_roll"] = motion.t_roll  # None where it never happens, as the dataclass says
+        values["beyond_radius"] = bool(values["beyond_radius"])
+        return cls(**values, wall_time=wall_time, scene=s, motion=motion, **motion.stats)
 
     def to_dict(self) -> dict:
         """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS`."""

@@ -25,6 +25,7 @@ from ..errors import ImpactError
 from ..integrators.normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from .scene import Scene, SolverOptions, ivp_method
 from ..contact.tangential import MAX_PHASES, phase_index
+from ..contact.tangential.rigid import RIGID
 
 
 class PlanarMotion:
@@ -158,3 +159,15 @@ class PlanarMotion:
         radius = self.scene.radius
         return {"delta": delta, "delta_dot": delta_dot, "vc_t": self._t @ z[2:4], "vc_n": self._n @ z[2:4],
                 "omega": z[4], "u_t": self._t @ (z[0:2] - radius * self._n[:, None])}
+
+
+#: The tangential contacts this body implements: model -> its motion ``(scene, options)``.  A model is served
+#: only if it is one of these objects (compared by identity, so a registered copy under another name, or a
+#: model claiming a capability, is not mistaken for the rigid Coulomb contact written here).
+CONTACTS = ((RIGID, PlanarMotion),)
+
+
+def planar_motion(model):
+    """The planar body's motion for tangential ``model`` (a TangentialModel), or None where it has none."""
+    return next((motion for known, motion in CONTACTS if known is model), None)
+

@@ -107,19 +107,21 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                         f"got {type(options).__name__}")
     if body not in BODIES:
         raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
-    if body == "planar" and not TANGENTIALS[scene.tangential].planar:
-        planar = ", ".join(name for name, model in TANGENTIALS.items() if model.planar)
-        raise ValueError(f"body 'planar' has the {planar} tangential contact only; tangential "
-                         f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
-                         "not depend on friction)")
+    if body == "planar":
+        from .planar import CONTACTS, planar_motion
+
+        motion_of = planar_motion(TANGENTIALS[scene.tangential])
+        if motion_of is None:
+            served = ", ".join(model.name for model, _ in CONTACTS)
+            raise ValueError(f"body 'planar' has the {served} tangential contact only; tangential "
+                             f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
+                             "not depend on friction)")
     start = time.perf_counter()
     with _beyond_double(scene):
         if body == "reduced":
             motion = ReducedMotion(normal_motion(scene, options), options)
         else:
-            from .planar import PlanarMotion
-
-            motion = PlanarMotion(scene, options)
+            motion = motion_of(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)
     return _checked(outcome, strict)
 

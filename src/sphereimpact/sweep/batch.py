@@ -115,6 +115,19 @@ class _Lanes:
     def rhs(self, x, y):
         return y, -self.force(x, y) if self.weightless else self.gamma - self.force(x, y)
 
+    def force_slopes(self, x, y):
+        """(P_hat, dP_hat/dtau, d2P_hat/dtau2) along the motion, inside contact: with r(u) the ramp at u = lam x
+        (1 for eq. 4.1), P_hat' = y + 2 zeta (y' r + lam y^2 r') and P_hat'' = y' + 2 zeta (y'' r + 3 lam y y' r'
+        + lam^2 y^3 r''), y' = gamma - P_hat, y'' = -P_hat'.  Turning points of the force are roots of P_hat'."""
+        p = self.force(x, y)
+        dy = self.gamma - p
+        decay = np.where(self.modified, np.exp(-self.ramp_lam * np.maximum(x, 0.0)), 0.0)  # r' = -r'' = exp(-u)
+        ramp = self.ramp(x)
+        lam = self.ramp_lam
+        dp = y + self.two_zeta * (dy * ramp + lam * y * y * decay)
+        ddp = dy + self.two_zeta * (-dp * ramp + 3.0 * lam * y * dy * decay - lam * lam * y ** 3 * decay)
+        return p, dp, ddp
+
 
 def _step(lanes: _Lanes, x, y, h):
     """One DOP853 step of per-lane size h from (x, y); returns the new (x, y).
@@ -166,13 +179,35 @@ def _combine(weights: tuple, stages):
     return total
 
 
-def _event_value(kind: str, lanes: _Lanes, x, y):
-    """Event function and its tau-derivative: kind 'max' (y), 'delta' (x) or 'ratio' (Q, see
-    :meth:`_Lanes.ratio`)."""
+def _event_value(kind, lanes: _Lanes, x, y, s):
+    """Event function and its tau-derivative at s into a step: kind 'max' (y), 'delta' (x), 'ratio' (Q, see
+    :meth:`_Lanes.ratio`), or a callable ``kind(lanes, x, y, s) -> (g, dg)``."""
+    if callable(kind):
+        return kind(lanes, x, y, s)
     dx, dy = lanes.rhs(x, y)
     if kind == "ratio":
         return lanes.ratio_and_rate(x, y, dy)
     return (y, dy) if kind == "max" else (x, dx)
+
+
+def _level_event(level, tau0):
+    """The event 'the impulse j = 1 - y + gamma tau reaches ``level``' (per lane, the step starting at tau0):
+    g = level - j falls through 0, dg/dtau = -P_hat."""
+    def event(lanes, x, y, s):
+        return level - (1.0 - y + lanes.gamma * (tau0 + s)), -lanes.force(x, y)
+
+    return event
+
+
+def _turn_event(rising):
+    """The event 'P_hat turns': P_hat' falls through 0 (a maximum, where ``rising``) or rises through it."""
+    sign = np.where(rising, 1.0, -1.0)
+
+    def event(lanes, x, y, s):
+        _, dp, ddp = lanes.force_slopes(x, y)
+        return sign * dp, sign * ddp
+
+    return event
 
 
 def _start_state(lanes: _Lanes, x0, y0, s):
@@ -192,13 +227,13 @@ def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_lo, at_hi):
     at the last point it evaluated once its Newton step is below 2 ulp of the event time tau0 + s
     (below that the update is round-off in g, and would never settle).  Returns (s, state at s).
     """
-    g_lo = _event_value(kind, lanes, *at_lo)[0]
-    g_hi = _event_value(kind, lanes, *at_hi)[0]
+    g_lo = _event_value(kind, lanes, *at_lo, lo)[0]
+    g_hi = _event_value(kind, lanes, *at_hi, hi)[0]
     s = np.where(g_lo - g_hi > 0, lo + (hi - lo) * g_lo / np.where(g_lo - g_hi > 0, g_lo - g_hi, 1.0), hi)
     frozen = np.zeros(s.size, bool)  # frozen lanes stay put: a lane's root never depends on its batch
     for iteration in range(NEWTON_ITERATIONS):
         xs, ys = _step(lanes, x0, y0, s)
-        g, dg = _event_value(kind, lanes, xs, ys)
+        g, dg = _event_value(kind, lanes, xs, ys, s)
         lo = np.where(g > 0, s, lo)
         hi = np.where(g < 0, s, hi)
         newton = s - g / np.where(dg != 0, dg, -1.0)
@@ -280,7 +315,8 @@ def estimated_steps(zeta, lam, separation: str, target: float) -> np.ndarray:
     return tau_f * np.maximum(1.0, 2.0 * np.asarray(zeta, dtype=float)) / unit + 30.0
 
 
-def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8) -> dict:
+def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8, levels=None,
+              extremes: bool = False) -> dict:
     """Integrate every lane to separation.
 
     Parameters
@@ -292,12 +328,20 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
     separation : {'force', 'penetration'}
     target : float
         Relative accuracy target of every output.
+    levels : ndarray, optional
+        Per lane, a level of the friction-carrying impulse j = 1 - y + gamma tau (NaN: none) whose first
+        instant ``tau_g`` is wanted; where j never reaches it, tau_p (j is largest there).
+    extremes : bool
+        Also the extremes ``p_max`` and ``p_min`` of P_hat over the contact (at first touch, at separation
+        and at its turning points in between).
 
     Returns
     -------
     dict of ndarray
-        ``tau_m``, ``x_m``, ``tau_f``, ``y_f`` and ``y_p`` (y where P_hat first falls to 0 after
-        maximum compression, or y_f if it does not before separation), dimensionless.
+        :data:`~.outputs.NORMAL_OUTPUTS`, dimensionless: ``tau_m``, ``x_m``, ``tau_f``, ``y_f`` and ``j_p``, the
+        impulse of P_hat while positive, 1 - y_p + gamma tau_p where (tau_p, y_p) is where P_hat first falls to
+        0 after maximum compression (separation if it does not before); ``tau_g`` with ``levels``, ``p_max``
+        and ``p_min`` with ``extremes``.
 
     Raises
     ------
@@ -312,9 +356,12 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
     past_max = np.zeros(n, bool)  # maximum compression passed
     tension_seen = np.zeros(n, bool)  # P_hat <= 0 seen at a step end (penetration criterion)
+    level = np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float)
+    crossed = ~(level > 0)  # no level to find, or 0: reached at first touch
+    rising = params.force_slopes(x, y)[1] > 0  # P_hat' > 0 at the step's start
     # Events are only bracketed during the march (step start, size, flags); they are located afterwards
     # in one vectorised pass per kind, so the per-call cost of the step map is paid a few times, not per step.
-    records = {"max": [], "tension": [], "end": []}
+    records = {"max": [], "tension": [], "end": [], "grip": [], "turn": []}
     while lane.size:
         lanes = params.take(lane)
         h = step_size(lanes.zeta, lanes.ramp_lam, x, y, target)
@@ -330,6 +377,13 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
             _record(records["tension"], first, lane, x, y, h, tau, x1=x1, y1=y1)
         _record(records["max"], hit_max, lane, x, y, h, tau, x1=x1, y1=y1)
         _record(records["end"], done, lane, x, y, h, tau, x1=x1, y1=y1, x_end=x_end, tension_seen=tension_seen)
+        cross = ~crossed & (1.0 - y1 + lanes.gamma * (tau + h) >= level[lane])  # j reaches the level
+        crossed |= cross
+        _record(records["grip"], cross, lane, x, y, h, tau, x1=x1, y1=y1)
+        if extremes:
+            now = lanes.force_slopes(x1, y1)[1] > 0
+            _record(records["turn"], now != rising, lane, x, y, h, tau, x1=x1, y1=y1, rising=rising)
+            rising = now
         tau = tau + h
         late = ~done & (tau > HORIZON)
         if late.any():
@@ -337,8 +391,9 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8)
                               f"(first: zeta = {lanes.zeta[late][0]:.3g}, separation '{separation}')")
         keep = ~done
         lane, x, y, tau = lane[keep], x1[keep], y1[keep], tau[keep]
-        past_max, tension_seen = past_max[keep], tension_seen[keep]
-    return _locate_events(params, records, n, force_criterion)
+        past_max, tension_seen, crossed, rising = past_max[keep], tension_seen[keep], crossed[keep], rising[keep]
+    out = _locate_events(params, records, n, force_criterion, level if levels is not None else None, extremes)
+    return out
 
 
 def _record(store: list, mask, lane, x, y, h, tau, **flags) -> None:
@@ -352,9 +407,11 @@ def _join(store: list) -> dict:
     return {k: np.concatenate([r[k] for r in store]) for k in store[0]} if store else None
 
 
-def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool) -> dict:
+def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool, level, extremes: bool) -> dict:
     """Locate every bracketed event at once; see :func:`integrate` for the outputs."""
     out = {k: np.full(n, np.nan) for k in NORMAL_OUTPUTS}
+    y_p, tau_p = np.full(n, np.nan), np.full(n, np.nan)  # where P_hat first falls to 0
+    where_p = {}  # lane -> (record, index, s) of the step where P_hat first falls to 0
     step_of_max = np.full(n, np.nan)
     s_of_max = np.zeros(n)
     m = _join(records["max"])
@@ -368,9 +425,10 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
 
     t = _join(records["tension"])
     if t is not None:
-        _, yp, found = _first_ratio_root(params.take(t["lane"]), t["x"], t["y"], t["tau"], start_of(t), t["h"],
-                                         (t["x1"], t["y1"]))
-        out["y_p"][t["lane"][found]] = yp[found]
+        s_t, y_t, found = _first_ratio_root(params.take(t["lane"]), t["x"], t["y"], t["tau"], start_of(t), t["h"],
+                                            (t["x1"], t["y1"]))
+        y_p[t["lane"][found]], tau_p[t["lane"][found]] = y_t[found], t["tau"][found] + s_t[found]
+        where_p["tension"] = (t, np.flatnonzero(found), s_t[found])
     e = _join(records["end"])
     lanes, start = params.take(e["lane"]), start_of(e)
     s_x, x_x, y_x = e["h"].copy(), e["x1"].copy(), e["y1"].copy()  # where delta = 0, and the state there
@@ -380,16 +438,76 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool)
         s_x[i], (x_x[i], y_x[i]) = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i],
                                            e["h"][i], at_start, (e["x1"][i], e["y1"][i]))
     search = ~e["tension_seen"] | force_criterion  # P_hat = 0 with delta > 0, not found before this step
-    s_p, yp, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
+    s_p, y_e, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)
     if search.any():
         i = np.flatnonzero(search)
         s_i, y_i, f_i = _first_ratio_root(lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i], s_x[i],
                                           (x_x[i], y_x[i]))
-        s_p[i[f_i]], yp[i[f_i]], found[i[f_i]] = s_i[f_i], y_i[f_i], True
+        s_p[i[f_i]], y_e[i[f_i]], found[i[f_i]] = s_i[f_i], y_i[f_i], True
     ends_at_p = force_criterion & found & (s_p <= s_x)
-    out["tau_f"][e["lane"]] = e["tau"] + np.where(ends_at_p, s_p, s_x)
-    out["y_f"][e["lane"]] = np.where(ends_at_p, yp, y_x)
-    fresh = found & np.isnan(out["y_p"][e["lane"]])
-    out["y_p"][e["lane"][fresh]] = yp[fresh]
-    out["y_p"] = np.where(np.isnan(out["y_p"]), out["y_f"], out["y_p"])
+    j = e["lane"]
+    out["tau_f"][j] = e["tau"] + np.where(ends_at_p, s_p, s_x)
+    out["y_f"][j] = np.where(ends_at_p, y_e, y_x)
+    fresh = found & np.isnan(y_p[j])
+    y_p[j[fresh]], tau_p[j[fresh]] = y_e[fresh], e["tau"][fresh] + s_p[fresh]
+    never = np.isnan(y_p)  # P_hat does not fall to 0 before separation: at separation
+    y_p[never], tau_p[never] = out["y_f"][never], out["tau_f"][never]
+    where_p["end"] = (e, np.flatnonzero(fresh | never[j]), np.where(ends_at_p | fresh, s_p, s_x)[fresh | never[j]])
+    # J+ / (m v_n): the impulse of P_hat while positive, v_n (1 - y) of the motion plus gravity's share gamma tau
+    out["j_p"] = 1.0 - y_p + params.gamma * tau_p
+    if level is not None:
+        out["tau_g"] = _grip_instants(params, records, level, out["j_p"], where_p)
+    if extremes:
+        out |= _extremes(params, records, out, ends_at_p, j, (x_x, y_x), y_e)
     return out
+
+
+def _grip_instants(params: _Lanes, records: dict, level, j_p, where_p: dict) -> np.ndarray:
+    """tau_g: where j = 1 - y + gamma tau first reaches each lane's level, in the step whose end showed it;
+    where no step end did, on the step where P_hat first falls to 0, up to that instant, the level clamped to
+    j's largest value j_p (tau_p where the level is beyond it)."""
+    tau_g = np.where(level == 0, 0.0, np.nan)
+    g = _join(records["grip"])
+    if g is not None:
+        i = g["lane"]
+        s, _ = _locate(_level_event(level[i], g["tau"]), params.take(i), g["x"], g["y"], g["tau"],
+                       np.zeros(i.size), g["h"], (g["x"], g["y"]), (g["x1"], g["y1"]))
+        tau_g[i] = g["tau"] + s
+    for rec, pick, s_p in where_p.values():
+        i = rec["lane"][pick]
+        todo = np.isnan(tau_g[i]) & (level[i] > 0)
+        if not todo.any():
+            continue
+        i, pick, s_p = i[todo], pick[todo], s_p[todo]
+        clamped = np.minimum(level[i], j_p[i])
+        x0, y0, tau0 = rec["x"][pick], rec["y"][pick], rec["tau"][pick]
+        s = s_p.copy()  # a level at or beyond j_p: reached (clamped) where P_hat falls to 0
+        k = np.flatnonzero(clamped < j_p[i])
+        if k.size:  # j rises from the step's start to j_p at s_p
+            lanes = params.take(i[k])
+            at_hi = _start_state(lanes, x0[k], y0[k], s_p[k])
+            s[k], _ = _locate(_level_event(clamped[k], tau0[k]), lanes, x0[k], y0[k], tau0[k], np.zeros(k.size),
+                              s_p[k], (x0[k], y0[k]), at_hi)
+        tau_g[i] = tau0 + s
+    return tau_g
+
+
+def _extremes(params: _Lanes, records: dict, out: dict, ends_at_p, j, at_x, y_e) -> dict:
+    """p_max and p_min: P_hat at first touch (x = 0, y = 1), at separation (0 where the force criterion ends
+    the contact), and at each turning point before separation (roots of P_hat')."""
+    n = out["tau_f"].size
+    start = params.force(np.zeros(n), np.ones(n))
+    end = np.zeros(n)
+    end[j] = np.where(ends_at_p, 0.0, params.take(j).force(*at_x))
+    p_max, p_min = np.maximum(start, end), np.minimum(start, end)
+    turn = _join(records["turn"])
+    if turn is not None:
+        i = turn["lane"]
+        lanes = params.take(i)
+        s, (x, y) = _locate(_turn_event(turn["rising"]), lanes, turn["x"], turn["y"], turn["tau"], np.zeros(i.size),
+                            turn["h"], (turn["x"], turn["y"]), (turn["x1"], turn["y1"]))
+        value = lanes.force(x, y)
+        inside = turn["tau"] + s < out["tau_f"][i]
+        np.maximum.at(p_max, i[inside & turn["rising"]], value[inside & turn["rising"]])
+        np.minimum.at(p_min, i[inside & ~turn["rising"]], value[inside & ~turn["rising"]])
+    return {"p_max": p_max, "p_min": p_min}

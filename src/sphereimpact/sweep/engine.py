@@ -2,47 +2,44 @@
 
 Each scene takes the first path of :data:`.paths.ORDER` that takes it (:mod:`.paths`: the single-impact
 model for gravity on a slope, compliant contact and scenes the fast paths cannot bound; a kernel-less law's
-interpolant or per-family solves; the kelvin-voigt closed form; eq. 4.2's interpolants in lam or on the
-(zeta, lam) plane; the batched Taylor and Runge-Kutta lanes).  Every path but the single-impact one gives
-the dimensionless normal motion, from which the tangential velocity, spin and regime follow by the
-single-impact core's impulse algebra (:func:`sphereimpact.contact.tangential.impulse_outcome`), and the outputs
-that need the force's history (:data:`FAMILY_OUTPUTS`) from one single-impact solve per dimensionless
-family.  Results do not depend on the chunk size or on sharding: every lane is integrated independently
-and interpolants are built on the whole sweep.
+interpolant or per-family solves; a law's closed form; eq. 4.2's interpolants in lam or on the (zeta, lam)
+plane; the batched Taylor and Runge-Kutta lanes).  Every path but the single-impact one gives the
+dimensionless normal motion (:data:`~.outputs.NORMAL_OUTPUTS`) and what each row needs beyond it
+(:class:`~.outputs.Needs`: the force's extremes, the instant the friction-carrying impulse reaches the level
+the row's tangential model asks for), from which the row's tangential model gives its tangential end state
+(:class:`~sphereimpact.contact.tangential.SweptTangential`) and :func:`~sphereimpact.impact.outcome.outputs`
+every output, as for ``simulate``.  Results do not depend on the chunk size or on sharding: every lane is
+integrated independently and interpolants are built on the whole sweep.
 """
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
 
 from ..errors import ImpactError
-from ..impact.outcome import SCALAR_OUTPUTS
+from ..impact.outcome import SCALAR_OUTPUTS, EndState, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..impact.scene import SolverOptions
-from ..impact.solve import normal_motion
-from ..contact.tangential import impulse_outcome
-from .outputs import NORMAL_OUTPUTS
+from ..contact.tangential import TANGENTIALS
+from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .paths import ORDER, PATHS, Work
 from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
-__all__ = ["FAMILY_OUTPUTS", "FAST_OUTPUTS", "PATHS", "SCENE_COLUMNS", "SWEEP_OUTPUTS", "grid", "incidence",
+__all__ = ["HISTORY_OUTPUTS", "FAST_OUTPUTS", "PATHS", "SCENE_COLUMNS", "SWEEP_OUTPUTS", "grid", "incidence",
            "outputs_wanted", "parse_range", "rows", "scene_of", "scene_table", "sweep"]
 
 #: Outputs of a sweep: every scalar output of ``simulate``, named as it names them (one list, shared).
 SWEEP_OUTPUTS = SCALAR_OUTPUTS
-#: The outputs that depend on the whole time history of the normal force, not only on its end state: the
-#: fast paths (closed form, lanes, interpolants) get them from one single-impact solve per dimensionless family,
-#: scaled to each scene (exact: the family fixes the dimensionless motion).
-FAMILY_OUTPUTS = ("t_roll", "force_min", "force_max")
+#: The outputs that depend on the force's history, not only on the contact's end: each fast path computes
+#: them as it integrates or tabulates them (its extremes, and the instant the impulse reaches a grip level).
+HISTORY_OUTPUTS = ("t_roll", "force_min", "force_max")
 #: The outputs the fast paths compute from the end state alone (``outputs=FAST_OUTPUTS``: the fastest sweep).
-FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in FAMILY_OUTPUTS)
-#: Newton steps refining a grip instant from its interpolate on the solver's grid (quadratic convergence).
-GRIP_NEWTON = 5
-#: The regime column's values, by index.
-REGIMES = np.array(["none", "sliding", "rolling"], dtype=object)
+FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
@@ -69,7 +66,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         sweep's range, so the merged shards equal the sweep run at once.  Defaults to ``scenes``.
     outputs : sequence of str, optional
         The outputs wanted, some of :data:`SWEEP_OUTPUTS` (default: all, every scalar output of
-        ``simulate``).  :data:`FAST_OUTPUTS` spares the per-family solves of :data:`FAMILY_OUTPUTS`.
+        ``simulate``).  :data:`FAST_OUTPUTS` leaves out :data:`HISTORY_OUTPUTS`.
     elements, time_steps : int, optional
         The resolution of a tangential model that resolves the contact (``microslip``), as
         :class:`sphereimpact.SolverOptions` takes it.
@@ -101,10 +98,15 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100), elements=elements,
                             time_steps=time_steps)
     d = numbers(frame)
-    span_frame = frame if span is None else scene_table(span)
-    work = Work(frame, d, span_frame, d if span is None else numbers(span_frame), target, chunk_size, options,
-                progress)
-    normal = {key: np.full(n, np.nan) for key in NORMAL_OUTPUTS}
+    needs = needs_of(frame, d, wanted)
+    if span is None:
+        span_frame, span_d, span_needs = frame, d, needs
+    else:
+        span_frame = scene_table(span)
+        span_d = numbers(span_frame)
+        span_needs = needs_of(span_frame, span_d, wanted)
+    work = Work(frame, d, needs, span_frame, span_d, span_needs, target, chunk_size, options, progress)
+    normal = {key: np.full(n, np.nan) for key in (*NORMAL_OUTPUTS, *EXTREMES, "tau_g")}
     todo, span_todo, rest = np.ones(n, bool), np.ones(len(span_frame), bool), np.zeros(n, bool)
     for way in ORDER:
         taken = way.take(work, todo, span_todo)
@@ -118,35 +120,12 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if todo.any():  # every row has a path: the last one takes every batched kernel, an earlier one the others
         raise ImpactError(f"sweep: no path takes row {int(np.flatnonzero(todo)[0])}")
     if rest.any():
-        part = frame[rest]
-        d = d[rest]
-        dim = {key: values[rest] for key, values in normal.items()}
-        w, v_n, m = d.w, d.v_n, part["mass"].to_numpy()
-        radius = 0.5 * part["diameter"].to_numpy()
-        alpha, mu = part["inertia_factor"].to_numpy(), part["mu"].to_numpy()
-        angle, spin = incidence(part), part["spin"].to_numpy()
-        v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
-        slip0 = v_t - spin * radius
-        # friction acts while P > 0, so its impulse is mu J+ with J+ = m v_n (1 - y_p): y_p is the
-        # dimensionless rate where P first falls to 0 (at separation if it never pulls); no gravity here
-        vc_t, omega, ve_t, slides = impulse_outcome(v_t, spin, m * v_n * (1.0 - dim["y_p"]), m, radius, alpha, mu)
-        vc_n = -dim["y_f"] * v_n
-        moving = (v_t != 0) | (spin != 0)  # tangential motion at all
-        values = {"t_m": dim["tau_m"] / w, "delta_m": dim["x_m"] * v_n / w, "t_f": dim["tau_f"] / w,
-                  "vc_t": vc_t, "vc_n": vc_n, "ve_t": ve_t, "ve_n": vc_n, "omega_f": omega, "cor": -dim["y_f"],
-                  "switches": np.where(moving & ~slides & (slip0 != 0), 1.0, 0.0),
-                  "rebound_angle": np.degrees(np.arctan2(vc_t, vc_n)),
-                  "rebound_angle_contact": np.degrees(np.arctan2(ve_t, vc_n)),
-                  # no gravity along the flat on these paths: the change of tangential kinetic energy
-                  "work_t": 0.5 * m * (vc_t * vc_t - v_t * v_t) + 0.5 * alpha * m * radius * radius * (
-                      omega * omega - spin * spin)}
-        extras = [key for key in FAMILY_OUTPUTS if key in wanted]
-        if extras:
-            grips = moving & ~slides
-            values |= _history_outputs(part, d, extras, grips, slip0, mu * (1.0 + 1.0 / alpha) * v_n, options)
+        values = _complete(frame[rest], d[rest], {key: values[rest] for key, values in normal.items()})
         for key, value in values.items():
-            result[key][rest] = value
-        regime[rest] = REGIMES[np.where(~moving, 0, np.where(slides, 1, 2))]
+            if key == "regime":
+                regime[rest] = value
+            elif key in result:
+                result[key][rest] = value
     checked = [key for key in result if key in wanted and key != "t_roll"]
     finite = np.logical_and.reduce([np.isfinite(result[key]) for key in checked]) if checked else np.ones(n, bool)
     if not finite.all():  # never a NaN in a table
@@ -161,6 +140,63 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                       pd.DataFrame({"path": pd.Series(path, dtype=object)})], axis=1)
 
 
+def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
+    """What each row needs of a fast path beyond the normal outputs (:class:`~.outputs.Needs`): the force's
+    extremes when force_min or force_max is wanted, and with t_roll, the level of J+ / (m v_n) at which its
+    tangential model needs the instant (its ``swept.levels``; NaN for a normal impact, and for a model a
+    sweep solves scene by scene)."""
+    levels = np.full(len(frame), np.nan)
+    if "t_roll" in wanted:
+        rows = tangential_rows(frame, d.v_n)
+        moving = (rows.v_tangent != 0) | (rows.spin != 0)
+        names = frame["tangential"].to_numpy()
+        for name in dict.fromkeys(names[moving].tolist()):
+            model = TANGENTIALS[name].swept
+            if model is None:
+                continue
+            mine = np.flatnonzero(moving & (names == name))
+            view = SimpleNamespace(**{key: value[mine] for key, value in vars(rows).items()})
+            levels[mine] = model.levels(view) / (rows.mass[mine] * rows.v_normal[mine])
+    return Needs(extremes=bool({"force_min", "force_max"} & wanted), levels=levels)
+
+
+def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
+    """Every output of the rows ``part`` that a path solved in dimensionless normal form ``dim``
+    (:data:`NORMAL_OUTPUTS`, the force's extremes and the instants of the tangential models' levels where
+    asked): the normal events and extremes in SI units, the tangential motion's end from each row's
+    tangential model (its :class:`~sphereimpact.contact.tangential.SweptTangential`, given the friction-carrying
+    impulse J+ = m v_n j_p and those instants), then :func:`~sphereimpact.impact.outcome.outputs`, as
+    ``simulate`` derives them."""
+    n = len(part)
+    w, v_n, m = d.w, d.v_n, part["mass"].to_numpy()
+    rows = tangential_rows(part, v_n)
+    impulse, instants = m * v_n * dim["j_p"], dim["tau_g"] / w
+    tangential = {"vc_t": np.zeros(n), "omega_f": np.zeros(n), "t_roll": np.full(n, np.nan),
+                  "switches": np.zeros(n, np.int64), "regime": _objects(n, "none")}
+    moving = (rows.v_tangent != 0) | (rows.spin != 0)  # tangential motion at all: a normal impact has none
+    names = part["tangential"].to_numpy()
+    for name in dict.fromkeys(names[moving].tolist()):
+        mine = np.flatnonzero(moving & (names == name))
+        view = SimpleNamespace(**{key: value[mine] for key, value in vars(rows).items()})
+        for key, value in TANGENTIALS[name].swept.end(view, impulse[mine], instants[mine]).items():
+            tangential[key][mine] = value
+    force = m * v_n * w  # the force scale [N]
+    end = EndState(mass=m, radius=rows.radius, inertia_factor=rows.inertia_factor, v_normal=v_n,
+                   v_tangent=rows.v_tangent, spin=rows.spin, g_tangent=np.zeros(n), t_m=dim["tau_m"] / w,
+                   delta_m=dim["x_m"] * v_n / w, t_f=dim["tau_f"] / w, vc_n=-dim["y_f"] * v_n, u_t=np.zeros(n),
+                   force_min=dim["p_min"] * force, force_max=dim["p_max"] * force, **tangential)
+    return outputs(end)
+
+
+def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+    """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s]: what a tangential
+    model's :class:`~sphereimpact.contact.tangential.SweptTangential` reads."""
+    angle = incidence(part)
+    v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
+    columns = {name: part[name].to_numpy() for name in part.columns if name not in ("model", "separation", "tangential")}
+    return SimpleNamespace(**columns, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
+
+
 def outputs_wanted(outputs) -> set:
     """The outputs asked for (all when None), checked against :data:`SWEEP_OUTPUTS`."""
     if outputs is None:
@@ -171,58 +207,3 @@ def outputs_wanted(outputs) -> set:
         got = unknown[0] if unknown else "none"
         raise ValueError(f"outputs must be some of {', '.join(SWEEP_OUTPUTS)}; got {got!r}")
     return set(names)
-
-
-def _grip_times(normal, impulses: np.ndarray) -> np.ndarray:
-    """The instants [s] at which the normal impulse of P+ reaches each of ``impulses`` [N s] (each reached
-    by t_f): bracketed on the solver's grid (the impulse never decreases), then Newton's method on
-    dJ+/dt = P+, kept inside the bracket, to the last bits."""
-    from ..contact.tangential import PositiveImpulse
-
-    impulse = PositiveImpulse(normal)
-    times = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
-    on_grid = impulse(times)
-    upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, times.size - 1)
-    low, high = times[upper - 1], times[upper]
-    j_low, j_high = on_grid[upper - 1], on_grid[upper]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(j_high > j_low, low + (impulses - j_low) / (j_high - j_low) * (high - low), high)
-    for _ in range(GRIP_NEWTON):
-        rate = np.maximum(normal.force(t), 0.0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.where(rate > 0, (impulse(t) - impulses) / rate, 0.0)
-        t = np.clip(t - step, low, high)
-    return np.where(impulses <= 0, 0.0, t)
-
-
-def _history_outputs(part: pd.DataFrame, d: Numbers, wanted, grips, slip0, grip_rate, options) -> dict:
-    """force_min, force_max and t_roll of scenes on the fast paths, from one single-impact normal solve per
-    dimensionless family (model, its numbers, gamma, criterion), scaled to each scene: forces by m v_n / T and
-    times by T.  A scene grips when the normal impulse of P+ reaches m |slip0| / (mu (1 + 1/alpha)), which
-    ``grip_rate`` = mu (1 + 1/alpha) v_n turns into the family's dimensionless impulse; that instant is found
-    on the family's impulse (:func:`_grip_times`)."""
-    from ..ode.events import extremum
-
-    n = len(part)
-    out = {key: np.full(n, np.nan) for key in wanted}
-    w, v_n, m = d.w, d.v_n, part["mass"].to_numpy()
-    scale = m * v_n * w  # force scale [N]
-    labels = [part["model"].to_numpy(), d.separation, d.gamma, d.zeta, d.lam,
-              np.array([str(f) for f in d.family], dtype=object)]
-    codes, _ = pd.MultiIndex.from_arrays(labels).factorize()
-    target = np.abs(slip0) / np.where(grip_rate > 0, grip_rate, np.inf)  # the dimensionless impulse at grip
-    for code in range(codes.max() + 1 if n else 0):
-        members = np.flatnonzero(codes == code)
-        first = members[0]
-        normal = normal_motion(scene_of(part.iloc[first].to_dict()), options)
-        if "force_min" in wanted or "force_max" in wanted:
-            forces = normal.force(normal.grid)
-            for key, kind in (("force_min", "min"), ("force_max", "max")):
-                if key in wanted:
-                    out[key][members] = extremum(normal.force, normal.grid, kind, forces)[1] / scale[first] * scale[members]
-        if "t_roll" in wanted:
-            gripping = members[grips[members]]
-            if gripping.size:
-                out["t_roll"][gripping] = _grip_times(normal, target[gripping] * m[first] * v_n[first]) * (
-                    w[first] / w[gripping])
-    return out

@@ -25,7 +25,7 @@ from ..impact.inputs import SEPARATION_CRITERIA
 from ..impact.scene import SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
-from .outputs import NORMAL_OUTPUTS
+from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .scenes import CLOSED_FORMS, Numbers, _compliant, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
@@ -35,6 +35,9 @@ from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_moti
 SIMILARITY_MIN = 2000
 PLANE_MIN = 3000
 FAMILY_MIN = 200
+#: Fewest scenes asking a grip instant for the lam interpolant to tabulate them (its grip tables cost about
+#: as much to build as the Taylor lanes take to reach that many instants, each stopping there).
+GRIP_TABLE_MIN = 40_000
 #: Largest damping ratio the lanes, the similarity path and the closed form take (the accepted domain's edge,
 #: where their contract is tested); beyond it an over-damped creep makes a lane's steps unbounded.
 LANES_ZETA_MAX = 100.0
@@ -54,14 +57,17 @@ SINGLES_CHUNK = 100
 
 @dataclass(frozen=True)
 class Work:
-    """What a path reads: the scenes to solve (``frame``, their ``numbers``), the whole sweep they belong to
-    (``span_frame``, ``span``; the same objects when the sweep is not sharded), the accuracy ``target``, the
-    scenes integrated at once (``chunk_size``), the single-impact ``options`` and ``progress(done, total)``."""
+    """What a path reads: the scenes to solve (``frame``, their ``numbers``, what each ``needs`` beyond the
+    normal outputs), the whole sweep they belong to (``span_frame``, ``span``, ``span_needs``; the same
+    objects when the sweep is not sharded), the accuracy ``target``, the scenes integrated at once
+    (``chunk_size``), the single-impact ``options`` and ``progress(done, total)``."""
 
     frame: pd.DataFrame
     numbers: Numbers
+    needs: Needs
     span_frame: pd.DataFrame
     span: Numbers
+    span_needs: Needs
     target: float
     chunk_size: int
     options: SolverOptions
@@ -90,7 +96,10 @@ class Take:
 
 class SweepPath:
     """One way to solve some scenes of a sweep.  ``name`` is the value of the sweep's ``path`` column,
-    ``summary`` one line for its help; ``gives`` is ``"normal"`` (:data:`NORMAL_OUTPUTS`) or ``"all"``."""
+    ``summary`` one line for its help; ``gives`` is ``"normal"`` (:data:`NORMAL_OUTPUTS`, with ``p_max`` and
+    ``p_min`` where the rows' :class:`~.outputs.Needs` ask for the force's extremes and ``tau_g`` where they
+    ask for the instant of a level of the impulse) or ``"all"`` (every output of ``simulate``).  A path takes
+    only rows it can give all of that."""
 
     name = ""
     summary = ""
@@ -264,7 +273,8 @@ class FamilyInterpolantPath(SweepPath):
                 continue
             try:
                 built[key] = FamilyInterpolant(scene_of(work.span_frame.iloc[rows[0]].to_dict()), float(q.min()),
-                                               float(q.max()), key[-1], work.target)
+                                               float(q.max()), key[-1], work.target, extremes=work.needs.extremes,
+                                               grips=work.span_needs.grips(rows).any())
             except InterpolationError:  # such a group is solved family by family
                 continue
             taken[rows] = True
@@ -273,7 +283,8 @@ class FamilyInterpolantPath(SweepPath):
             if key in built:
                 rows = np.array(rows)
                 q = np.array([d.family[i][-1] for i in rows])
-                tasks.append(Task(rows, lambda interpolant=built[key], q=q: interpolant(q)))
+                levels = work.needs.levels_of(rows)
+                tasks.append(Task(rows, lambda interpolant=built[key], q=q, levels=levels: interpolant(q, levels)))
         return Take(tasks, taken)
 
 
@@ -288,18 +299,30 @@ class PerFamilyPath(SweepPath):
     def take(self, work, todo, span_todo):
         d = work.numbers
         rows = np.flatnonzero(~d.batched & todo)
-        task = Task(rows, lambda: self._solve(work.frame.iloc[rows], d.family[rows], d.gamma[rows], work.target))
+        task = Task(rows, lambda: self._solve(work.frame.iloc[rows], d.family[rows], d.gamma[rows], work.target,
+                                              work.needs.extremes, work.needs.levels[rows]))
         return Take([task] if rows.size else [], span_todo & ~work.span.batched)
 
     @staticmethod
-    def _solve(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float) -> dict:
+    def _solve(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float, extremes: bool,
+               levels: np.ndarray) -> dict:
         options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
         keys = [(*f, float(g), sep) for f, g, sep in zip(family, gamma, frame["separation"].to_numpy())]
-        first: dict = {}
+        members: dict = {}
         for i, key in enumerate(keys):
-            first.setdefault(key, i)
-        solved = {key: dimensionless_motion(scene_of(frame.iloc[i].to_dict()), options) for key, i in first.items()}
-        return {name: np.array([solved[key][name] for key in keys]) for name in NORMAL_OUTPUTS}
+            members.setdefault(key, []).append(i)
+        names = [*NORMAL_OUTPUTS, *(EXTREMES if extremes else ())]
+        out = {name: np.empty(len(keys)) for name in names} | {"tau_g": np.full(len(keys), np.nan)}
+        for key, rows in members.items():
+            rows = np.array(rows)
+            known = rows[np.isfinite(levels[rows])]  # the family's dimensionless motion serves every level
+            solved = dimensionless_motion(scene_of(frame.iloc[rows[0]].to_dict()), options, extremes,
+                                          levels[known] if known.size else None)
+            for name in names:
+                out[name][rows] = solved[name]
+            if known.size:
+                out["tau_g"][known] = solved["tau_g"]
+        return out
 
 
 # ---------------------------------------------------------------- laws with a batched kernel, without gravity
@@ -309,24 +332,25 @@ class _ByCriterion(SweepPath):
     """A path that takes every remaining row it admits, one task per separation criterion, solved in chunks
     of ``work.chunk_size`` (progress after each)."""
 
-    def admits(self, d: Numbers) -> np.ndarray:
-        """Mask of the scenes of ``d`` this path can solve."""
+    def admits(self, d: Numbers, needs: Needs) -> np.ndarray:
+        """Mask of the scenes of ``d`` this path can solve, giving what ``needs`` asks."""
         raise NotImplementedError
 
-    def solve(self, d: Numbers, rows: np.ndarray, separation: str, target: float) -> dict:
-        """:data:`NORMAL_OUTPUTS` of the scenes ``rows`` of ``d`` under ``separation``."""
+    def solve(self, d: Numbers, rows: np.ndarray, separation: str, target: float, needs: Needs) -> dict:
+        """:data:`NORMAL_OUTPUTS` of the scenes ``rows`` of ``d`` under ``separation``, and what ``needs``
+        asks of them."""
         raise NotImplementedError
 
     def take(self, work, todo, span_todo):
         d = work.numbers
-        admitted = self.admits(d)
+        admitted = self.admits(d, work.needs)
         tasks = []
         for separation in SEPARATION_CRITERIA:
             rows = np.flatnonzero(todo & d.criterion(separation) & admitted)
             if rows.size:
                 tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
-                    rows, work.chunk_size, lambda i: self.solve(d, i, s, work.target), work.progress)))
-        return Take(tasks, span_todo & self.admits(work.span))
+                    rows, work.chunk_size, lambda i: self.solve(d, i, s, work.target, work.needs), work.progress)))
+        return Take(tasks, span_todo & self.admits(work.span, work.span_needs))
 
 
 class ClosedPath(_ByCriterion):
@@ -336,20 +360,35 @@ class ClosedPath(_ByCriterion):
     name = "closed"
     summary = "the law's closed-form events"
 
-    def admits(self, d):
-        return d.closed & (d.gamma == 0)
+    def admits(self, d, needs):
+        """Weightless scenes of a law with a closed form; where a row needs more than the events, a closed
+        form that declares its ``jet`` (from which the extremes and grip instants follow)."""
+        jets = np.array([form.jet is not None for form in CLOSED_FORMS] + [False])  # code -1: no closed form
+        extras = needs.extremes | np.isfinite(needs.levels)
+        return d.closed & (d.gamma == 0) & (jets[d.exact] | ~extras)
 
-    def solve(self, d, rows, separation, target):
+    def solve(self, d, rows, separation, target, needs):
         codes = d.exact[rows]
-        groups = np.unique(codes)
-        if groups.size == 1:  # one law's closed form (the usual case)
-            return CLOSED_FORMS[groups[0]].events({"zeta": d.zeta[rows], "lam": d.lam[rows]}, separation)
-        out = {name: np.empty(rows.size) for name in NORMAL_OUTPUTS}
-        for code in groups:
-            mine = codes == code
-            numbers = {"zeta": d.zeta[rows[mine]], "lam": d.lam[rows[mine]]}
-            for name, value in CLOSED_FORMS[code].events(numbers, separation).items():
-                out[name][mine] = value
+        out = None
+        for code in np.unique(codes):
+            mine = np.flatnonzero(codes == code)
+            form = CLOSED_FORMS[code]
+            numbers = {name: getattr(d, name)[rows[mine]] for name in form.reads}
+            values = form.events(numbers, separation)
+            if needs.extremes:
+                values |= form.extremes(numbers, values["tau_f"])
+            levels = needs.levels[rows[mine]]
+            if np.isfinite(levels).any():
+                values["tau_g"] = np.full(mine.size, np.nan)
+                known = np.flatnonzero(np.isfinite(levels))
+                values["tau_g"][known] = form.grip_instants({k: v[known] for k, v in numbers.items()}, levels[known],
+                                                            *(values[k][known] for k in ("tau_m", "tau_f", "j_p")))
+            if codes.size == mine.size:  # one law's closed form (the usual case)
+                return values
+            if out is None:
+                out = {name: np.full(rows.size, np.nan) for name in values}
+            for name, value in values.items():
+                out.setdefault(name, np.full(rows.size, np.nan))[mine] = value
         return out
 
 
@@ -373,7 +412,9 @@ class LambdaInterpolantPath(SweepPath):
                 members = mine[group == i]
                 lam = span.lam[members]
                 try:
-                    interpolant = LambdaInterpolant(float(zetas[i]), lam.min(), lam.max(), criterion, work.target)
+                    interpolant = LambdaInterpolant(float(zetas[i]), lam.min(), lam.max(), criterion, work.target,
+                                                    extremes=work.needs.extremes,
+                                                    grips=work.span_needs.grips(members).sum() >= GRIP_TABLE_MIN)
                 except InterpolationError:  # such a group is integrated scene by scene instead
                     continue
                 taken[members] = True
@@ -385,7 +426,7 @@ class LambdaInterpolantPath(SweepPath):
                                      f"{d.lam[outside[0]]:.6g} outside the span's [{interpolant.lo:.6g}, "
                                      f"{interpolant.hi:.6g}]; pass the whole sweep as span")
                 tasks.append(Task(rows, lambda rows=rows, f=interpolant: _chunked(
-                    rows, work.chunk_size, lambda i: f(d.lam[i]))))
+                    rows, work.chunk_size, lambda i: f(d.lam[i], work.needs.levels_of(i)))))
         return Take(tasks, taken)
 
 
@@ -412,7 +453,8 @@ class PlanePath(SweepPath):
                 continue
             zeta, lam = span.zeta[members], span.lam[members]
             try:
-                f = plane.PlaneInterpolant(zeta.min(), zeta.max(), lam.min(), lam.max(), separation, work.target)
+                f = plane.PlaneInterpolant(zeta.min(), zeta.max(), lam.min(), lam.max(), separation, work.target,
+                                           extremes=work.needs.extremes)
             except InterpolationError:  # integrated by the lanes instead
                 continue
             taken[members] = True
@@ -423,8 +465,8 @@ class PlanePath(SweepPath):
                 raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} (zeta = "
                                  f"{d.zeta[outside[0]]:.6g}, lam = {d.lam[outside[0]]:.6g}) lies outside the span's "
                                  "plane; pass the whole sweep as span")
-            tasks.append(Task(rows, lambda rows=rows, f=f: _chunked(rows, work.chunk_size,
-                                                                    lambda i: f(d.zeta[i], d.lam[i]))))
+            tasks.append(Task(rows, lambda rows=rows, f=f: _chunked(
+                rows, work.chunk_size, lambda i: f(d.zeta[i], d.lam[i], work.needs.levels_of(i)))))
         return Take(tasks, taken)
 
 
@@ -434,11 +476,12 @@ class TaylorLanesPath(_ByCriterion):
     name = "taylor-lanes"
     summary = "batched Taylor-series lanes"
 
-    def admits(self, d):
+    def admits(self, d, needs):
         return _series_lanes(d)
 
-    def solve(self, d, rows, separation, target):
-        return series_lanes.integrate(d.zeta[rows], d.lam[rows], separation, target)
+    def solve(self, d, rows, separation, target, needs):
+        return series_lanes.integrate(d.zeta[rows], d.lam[rows], separation, target, levels=needs.levels_of(rows),
+                                      extremes=needs.extremes)
 
 
 class RungeKuttaLanesPath(_ByCriterion):
@@ -447,11 +490,12 @@ class RungeKuttaLanesPath(_ByCriterion):
     name = "runge-kutta-lanes"
     summary = "batched Runge-Kutta lanes"
 
-    def admits(self, d):
+    def admits(self, d, needs):
         return d.batched
 
-    def solve(self, d, rows, separation, target):
-        return batch.integrate(d.zeta[rows], d.lam[rows], d.gamma[rows], d.modified[rows], separation, target)
+    def solve(self, d, rows, separation, target, needs):
+        return batch.integrate(d.zeta[rows], d.lam[rows], d.gamma[rows], d.modified[rows], separation, target,
+                               levels=needs.levels_of(rows), extremes=needs.extremes)
 
 
 #: The paths in their precedence: the first that takes a row solves it.

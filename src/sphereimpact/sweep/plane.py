@@ -8,7 +8,7 @@ Taylor lanes (:mod:`.series_lanes`):
 
 1. ``calm``: the penetration criterion's tau_m, x_m, tau_f and y_f in (zeta, u = log lam), smooth on the whole
    rectangle.  They give G = 1 + 2 zeta lam y_f, the force's sign as delta -> 0+: the force pulls before
-   delta = 0 iff G < 0, and otherwise both criteria end at delta = 0 with y_p = y_f;
+   delta = 0 iff G < 0, and otherwise both criteria end at delta = 0 with j_p = 1 - y_f;
 2. ``tension``: the ``continued`` end's tau_f and y_f (the first root of P_hat / x, continued past delta = 0
    where the force does not pull before it), in (zeta, v = log(2 zeta lam)).  They equal the force
    criterion's end wherever the force pulls and are smooth across the onset, so the piece needs no cut
@@ -29,11 +29,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.fft import dctn
-
 from . import series_lanes
 from ..errors import InterpolationError
-from .similarity import NODE_FACTOR, NODE_TARGET_MIN, _lobatto
+from .chebyshev import Tensor, lobatto
+from .similarity import NODE_FACTOR, NODE_TARGET_MIN
 
 #: Largest zeta the plane takes: towards critical damping the penetration criterion's t_f steepens (x creeps
 #: back to 0) and the calm piece needs ever more nodes in zeta (zeta 0.01 to 0.5, 0.6, 0.8 with lam 1e-3 to
@@ -55,16 +54,8 @@ MAX_NODES = 8192
 #: Outputs of each piece.
 CALM = ("tau_m", "x_m", "tau_f", "y_f")
 TENSION = ("tau_f", "y_f")
-#: Points evaluated per matrix product (see :meth:`_Tensor.__call__`): below the size where OpenBLAS starts
-#: a second thread, which doubled the time.
-EVAL_BLOCK = 1024
 #: A piece is accepted when its tails are below TAIL_FACTOR x target (see the module docstring).
 TAIL_FACTOR = 1.0
-#: Trailing rows and columns of coefficients are dropped from the evaluated series while the sum of the
-#: dropped magnitudes (a bound on the change, |T_k| <= 1) stays below TRUNCATE x target.
-TRUNCATE = 0.01
-
-
 def _odd(n: float) -> int:
     """The odd integer at or above n, at least MIN_NODES."""
     n = max(math.ceil(n), MIN_NODES)
@@ -75,70 +66,6 @@ def onset_edge(zeta):
     """The tension piece's lower edge in v = log(2 zeta lam): ONSET_MARGIN x the estimated onset."""
     zeta = np.asarray(zeta, dtype=float)
     return ONSET_MARGIN * np.pi * zeta / (1.0 + 2.8 * zeta)
-
-
-def _chebyshev_matrix(t, n: int) -> np.ndarray:
-    """T_0..T_(n-1) at t, shape (n, len(t))."""
-    out = np.empty((n, t.size))
-    out[0] = 1.0
-    if n > 1:
-        out[1] = t
-    two_t = 2.0 * t
-    for k in range(2, n):
-        np.multiply(two_t, out[k - 1], out=out[k])
-        out[k] -= out[k - 2]
-    return out
-
-
-def _kept(size: np.ndarray, budget: float) -> tuple[int, int]:
-    """(rows, columns) of ``size`` (coefficient magnitudes) to keep: trailing rows, then trailing columns, are
-    dropped while the dropped magnitudes sum to at most ``budget`` (half of it for each direction)."""
-    rows = size.shape[0]
-    while rows > 1 and size[rows - 1:].sum() <= 0.5 * budget:
-        rows -= 1
-    dropped, cols = size[rows:].sum(), size.shape[1]
-    while cols > 1 and dropped + size[:rows, cols - 1:].sum() <= budget:
-        cols -= 1
-    return rows, cols
-
-
-class _Tensor:
-    """A tensor Chebyshev series in (a, b) on [a_lo, a_hi] x [0, 1] (b already mapped), of several outputs,
-    interpolating values on the Lobatto grid (values: (n_a, n_b, outputs), both axes from the top down).
-
-    Its tails (the last two coefficients in each direction, summed over the other) estimate how well it
-    resolves each direction; negligible trailing coefficients are dropped (:func:`_kept`).
-    """
-
-    def __init__(self, lo: float, hi: float, values: np.ndarray, target: float):
-        self.lo, self.hi = lo, hi
-        coef = dctn(values, type=1, axes=(0, 1)) / ((values.shape[0] - 1) * (values.shape[1] - 1))
-        coef[[0, -1]] /= 2.0
-        coef[:, [0, -1]] /= 2.0
-        self.tails = (float(np.abs(coef[-2:]).max(axis=2).sum()), float(np.abs(coef[:, -2:]).max(axis=2).sum()))
-        size = np.abs(coef).max(axis=2)
-        rows, cols = _kept(size, TRUNCATE * target)
-        self.coef = np.ascontiguousarray(coef[:rows, :cols].transpose(2, 0, 1))
-
-    def __call__(self, a, b01) -> np.ndarray:
-        """Values at (a, b01), b01 in [0, 1]: shape (outputs, len(a)).
-
-        sum_ij c_ij T_i(a) T_j(b) as (C T_b) summed against T_a: one matrix product for all outputs, in
-        blocks of EVAL_BLOCK points (the last one padded), so that a point's value does not depend on how
-        many are evaluated with it (a BLAS product of another width may round differently).
-        """
-        outputs, n_a, n_b = self.coef.shape
-        flat = self.coef.reshape(outputs * n_a, n_b)
-        out = np.empty((outputs, a.size))
-        for start in range(0, a.size, EVAL_BLOCK):
-            stop = min(start + EVAL_BLOCK, a.size)
-            ta, tb = np.zeros(EVAL_BLOCK), np.zeros(EVAL_BLOCK)
-            ta[:stop - start] = (2.0 * a[start:stop] - (self.lo + self.hi)) / (self.hi - self.lo)
-            tb[:stop - start] = 2.0 * b01[start:stop] - 1.0
-            values = np.einsum("kan,an->kn", (flat @ _chebyshev_matrix(tb, n_b)).reshape(outputs, n_a, -1),
-                               _chebyshev_matrix(ta, n_a))
-            out[:, start:stop] = values[:, :stop - start]
-        return out
 
 
 class PlaneInterpolant:
@@ -153,6 +80,10 @@ class PlaneInterpolant:
     separation : {'force', 'penetration'}
     target : float
         Accuracy the interpolant must meet (its Chebyshev tails below it, see the module docstring).
+    extremes : bool
+        Also the force's largest value on the calm piece (it comes before any tension, so it is smooth on
+        the whole rectangle); the least value is 0 wherever the force does not pull before the contact ends,
+        and is integrated by the Taylor lanes where it does (the penetration criterion's tension).
 
     Attributes
     ----------
@@ -169,12 +100,13 @@ class PlaneInterpolant:
     """
 
     def __init__(self, zeta_min: float, zeta_max: float, lam_min: float, lam_max: float, separation: str,
-                 target: float):
+                 target: float, extremes: bool = False):
         if not (0 < zeta_min <= zeta_max <= ZETA_MAX and LAM_MIN <= lam_min <= lam_max <= LAM_MAX):
             raise InterpolationError(f"the (zeta, lam) plane covers zeta in (0, {ZETA_MAX:g}] and lam in "
                                      f"[{LAM_MIN:g}, {LAM_MAX:g}]; got zeta [{zeta_min:g}, {zeta_max:g}], "
                                      f"lam [{lam_min:g}, {lam_max:g}]")
-        self.separation = separation
+        self.separation, self.extremes, self.target = separation, extremes, target
+        self.calm_keys = CALM + (("p_max",) if extremes else ())
         self.zeta_min, self.zeta_max, self.lam_min, self.lam_max = zeta_min, zeta_max, lam_min, lam_max
         self.zeta = (zeta_min, max(zeta_max, zeta_min * (1.0 + 1e-6)))
         u_lo, u_hi = math.log(lam_min), math.log(lam_max)
@@ -199,11 +131,11 @@ class PlaneInterpolant:
             lam = np.concatenate([g[1].ravel() for g in grids.values()])
             split = grids["calm"][0].size
             ends = np.where(np.arange(zeta.size) < split, "penetration", "continued")
-            solved = series_lanes.integrate(zeta, lam, ends, node_target)
+            solved = series_lanes.integrate(zeta, lam, ends, node_target, extremes=extremes)
             self.nodes += zeta.size
-            self.calm = _Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"]) for k in CALM], -1),
-                                target)
-            self.tension = _Tensor(*self.zeta, np.stack([solved[k][split:].reshape(sizes["tension"])
+            self.calm = Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"])
+                                                     for k in self.calm_keys], -1), target)
+            self.tension = Tensor(*self.zeta, np.stack([solved[k][split:].reshape(sizes["tension"])
                                                          for k in TENSION], -1), target)
             grown = {piece: tuple(_odd(GROWTH * n) if tail > TAIL_FACTOR * target else n
                                   for n, tail in zip(sizes[piece], getattr(self, piece).tails))
@@ -215,8 +147,8 @@ class PlaneInterpolant:
     def _grid(self, piece: str, n_zeta: int, n_other: int) -> tuple[np.ndarray, np.ndarray]:
         """(zeta, lam) of a piece's Lobatto grid, shape (n_zeta, n_other): the calm piece in (zeta, u), the
         tension piece in (zeta, v) from its edge to v_top (s in [0, 1] between them)."""
-        zeta = _lobatto(*self.zeta, n_zeta)[:, None]
-        s = _lobatto(0.0, 1.0, n_other)[None, :]
+        zeta = lobatto(*self.zeta, n_zeta)[:, None]
+        s = lobatto(0.0, 1.0, n_other)[None, :]
         if piece == "calm":
             lam = np.exp(self.u[0] + s * (self.u[1] - self.u[0]))
         else:
@@ -224,12 +156,23 @@ class PlaneInterpolant:
             lam = np.exp(edge + s * (self.v_top - edge)) / (2.0 * zeta)
         return np.broadcast_arrays(zeta, lam)
 
-    def __call__(self, zeta, lam) -> dict:
-        """tau_m, x_m, tau_f, y_f and y_p at each (zeta, lam) of the rectangle."""
+    def __call__(self, zeta, lam, levels=None) -> dict:
+        """tau_m, x_m, tau_f, y_f and j_p at each (zeta, lam) of the rectangle; p_max and p_min if built with
+        extremes; with ``levels`` (of the impulse j, NaN: none), tau_g, the instant j reaches each, by the Taylor
+        lanes, each stopping there (:func:`.series_lanes.integrate`, ``grip_only``)."""
         zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
         calm = self.calm(zeta, (np.log(lam) - self.u[0]) / (self.u[1] - self.u[0]))
-        out = dict(zip(CALM, calm))
-        out["y_p"] = out["y_f"].copy()
+        out = dict(zip(self.calm_keys, calm))
+        out["j_p"] = 1.0 - out["y_f"]
+        if self.extremes:
+            out["p_min"] = np.zeros(zeta.size)
+        if levels is not None:
+            out["tau_g"] = np.full(zeta.size, np.nan)
+            known = np.flatnonzero(np.isfinite(levels))
+            if known.size:
+                out["tau_g"][known] = series_lanes.integrate(zeta[known], lam[known], self.separation,
+                                                             self.target, levels=levels[known],
+                                                             grip_only=True)["tau_g"]
         pulls = np.flatnonzero(1.0 + 2.0 * zeta * lam * out["y_f"] < 0)
         if pulls.size:
             z = zeta[pulls]
@@ -244,7 +187,10 @@ class PlaneInterpolant:
                 alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], "force", self.node_target)
                 for k in TENSION:
                     rest[k][~inside] = alone[k]
-            out["y_p"][pulls] = rest["y_f"]
+            out["j_p"][pulls] = 1.0 - rest["y_f"]
+            if self.extremes and self.separation == "penetration":  # the tension's least force: integrated
+                out["p_min"][pulls] = series_lanes.integrate(z, lam[pulls], "penetration", self.node_target,
+                                                             extremes=True)["p_min"]
             if self.separation == "force":
                 out["tau_f"][pulls], out["y_f"][pulls] = rest["tau_f"], rest["y_f"]
         return out

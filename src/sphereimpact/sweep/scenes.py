@@ -29,13 +29,16 @@ def scene_table(scenes) -> pd.DataFrame:
     """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row).
 
     A DataFrame is one scene per row; a dict of values or lists is every combination of them (:func:`grid`),
-    as the command line's ranges are."""
+    as the command line's ranges are.  An empty cell (NaN or None) is a parameter the row does not give, as a
+    missing column is for every row: it takes the default, or its law's or model's (so one table may describe
+    one row's approach by incidence and another's by the flat's tilt, one Hertz law by k and another by
+    modulus), as the sweep's own tables write them."""
     given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
     unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
     if unknown:
         raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
     n = len(given)
-    columns = {name: given[name].to_numpy() if name in given
+    columns = {name: _defaulted(given[name].to_numpy(), DEFAULTS[name]) if name in given
                else _objects(n, DEFAULTS[name]) if name in TEXT_FIELDS else np.full(n, DEFAULTS[name])
                for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
     laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
@@ -61,6 +64,22 @@ def scene_table(scenes) -> pd.DataFrame:
     return frame
 
 
+def _defaulted(values: np.ndarray, default) -> np.ndarray:
+    """A column with its empty cells (NaN or None: not given) set to the field's ``default``, if it has one (the
+    law's and the tangential model's parameters, and the approach by the ball's path, stay empty: each row's
+    law or model reads them)."""
+    if default is None:
+        return values
+    if values.dtype.kind == "f":
+        return np.where(np.isnan(values), default, values)
+    if values.dtype == object:
+        empty = np.array([v is None or (isinstance(v, float) and v != v) for v in values.tolist()], dtype=bool)
+        if empty.any():
+            values = values.copy()
+            values[empty] = default
+    return values
+
+
 def _objects(n: int, value) -> np.ndarray:
     """An object array of n references to ``value`` (np.full fills object arrays 20x slower)."""
     out = np.empty(n, dtype=object)
@@ -69,11 +88,12 @@ def _objects(n: int, value) -> np.ndarray:
 
 
 def _compliant(frame: pd.DataFrame) -> np.ndarray:
-    """Scenes whose tangential model is not ``batched`` (its motion is integrated: solved scene by scene)."""
+    """Scenes whose tangential model has no ``swept`` end state (its motion is integrated: solved scene by
+    scene)."""
     names = frame["tangential"].to_numpy()
     out = np.ones(names.shape, dtype=bool)
     for name, model in TANGENTIALS.items():
-        if model.batched:
+        if model.swept is not None:
             out &= names != name  # numpy's comparison: pandas' is 4x slower
     return out
 

@@ -35,6 +35,7 @@ import numpy as np
 
 from ..contact.laws.linear import modified_series_batched
 from ..errors import ImpactError
+from ..ode.roots import falling_root
 from ..ode.series import BAND_EDGE, MAX_STEPS, band_limit, order_for
 from .batch import HORIZON
 from .outputs import NORMAL_OUTPUTS
@@ -48,9 +49,6 @@ ZETA_MAX, LAM_MAX = 1.0, 1e12
 TOLERANCE_FACTOR = 0.01
 #: Tightest local tolerance (round-off of the O(1) state).
 TOLERANCE_MIN = 1e-15
-ROOT_ITERATIONS = 60
-#: An event's Newton iteration stops when its update is below SETTLED x the event time.
-SETTLED = 1e-14
 
 
 def covers(zeta, lam):
@@ -106,39 +104,23 @@ def _polynomial(coefficients):
     return lambda s: _horner(both, s)
 
 
-def _newton(function, a, b, f_a, f_b, tau):
-    """Root in s of each lane's decreasing ``function`` (s -> (f, f')) with f(a) = f_a > 0 >= f(b) = f_b.
-
-    Newton from the secant point; a step leaving the bracket bisects instead; a lane stops once its update
-    is below SETTLED x its event time tau + s (far below any target; near 1 ulp round-off in f decides, and
-    Q's, with terms up to 2 zeta lam |y|, would keep it moving).
-    """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = np.where(f_a - f_b > 0, a + (b - a) * f_a / (f_a - f_b), b)
-    s = np.clip(s, a, b)
-    for _ in range(ROOT_ITERATIONS):
-        f, df = function(s)
-        a, b = np.where(f > 0, s, a), np.where(f < 0, s, b)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = s - f / df
-        new = np.where((step >= a) & (step <= b), step, 0.5 * (a + b))
-        settled = (f == 0) | (np.abs(new - s) <= SETTLED * np.maximum(tau + np.abs(s), 1e-300))
-        s = np.where(settled, s, new)
-        if settled.all():
-            break
-    return s
-
-
 def _polynomial_root(coefficients, b, tau):
     """Root in (0, b] of each lane's decreasing polynomial, positive at 0."""
     zero = np.zeros(b.size)
-    return _newton(_polynomial(coefficients), zero, b, coefficients[0], _horner(coefficients, b), tau)
+    return falling_root(_polynomial(coefficients), zero, b, coefficients[0], _horner(coefficients, b), tau)
 
 
 SEPARATIONS = ("force", "penetration", "continued")
 
 
-def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
+def _second_derivative(ys, s):
+    """y''(s) of each lane's step polynomial (coefficients ys, shape (order + 1, lanes))."""
+    k = np.arange(2, ys.shape[0])[:, None]
+    return _horner(ys[2:] * (k * (k - 1)), s)
+
+
+def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes: bool = False,
+              grip_only: bool = False) -> dict:
     """Integrate every lane to separation by the Taylor method.
 
     Parameters
@@ -149,12 +131,21 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
         Each lane's end (one for all, or one per lane; see the module docstring for ``continued``).
     target : float
         Relative accuracy target of every output.
+    levels : ndarray, optional
+        Per lane, a level of the friction-carrying impulse j = J+ / (m v_n) (NaN: none) whose first instant
+        ``tau_g`` is wanted; where j never reaches it, the instant j is largest (P_hat first falls to 0).
+    extremes : bool
+        Also the extremes ``p_max`` and ``p_min`` of P_hat over the contact (its ends and its turning points;
+        ``continued`` lanes: its ends and maxima).
+    grip_only : bool
+        Only ``tau_g``: each lane stops once it has its instant (the rest of its motion is not integrated).
 
     Returns
     -------
     dict of ndarray
-        ``tau_m``, ``x_m``, ``tau_f``, ``y_f`` and ``y_p`` as :func:`.batch.integrate` gives them
-        (``continued``: tau_f and y_f = y_p at the root of Q).
+        :data:`~.outputs.NORMAL_OUTPUTS` as :func:`.batch.integrate` gives them, here without gravity: j_p =
+        1 - y_p (``continued``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g``;
+        with ``extremes``, ``p_max`` and ``p_min``.  ``grip_only``: ``tau_g`` alone.
 
     Raises
     ------
@@ -167,8 +158,11 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
     kind = np.broadcast_to(np.asarray(separation), zeta.shape)
     if not np.isin(kind, SEPARATIONS).all():
         raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}")
+    wanted = ["tau_g"] if grip_only else [*NORMAL_OUTPUTS, *(["tau_g"] if levels is not None else []),
+                                          *(["p_max", "p_min"] if extremes else [])]
     if n == 0:
-        return {k: np.empty(0) for k in NORMAL_OUTPUTS}
+        return {k: np.empty(0) for k in wanted}
+    level = np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float).copy()
     tol = np.maximum(TOLERANCE_FACTOR * target / np.maximum(1.0, 2.0 * zeta) ** 2, TOLERANCE_MIN)
     order = order_for(TOLERANCE_FACTOR * target)  # the target's, not the batch's: a lane's result is its own
     lane = np.arange(n)
@@ -178,7 +172,9 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
     past = np.zeros(n, bool)
     tension_seen = np.zeros(n, bool)
-    records = {"max": [], "tension": [], "end": []}
+    crossed = ~(level > 0)  # lanes with no level to find, or level 0 (reached at first touch)
+    turning = np.ones(n)  # sign of dP_hat/dtau = -y'' at the step's start (P_hat rises from first touch)
+    records = {"max": [], "tension": [], "end": [], "grip": [], "turn": []}
     for _ in range(MAX_STEPS):
         if not lane.size:
             break
@@ -208,26 +204,48 @@ def integrate(zeta, lam, separation, target: float = 1e-8) -> dict:
         done = (x_end & at_zero) | (at_root & (pulls | x_end))
         first = pulls & ~tension_seen & ~done
         tension_seen |= first
-        for event, mask in (("max", hit_max), ("tension", first), ("end", done)):
+        cross = ~crossed & (1.0 - y1 >= level)  # the impulse j = 1 - y reaches the level within this step
+        crossed |= cross
+        masks = [("max", hit_max), ("tension", first), ("end", done), ("grip", cross)]
+        if extremes and not grip_only:  # records carry the sign at the step's start (turning before the update)
+            turned = np.sign(-_second_derivative(ys, h))
+            masks.append(("turn", (turned != turning) & (turned != 0)))
+        for event, mask in masks:
             if mask.any():
                 i = np.flatnonzero(mask)
                 records[event].append({"lane": lane[i], "tau": tau[i], "h": h[i], "xs": xs[:, i], "ys": ys[:, i],
-                                       "x_end": x_end[i], "seen": tension_seen[i]})
+                                       "x_end": x_end[i], "seen": tension_seen[i], "level": level[i],
+                                       "rising": turning[i] > 0})
+        if extremes and not grip_only:
+            turning = np.where(turned != 0, turned, turning)
         tau = tau + h
         x, y = x1, y1
         late = ~done & (tau > HORIZON)
         if late.any():
             raise ImpactError(f"no separation within the horizon for {int(late.sum())} scene(s) "
                               f"(first: zeta = {two_zeta[late][0] / 2:.3g}, lam = {lam_a[late][0]:.3g})")
+        if grip_only:  # a lane is done once it has its instant, or once P_hat first falls to 0 (j is largest)
+            done = crossed | pulls | x_end
         if done.any():  # ended lanes leave the batch
             keep = ~done
             lane, x, y, tau = lane[keep], x[keep], y[keep], tau[keep]
-            past, tension_seen = past[keep], tension_seen[keep]
-            two_zeta, lam_a, edge, tol = two_zeta[keep], lam_a[keep], edge[keep], tol[keep]
+            past, tension_seen, crossed, turning = past[keep], tension_seen[keep], crossed[keep], turning[keep]
+            two_zeta, lam_a, edge, tol, level = two_zeta[keep], lam_a[keep], edge[keep], tol[keep], level[keep]
             at_root, at_zero, continued = at_root[keep], at_zero[keep], continued[keep]
     else:
         raise ImpactError(f"the Taylor lanes took more than {MAX_STEPS} steps")
-    return _events(records, 2.0 * zeta, lam, kind != "penetration")
+    if grip_only:
+        return {"tau_g": _grip_events(records, 2.0 * zeta, lam, np.ones(n, bool), level_all(levels, n), None)}
+    out = _events(records, 2.0 * zeta, lam, kind != "penetration", continued_all=kind == "continued",
+                  extremes=extremes)
+    if levels is not None:
+        out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, kind != "penetration", level_all(levels, n), out)
+    return out
+
+
+def level_all(levels, n: int) -> np.ndarray:
+    """The lanes' levels as an array (NaN: none)."""
+    return np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float)
 
 
 def _join(store: list) -> dict | None:
@@ -239,13 +257,69 @@ def _join(store: list) -> dict | None:
 def _ratio_root(xs, ys, two_zeta, lam, b, q_b, tau):
     """Root in (0, b] of Q along each lane's step polynomials, Q(0) > 0 >= Q(b) = ``q_b``."""
     q_0 = ratio(xs[0], ys[0], two_zeta, lam)
-    return _newton(_ratio_and_slope(xs, ys, two_zeta, lam), np.zeros(b.size), b, q_0, q_b, tau)
+    return falling_root(_ratio_and_slope(xs, ys, two_zeta, lam), np.zeros(b.size), b, q_0, q_b, tau)
 
 
-def _events(records: dict, two_zeta, lam, at_root) -> dict:
+def _first_zero(rec, two_zeta, lam):
+    """Where P_hat first falls to 0 within each recorded step (a tension or an end step): (s, x_end)."""
+    j = rec["lane"]
+    s_end = rec["h"].copy()
+    if rec["x_end"].any():
+        i = np.flatnonzero(rec["x_end"])
+        s_end[i] = _polynomial_root(rec["xs"][:, i], rec["h"][i], rec["tau"][i])
+    y_end = _horner(rec["ys"], s_end)
+    q_end = ratio(np.where(rec["x_end"], 0.0, _horner(rec["xs"], s_end)), y_end, two_zeta[j], lam[j])
+    return s_end, q_end
+
+
+def _grip_events(records: dict, two_zeta, lam, at_root, level, out) -> np.ndarray:
+    """tau_g of every lane with a level: the root of 1 - y(s) = level in the step where j first reached it,
+    or, where no step end showed it, on [0, s_p] of the step where P_hat first falls to 0 (j's maximum there,
+    the level clamped to it)."""
+    tau_g = np.where(level == 0, 0.0, np.nan)
+    g = _join(records["grip"])
+    if g is not None:
+        shifted = g["ys"].copy()
+        shifted[0] -= 1.0 - g["level"]  # y(s) - (1 - level): positive at the step's start, <= 0 at its end
+        tau_g[g["lane"]] = g["tau"] + _polynomial_root(shifted, g["h"], g["tau"])
+    todo = np.isnan(tau_g) & (level > 0)
+    if not todo.any():
+        return tau_g
+    for kind in ("tension", "end"):  # the step where P_hat first falls to 0 (a tension step comes first)
+        rec = _join(records[kind])
+        if rec is None:
+            continue
+        pick = np.flatnonzero(todo[rec["lane"]])
+        if not pick.size:
+            continue
+        rec = {k: v[..., pick] for k, v in rec.items()}
+        j = rec["lane"]
+        s_end, q_end = _first_zero(rec, two_zeta, lam)
+        s_p = s_end.copy()
+        search = q_end <= 0
+        if search.any():
+            i = np.flatnonzero(search)
+            s_p[i] = _ratio_root(rec["xs"][:, i], rec["ys"][:, i], two_zeta[j[i]], lam[j[i]], s_end[i], q_end[i],
+                                 rec["tau"][i])
+        if kind == "end":  # an end step holds the first zero only where no tension step came before
+            use = ~rec["seen"] | at_root[j]
+        else:
+            use = np.ones(j.size, bool)
+        y_p = _horner(rec["ys"], s_p)
+        shifted = rec["ys"].copy()
+        shifted[0] -= np.maximum(1.0 - rec["level"], y_p)  # the level, at most j's largest value
+        s = _polynomial_root(shifted, s_p, rec["tau"])
+        tau_g[j[use]] = (rec["tau"] + np.where(y_p >= 1.0 - rec["level"], s_p, s))[use]
+        todo[j[use]] = False
+    return tau_g
+
+
+def _events(records: dict, two_zeta, lam, at_root, continued_all, extremes: bool) -> dict:
     """Locate the bracketed events (see :func:`integrate` for the outputs); ``at_root``: lanes that end at
     Q's root (force criterion, continued)."""
-    out = {k: np.full(two_zeta.size, np.nan) for k in NORMAL_OUTPUTS}
+    n = two_zeta.size
+    out = {k: np.full(n, np.nan) for k in NORMAL_OUTPUTS}
+    first_zero = np.full(n, np.nan)  # y where P_hat first falls to 0
     m = _join(records["max"])
     s_m = _polynomial_root(m["ys"], m["h"], m["tau"])
     out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s_m, _horner(m["xs"], s_m)
@@ -254,15 +328,11 @@ def _events(records: dict, two_zeta, lam, at_root) -> dict:
         j = t["lane"]
         q_h = ratio(_horner(t["xs"], t["h"]), _horner(t["ys"], t["h"]), two_zeta[j], lam[j])
         s = _ratio_root(t["xs"], t["ys"], two_zeta[j], lam[j], t["h"], q_h, t["tau"])
-        out["y_p"][j] = _horner(t["ys"], s)
+        first_zero[j] = _horner(t["ys"], s)
     e = _join(records["end"])
     j = e["lane"]
-    s_end = e["h"].copy()
-    if e["x_end"].any():
-        i = np.flatnonzero(e["x_end"])
-        s_end[i] = _polynomial_root(e["xs"][:, i], e["h"][i], e["tau"][i])
+    s_end, q_end = _first_zero(e, two_zeta, lam)
     y_end = _horner(e["ys"], s_end)
-    q_end = ratio(np.where(e["x_end"], 0.0, _horner(e["xs"], s_end)), y_end, two_zeta[j], lam[j])
     search = (q_end <= 0) & (~e["seen"] | at_root[j])  # Q falls through 0 within this step
     s_p, y_p = s_end.copy(), y_end.copy()
     if search.any():
@@ -272,6 +342,24 @@ def _events(records: dict, two_zeta, lam, at_root) -> dict:
     root = at_root[j]
     out["tau_f"][j] = e["tau"] + np.where(root, s_p, s_end)
     out["y_f"][j] = np.where(root, y_p, y_end)
-    fresh = np.isnan(out["y_p"][j])
-    out["y_p"][j[fresh]] = np.where(root | search, y_p, y_end)[fresh]
+    fresh = np.isnan(first_zero[j])
+    first_zero[j[fresh]] = np.where(root | search, y_p, y_end)[fresh]
+    out["j_p"] = 1.0 - first_zero  # the impulse of P_hat while positive, no gravity: v_n (1 - y_p)
+    if extremes:
+        # P_hat = -y' on a step polynomial: 0 at both ends (x = 0 with the ramp off, or the force criterion's
+        # P_hat = 0), and at every turning point before separation (roots of y''); a continued lane's minima
+        # past delta = 0 are not the contact's (the force criterion's end is P_hat = 0, P_hat >= 0 before it)
+        out["p_max"], out["p_min"] = np.zeros(n), np.zeros(n)
+        turn = _join(records["turn"])
+        if turn is not None:
+            d2 = _derivative(_derivative(turn["ys"]))
+            rising = turn["rising"]  # P_hat rose at the step's start: it turns to a maximum in this step
+            f = np.where(rising, -d2, d2)  # P_hat' (maximum) or -P_hat' (minimum): falls through 0
+            s = np.where(f[0] > 0, _polynomial_root(f, turn["h"], turn["tau"]), 0.0)  # at the start: s = 0
+            value = -_horner(_derivative(turn["ys"]), s)
+            inside = turn["tau"] + s < out["tau_f"][turn["lane"]]
+            top = inside & rising
+            low = inside & ~rising & ~continued_all[turn["lane"]]
+            np.maximum.at(out["p_max"], turn["lane"][top], value[top])
+            np.minimum.at(out["p_min"], turn["lane"][low], value[low])
     return out

@@ -16,13 +16,13 @@ microslip  exact elastic microslip of a Hertz contact (MDR; Hertz laws)      :mo
 Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register`` (see :mod:`.base`).
 """
 
-from .base import (KAPPA, KAPPA_FROM, POISSON, SHEAR_MODULUS, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, TangentialModel,
-                   kappa_from_poisson, kappa_from_shear_modulus)
+from .base import (KAPPA, KAPPA_FROM, POISSON, SHEAR_MODULUS, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,
+                   SweptTangential, TangentialModel, kappa_from_poisson, kappa_from_shear_modulus)
 from .rigid import (MAX_PHASES, Phase, PositiveImpulse, TangentialMotion, by_phase, from_impulse, impulse_outcome, kick,
                     phase_index)
 from .springs import CompliantTangential
 from .microslip import MicroslipTangential
 
 __all__ = ["CompliantTangential", "MicroslipTangential", "KAPPA", "KAPPA_FROM", "MAX_PHASES", "POISSON", "Phase", "PositiveImpulse", "SHEAR_MODULUS",
-           "STIFFNESS", "TANGENTIALS", "TANGENTIAL_PARAMETERS", "TangentialModel", "TangentialMotion", "by_phase",
+           "STIFFNESS", "SweptTangential", "TANGENTIALS", "TANGENTIAL_PARAMETERS", "TangentialModel", "TangentialMotion", "by_phase",
            "from_impulse", "impulse_outcome", "kick", "kappa_from_poisson", "kappa_from_shear_modulus", "phase_index"]

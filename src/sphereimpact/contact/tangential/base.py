@@ -44,6 +44,32 @@ def kappa_from_shear_modulus(g_star, k, radius):
 
 
 @dataclass(frozen=True)
+class SweptTangential:
+    """A tangential model's end state as a function of the normal impulse, for many scenes at once: what a
+    sweep asks of a model whose motion follows from the normal motion in closed form.
+
+    Both functions take ``rows``, a namespace of arrays (one entry per scene, every scene with tangential
+    motion): the scene table's columns (``mass``, ``mu``, ``inertia_factor``, ``spin``, the model's
+    parameters, ...) and ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s].
+
+    Attributes
+    ----------
+    levels : callable
+        ``levels(rows) -> array`` [N s]: for each scene, the friction-carrying normal impulse J+ (the
+        integral of max(P, 0)) at which the model needs to know the instant it is reached (the rigid
+        contact: where the contact point stops slipping), NaN where it needs none.
+    end : callable
+        ``end(rows, impulse, instants) -> dict`` of arrays: ``vc_t`` [m/s], ``omega_f`` [rad/s], ``t_roll``
+        [s] (NaN: never), ``switches`` and ``regime``, given each scene's J+ over the contact ``impulse``
+        [N s] and ``instants`` [s], when J+ reached each scene's level (NaN where it did not, or where no
+        instant was asked for).  Gravity along the flat is 0 on the sweep's fast paths.
+    """
+
+    levels: Callable
+    end: Callable
+
+
+@dataclass(frozen=True)
 class TangentialModel:
     """A tangential contact model and what it can do.
 
@@ -65,14 +91,13 @@ class TangentialModel:
         (:class:`sphereimpact.integrators.normal.NormalMotion`) with solver options ``options``, an object with
         ``t_roll`` [s or None], ``regime``, ``switches``, ``at(t)`` -> (v_t [m/s], omega [rad/s], x_t [m])
         and ``force(t)`` -> the tangential force on the ball [N].
-    batched : bool
-        The motion follows in closed form from the normal impulse, so sweeps compute it vectorised (the
-        rigid contact); otherwise a sweep solves its scenes with :func:`sphereimpact.impact.solve.simulate_many`.
+    swept : SweptTangential or None
+        The end of the tangential motion in closed form from the normal impulse, vectorised over many scenes
+        (:class:`SweptTangential`): sweeps then solve only the normal motion of its scenes on their fast
+        paths.  None: a sweep solves its scenes with :func:`sphereimpact.impact.solve.simulate_many`.
     many : callable or None
         ``many(normals, options)``: the motions over several solved normal motions at once (a batched
         kernel, cheaper than one at a time), as a list in their order; None: one at a time.
-    planar : bool
-        The full planar rigid-body model (``body='planar'``) has this contact too.
     """
 
     name: str
@@ -81,8 +106,7 @@ class TangentialModel:
     parameters: tuple
     spring: str | None
     motion: Callable
-    batched: bool = False
-    planar: bool = False
+    swept: "SweptTangential | None" = None
     many: Callable | None = None
 
     def __post_init__(self):

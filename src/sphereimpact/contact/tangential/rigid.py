@@ -28,8 +28,9 @@ import numpy as np
 from ...ode.dense import SMALL, is_instant
 from ...errors import ImpactError
 from ...ode.events import first_root, roots
+from ...ode.roots import falling_root
 from ...integrators.normal import NormalMotion
-from .base import TANGENTIALS, TangentialModel
+from .base import TANGENTIALS, SweptTangential, TangentialModel
 
 #: More mode switches than this in one contact means something is wrong.
 MAX_PHASES = 50
@@ -179,6 +180,25 @@ class PositiveImpulse:
         i, j, c = self._locate(t)
         return np.where(i < 0, 0.0, self._before[j] + self._n.impulse(c) - self._ja[j])
 
+    def instants(self, impulses) -> np.ndarray:
+        """The first instants [s] at which J+ reaches each of ``impulses`` [N s] (0 for 0; t_f for an impulse
+        J+ never reaches): bracketed on the solver's grid (J+ never decreases), then Newton's method on
+        dJ+/dt = P+, kept inside the bracket (:func:`sphereimpact.ode.roots.falling_root`)."""
+        normal = self._n
+        impulses = np.asarray(impulses, dtype=float)
+        times = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
+        on_grid = self(times)
+        upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, times.size - 1)
+        low, high = times[upper - 1], times[upper]
+        gap_low, gap_high = impulses - on_grid[upper - 1], impulses - on_grid[upper]
+        inside = (gap_low > 0) & (gap_high <= 0)
+        t = np.where(gap_high > 0, high, low)  # beyond J+(t_f): t_f; at a sample: that sample
+        if inside.any():
+            i = np.flatnonzero(inside)
+            t[i] = falling_root(lambda s: (impulses[i] - self(s), -np.maximum(normal.force(s), 0.0)), low[i],
+                                high[i], gap_low[i], gap_high[i])
+        return np.where(impulses <= 0, 0.0, t)
+
     def integral(self, t):
         """K+(t) = integral of J+ from 0 to t [N s^2]."""
         if is_instant(t) and len(self.intervals) == 1:  # one instant, one pushing interval: plain floats
@@ -304,6 +324,26 @@ class TangentialMotion:
         return s.mass * (v_f - s.v_tangent - s.g_tangent * self.normal.t_f)
 
 
+def grip_impulses(rows):
+    """The normal impulse J+ [N s] at which the contact point stops slipping, m |s0| / (mu (1 + 1/alpha)), s0 =
+    v_t - spin R its first slip: 0 where it rolls from the start, NaN where it never can (mu = 0)."""
+    slip0 = rows.v_tangent - rows.spin * rows.radius
+    with np.errstate(divide="ignore", invalid="ignore"):
+        impulse = rows.mass * np.abs(slip0) / (rows.mu * (1.0 + 1.0 / rows.inertia_factor))
+    return np.where(slip0 == 0, 0.0, np.where(rows.mu > 0, impulse, np.nan))
+
+
+def swept_end(rows, impulse, instants) -> dict:
+    """The rigid contact's end state from J+ (:func:`impulse_outcome`), with the grip instant ``instants`` as
+    t_roll where the contact grips (see :class:`~sphereimpact.contact.tangential.base.SweptTangential`)."""
+    slip0 = rows.v_tangent - rows.spin * rows.radius
+    vc_t, omega, _, slides = impulse_outcome(rows.v_tangent, rows.spin, impulse, rows.mass, rows.radius,
+                                             rows.inertia_factor, rows.mu)
+    return {"vc_t": vc_t, "omega_f": omega, "t_roll": np.where(slides, np.nan, instants),
+            "switches": np.where(~slides & (slip0 != 0), 1, 0),
+            "regime": np.where(slides, "sliding", "rolling").astype(object)}
+
+
 RIGID = TANGENTIALS.register(TangentialModel(
     "rigid", doc="the chapter's: slips or rolls", stiffness="", parameters=(), spring=None,
-    motion=lambda normal, options: TangentialMotion(normal), batched=True, planar=True))
+    motion=lambda normal, options: TangentialMotion(normal), swept=SweptTangential(grip_impulses, swept_end)))
