@@ -215,8 +215,10 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
             for i, (a, b) in enumerate(zip(g, g_new)):
                 up, down = a <= 0 <= b, a >= 0 >= b
                 if (up and directions[i] > 0) or (down and directions[i] < 0) or ((up or down) and not directions[i]):
+                    # to a few ulp; an event function whose round-off keeps Brent from settling there still
+                    # leaves it a bracket that narrow: its last iterate, not an error
                     root = brentq(lambda time, e=events[i]: float(e(time, state(time))), t_old, t,
-                                  xtol=4 * EPS, rtol=4 * EPS)
+                                  xtol=4 * EPS, rtol=4 * EPS, full_output=True, disp=False)[0]
                     hits.append((root, i))
             hits.sort()
             for root, i in hits:

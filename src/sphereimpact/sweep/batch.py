@@ -99,18 +99,26 @@ class _Lanes:
         return np.where(positive, inside, limit)
 
     def ratio_and_rate(self, x, y, dy):
-        """Q and dQ/dtau along the motion (dx/dtau = y, dy/dtau = ``dy``): Newton's slope for Q's root.
+        """The function whose root ends the force criterion's contact, and its tau-derivative along the motion
+        (dx/dtau = y, dy/dtau = ``dy``), lane by lane: Q (eq. 4.2) or P_hat itself (eq. 4.1).
 
-        For x > 0, Q = 1 + 2 zeta y r(lam x) / x gives 2 zeta (dy r / x + (y / x) y (lam r'(lam x) - r / x)),
-        with r' = exp(-u) (modified, u > 0 there) or 0 (kelvin-voigt); the bracket tends to -lam^2 x / 2 as
-        x -> 0, so the form stays finite for tiny x.  For x <= 0, the limit's 2 zeta lam dy, or 0 where the
-        limit is -inf.  Only the search speed depends on it: the root is kept bracketed.
+        Eq. 4.2's P_hat = x Q has a forced zero at x = 0, so its root is Q's: for x > 0, Q = 1 + 2 zeta y r(lam x)
+        / x gives 2 zeta (dy r / x + (y / x) y (lam r'(lam x) - r / x)), r' = exp(-u) (u > 0 there); the bracket
+        tends to -lam^2 x / 2 as x -> 0, so the form stays finite for tiny x; for x <= 0, the limit's 2 zeta lam
+        dy.  Eq. 4.1's P_hat = x + 2 zeta y crosses 0 transversally where x = -2 zeta y > 0 (Q falls there
+        towards its pole at x = 0, too steep for Newton at small zeta: the bisections it fell back on left t_f
+        2.8e-6 off at zeta 1e-3), so its root is found on P_hat, whose sign is Q's for x > 0: P_hat' = y + 2 zeta
+        dy.  Only the search speed depends on the rate: the root is kept bracketed.
         """
         terms = positive, safe, ramp = self._ratio_terms(x)
-        slope = np.where(self.modified, np.exp(-self.lam * safe), 0.0)
+        slope = np.exp(-self.lam * safe)
         inside = self.two_zeta * (dy * ramp / safe + (y / safe) * y * (self.lam * slope - ramp / safe))
-        rate = np.where(positive, inside, np.where(self.modified, self.two_zeta * self.lam * dy, 0.0))
-        return self.ratio(x, y, terms), rate
+        rate = np.where(positive, inside, self.two_zeta * self.lam * dy)
+        if self.kind == "modified":
+            return self.ratio(x, y, terms), rate
+        force, force_rate = x + self.two_zeta * y, y + self.two_zeta * dy  # eq. 4.1
+        return (np.where(self.modified, self.ratio(x, y, terms), force),
+                np.where(self.modified, rate, force_rate))
 
     def rhs(self, x, y):
         return y, -self.force(x, y) if self.weightless else self.gamma - self.force(x, y)
@@ -504,10 +512,19 @@ def _extremes(params: _Lanes, records: dict, out: dict, ends_at_p, j, at_x, y_e)
     if turn is not None:
         i = turn["lane"]
         lanes = params.take(i)
-        s, (x, y) = _locate(_turn_event(turn["rising"]), lanes, turn["x"], turn["y"], turn["tau"], np.zeros(i.size),
-                            turn["h"], (turn["x"], turn["y"]), (turn["x1"], turn["y1"]))
-        value = lanes.force(x, y)
-        inside = turn["tau"] + s < out["tau_f"][i]
-        np.maximum.at(p_max, i[inside & turn["rising"]], value[inside & turn["rising"]])
-        np.minimum.at(p_min, i[inside & ~turn["rising"]], value[inside & ~turn["rising"]])
+        # in the step where the contact ends, only up to its end: past it the continued force turns too, and
+        # a turn just inside (the brief pull before delta returns to 0) must not be lost to one just outside
+        hi = np.minimum(turn["h"], out["tau_f"][i] - turn["tau"])
+        at_hi = _start_state(lanes, turn["x"], turn["y"], np.where(hi < turn["h"], hi, 0.0))
+        at_hi = tuple(np.where(hi < turn["h"], a, b) for a, b in zip(at_hi, (turn["x1"], turn["y1"])))
+        event = _turn_event(turn["rising"])
+        bracketed = (event(lanes, turn["x"], turn["y"], 0.0)[0] > 0) & (event(lanes, *at_hi, hi)[0] <= 0)
+        k = np.flatnonzero(bracketed)
+        if k.size:
+            rising = turn["rising"][k]
+            _, (x, y) = _locate(_turn_event(rising), lanes.take(k), turn["x"][k], turn["y"][k], turn["tau"][k],
+                                np.zeros(k.size), hi[k], (turn["x"][k], turn["y"][k]), (at_hi[0][k], at_hi[1][k]))
+            value = lanes.take(k).force(x, y)
+            np.maximum.at(p_max, i[k][rising], value[rising])
+            np.minimum.at(p_min, i[k][~rising], value[~rising])
     return {"p_max": p_max, "p_min": p_min}

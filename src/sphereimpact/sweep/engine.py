@@ -22,10 +22,9 @@ import pandas as pd
 from ..errors import ImpactError
 from ..impact.outcome import SCALAR_OUTPUTS, EndState, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..impact.scene import SolverOptions
 from ..contact.tangential import TANGENTIALS
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
-from .paths import ORDER, PATHS, Work
+from .paths import ORDER, PATHS, Work, single_options
 from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
@@ -43,7 +42,7 @@ FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
-          outputs=None, elements: int | None = None, time_steps: int | None = None) -> pd.DataFrame:
+          outputs=None, elements: int | None = None, time_steps: int | None = None, paths=None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -70,6 +69,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     elements, time_steps : int, optional
         The resolution of a tangential model that resolves the contact (``microslip``), as
         :class:`sphereimpact.SolverOptions` takes it.
+    paths : sequence of str, optional
+        Only these paths (names of :data:`PATHS`, in their precedence), for studies of a path alone: a row
+        none of them takes is left empty (NaN outputs, ``path`` ''), where the default (every path) solves
+        every row.
 
     Returns
     -------
@@ -91,12 +94,12 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
     wanted = outputs_wanted(outputs)
+    order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_table(scenes)
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
     regime, path = _objects(n, "none"), _objects(n, "")
-    options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100), elements=elements,
-                            time_steps=time_steps)
+    options = single_options(target, elements, time_steps)
     d = numbers(frame)
     needs = needs_of(frame, d, wanted)
     if span is None:
@@ -108,7 +111,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     work = Work(frame, d, needs, span_frame, span_d, span_needs, target, chunk_size, options, progress)
     normal = {key: np.full(n, np.nan) for key in (*NORMAL_OUTPUTS, *EXTREMES, "tau_g")}
     todo, span_todo, rest = np.ones(n, bool), np.ones(len(span_frame), bool), np.zeros(n, bool)
-    for way in ORDER:
+    for way in order:
         taken = way.take(work, todo, span_todo)
         for task in taken.tasks:
             for key, values in task.solve().items():
@@ -117,7 +120,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
             todo[task.rows] = False
             rest[task.rows] = way.gives == "normal"  # completed below by the impulse algebra
         span_todo &= ~taken.span
-    if todo.any():  # every row has a path: the last one takes every batched kernel, an earlier one the others
+    if todo.any() and paths is None:  # every row has a path: the last takes every batched kernel, earlier the others
         raise ImpactError(f"sweep: no path takes row {int(np.flatnonzero(todo)[0])}")
     if rest.any():
         values = _complete(frame[rest], d[rest], {key: values[rest] for key, values in normal.items()})
@@ -128,13 +131,15 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                 result[key][rest] = value
     checked = [key for key in result if key in wanted and key != "t_roll"]
     finite = np.logical_and.reduce([np.isfinite(result[key]) for key in checked]) if checked else np.ones(n, bool)
+    finite |= todo  # rows no path took (only with ``paths``) stay empty
     if not finite.all():  # never a NaN in a table
         i = int(np.flatnonzero(~finite)[0])
         scene = ", ".join(f"{k}={v}" for k, v in frame.iloc[i].to_dict().items())
         raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
                           "sweep resolves: try `sphereimpact simulate` on that scene")
     beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
-    result["switches"] = result["switches"].astype(np.int64)
+    if not todo.any():  # (rows no path took, with ``paths``, keep NaN)
+        result["switches"] = result["switches"].astype(np.int64)
     outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
     return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]],
                       pd.DataFrame({"path": pd.Series(path, dtype=object)})], axis=1)
@@ -142,22 +147,25 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
 
 def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
     """What each row needs of a fast path beyond the normal outputs (:class:`~.outputs.Needs`): the force's
-    extremes when force_min or force_max is wanted, and with t_roll, the level of J+ / (m v_n) at which its
+    extremes when force_min or force_max is wanted; with t_roll, the level of J+ / (m v_n) at which its
     tangential model needs the instant (its ``swept.levels``; NaN for a normal impact, and for a model a
-    sweep solves scene by scene)."""
+    sweep solves scene by scene); and whether its tangential end follows from the normal motion at all."""
     levels = np.full(len(frame), np.nan)
-    if "t_roll" in wanted:
-        rows = tangential_rows(frame, d.v_n)
-        moving = (rows.v_tangent != 0) | (rows.spin != 0)
-        names = frame["tangential"].to_numpy()
-        for name in dict.fromkeys(names[moving].tolist()):
-            model = TANGENTIALS[name].swept
-            if model is None:
-                continue
-            mine = np.flatnonzero(moving & (names == name))
+    rows = tangential_rows(frame, d.v_n)
+    moving = (rows.v_tangent != 0) | (rows.spin != 0)
+    slope = (rows.gravity > 0) & (rows.angle > 0)  # gravity along the flat: no tangential end in closed form
+    completes = ~moving & ~slope
+    names = frame["tangential"].to_numpy()
+    for name in dict.fromkeys(names[moving].tolist()):
+        model = TANGENTIALS[name].swept
+        if model is None:
+            continue
+        mine = np.flatnonzero(moving & (names == name))
+        completes[mine] = ~slope[mine]
+        if "t_roll" in wanted:
             view = SimpleNamespace(**{key: value[mine] for key, value in vars(rows).items()})
             levels[mine] = model.levels(view) / (rows.mass[mine] * rows.v_normal[mine])
-    return Needs(extremes=bool({"force_min", "force_max"} & wanted), levels=levels)
+    return Needs(extremes=bool({"force_min", "force_max"} & wanted), levels=levels, completes=completes)
 
 
 def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
@@ -195,6 +203,15 @@ def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
     v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
     columns = {name: part[name].to_numpy() for name in part.columns if name not in ("model", "separation", "tangential")}
     return SimpleNamespace(**columns, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
+
+
+def _path_names(paths) -> list:
+    """``paths`` as a list of names of :data:`PATHS` (ValueError naming an unknown one)."""
+    names = [paths] if isinstance(paths, str) else list(paths)
+    unknown = [name for name in names if name not in PATHS]
+    if unknown or not names:
+        raise ValueError(f"paths must be some of {', '.join(PATHS)}; got {unknown[0] if unknown else 'none'!r}")
+    return names
 
 
 def outputs_wanted(outputs) -> set:

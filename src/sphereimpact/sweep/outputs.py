@@ -28,10 +28,14 @@ class Needs:
         needs (the rigid contact: where it grips; for t_roll), NaN where none.  Where j never reaches it (the
         level exceeds j_p: the rigid contact slides throughout), a path may give NaN or the instant j is
         largest (P first falls to 0); a tangential model reads the instant only where j_p reaches the level.
+    completes : ndarray of bool
+        Per row, whether its tangential end follows from the normal motion (no tangential motion, or a model
+        with a ``swept`` end state): only such rows can a path that gives the normal motion take.
     """
 
     extremes: bool
     levels: np.ndarray
+    completes: np.ndarray
 
     def grips(self, rows) -> np.ndarray:
         """Whether each of ``rows`` (indices or a mask) needs a level's instant."""

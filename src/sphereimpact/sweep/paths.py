@@ -50,6 +50,14 @@ LANES_LAM_MAX = 1e3
 #: path, never sets an accuracy.
 LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
 SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
+def single_options(target: float, elements=None, time_steps=None) -> SolverOptions:
+    """The single-impact model's options in a sweep of accuracy ``target``: tolerance target / 10^4 (at most
+    1e-10; rtol 1e-10 left the instant a contact grips near its end, where the impulse levels off, 3e-8 of
+    t_f off), and the tangential model's resolution."""
+    tol = min(max(target * 1e-4, 1e-13), 1e-10)
+    return SolverOptions(rtol=tol, atol=tol, elements=elements, time_steps=time_steps)
+
+
 #: Scenes solved by the single-impact model per call of :func:`~sphereimpact.impact.solve.simulate_many` (a batched
 #: tangential kernel runs them together; progress is reported after each).
 SINGLES_CHUNK = 100
@@ -265,6 +273,7 @@ class FamilyInterpolantPath(SweepPath):
         built = {}
         taken = np.zeros(len(span), bool)
         # grouping is a Python pass over the rows: made once when the scenes to solve are the span's
+        span_todo, todo = span_todo & work.span_needs.completes, todo & work.needs.completes
         span_groups = _family_groups(span, span_todo)
         same = not work.sharded and np.array_equal(todo, span_todo)
         for key, rows in span_groups.items():
@@ -289,37 +298,49 @@ class FamilyInterpolantPath(SweepPath):
 
 
 class PerFamilyPath(SweepPath):
-    """The other scenes of a kernel-less law: the single-impact integrator (exact for every law) solves the
-    first scene of each distinct (family, gamma, criterion), and the others, which share its dimensionless
-    motion, take its values."""
+    """The other scenes of a kernel-less law: the single-impact integrator (exact for every law) solves one
+    scene of each distinct (family, gamma, criterion), the whole sweep's first (so a shard solves the scene
+    the whole sweep would), and the others, which share its dimensionless motion, take its values."""
 
     name = "per-family"
     summary = "one single-impact solve per dimensionless family, shared by its scenes"
 
     def take(self, work, todo, span_todo):
         d = work.numbers
-        rows = np.flatnonzero(~d.batched & todo)
-        task = Task(rows, lambda: self._solve(work.frame.iloc[rows], d.family[rows], d.gamma[rows], work.target,
-                                              work.needs.extremes, work.needs.levels[rows]))
-        return Take([task] if rows.size else [], span_todo & ~work.span.batched)
+        rows = np.flatnonzero(~d.batched & todo & work.needs.completes)
+        task = Task(rows, lambda: self._solve(work, rows))
+        return Take([task] if rows.size else [], span_todo & ~work.span.batched & work.span_needs.completes)
 
     @staticmethod
-    def _solve(frame: pd.DataFrame, family: np.ndarray, gamma: np.ndarray, target: float, extremes: bool,
-               levels: np.ndarray) -> dict:
-        options = SolverOptions(rtol=min(1e-10, target / 100), atol=min(1e-10, target / 100))
-        keys = [(*f, float(g), sep) for f, g, sep in zip(family, gamma, frame["separation"].to_numpy())]
+    def _keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> list:
+        """The family key (model, numbers, gamma, criterion) of each of ``rows``."""
+        return [(*f, float(g), sep) for f, g, sep in zip(d.family[rows], d.gamma[rows],
+                                                         frame["separation"].to_numpy()[rows])]
+
+    @classmethod
+    def _solve(cls, work: Work, rows: np.ndarray) -> dict:
+        extremes, levels = work.needs.extremes, work.needs.levels[rows]
+        options = work.options
+        keys = cls._keys(work.frame, work.numbers, rows)
         members: dict = {}
         for i, key in enumerate(keys):
             members.setdefault(key, []).append(i)
+        first = {}  # each family's first scene in the whole sweep: what a shard solves is the sweep's
+        if work.sharded:
+            span_rows = np.flatnonzero(~work.span.batched)
+            for i, key in zip(span_rows, cls._keys(work.span_frame, work.span, span_rows)):
+                if key in members:
+                    first.setdefault(key, work.span_frame.iloc[i])
         names = [*NORMAL_OUTPUTS, *(EXTREMES if extremes else ())]
         out = {name: np.empty(len(keys)) for name in names} | {"tau_g": np.full(len(keys), np.nan)}
-        for key, rows in members.items():
-            rows = np.array(rows)
-            known = rows[np.isfinite(levels[rows])]  # the family's dimensionless motion serves every level
-            solved = dimensionless_motion(scene_of(frame.iloc[rows[0]].to_dict()), options, extremes,
+        for key, mine in members.items():
+            mine = np.array(mine)
+            known = mine[np.isfinite(levels[mine])]  # the family's dimensionless motion serves every level
+            scene = first.get(key, work.frame.iloc[rows[mine[0]]])
+            solved = dimensionless_motion(scene_of(scene.to_dict()), options, extremes,
                                           levels[known] if known.size else None)
             for name in names:
-                out[name][rows] = solved[name]
+                out[name][mine] = solved[name]
             if known.size:
                 out["tau_g"][known] = solved["tau_g"]
         return out
@@ -343,14 +364,14 @@ class _ByCriterion(SweepPath):
 
     def take(self, work, todo, span_todo):
         d = work.numbers
-        admitted = self.admits(d, work.needs)
+        admitted = self.admits(d, work.needs) & work.needs.completes
         tasks = []
         for separation in SEPARATION_CRITERIA:
             rows = np.flatnonzero(todo & d.criterion(separation) & admitted)
             if rows.size:
                 tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
                     rows, work.chunk_size, lambda i: self.solve(d, i, s, work.target, work.needs), work.progress)))
-        return Take(tasks, span_todo & self.admits(work.span, work.span_needs))
+        return Take(tasks, span_todo & self.admits(work.span, work.span_needs) & work.span_needs.completes)
 
 
 class ClosedPath(_ByCriterion):
@@ -365,7 +386,7 @@ class ClosedPath(_ByCriterion):
         form that declares its ``jet`` (from which the extremes and grip instants follow)."""
         jets = np.array([form.jet is not None for form in CLOSED_FORMS] + [False])  # code -1: no closed form
         extras = needs.extremes | np.isfinite(needs.levels)
-        return d.closed & (d.gamma == 0) & (jets[d.exact] | ~extras)
+        return d.closed & (d.gamma == 0) & (jets[d.exact] | ~extras) & ~_beyond_lanes(d, _series_lanes(d))
 
     def solve(self, d, rows, separation, target, needs):
         codes = d.exact[rows]
@@ -404,7 +425,7 @@ class LambdaInterpolantPath(SweepPath):
         span, d = work.span, work.numbers
         taken = np.zeros(len(span), bool)
         tasks = []
-        similar = np.flatnonzero(span_todo & span.modified & (span.gamma == 0))
+        similar = np.flatnonzero(span_todo & span.modified & (span.gamma == 0) & work.span_needs.completes)
         for criterion in SEPARATION_CRITERIA:
             mine = similar[span.criterion(criterion)[similar]]
             zetas, group, counts = np.unique(span.zeta[mine], return_inverse=True, return_counts=True)
@@ -419,7 +440,7 @@ class LambdaInterpolantPath(SweepPath):
                     continue
                 taken[members] = True
                 rows = np.flatnonzero(todo & d.criterion(criterion) & d.modified & (d.gamma == 0)
-                                      & (d.zeta == zetas[i]))
+                                      & (d.zeta == zetas[i]) & work.needs.completes)
                 outside = rows[(d.lam[rows] < interpolant.lo) | (d.lam[rows] > interpolant.hi)]
                 if outside.size:  # a span that does not cover its shard: interpolation would extrapolate
                     raise ValueError(f"span does not cover the scenes: scene {int(outside[0])} has lam = "
@@ -448,7 +469,7 @@ class PlanePath(SweepPath):
         taken = np.zeros(len(span), bool)
         tasks = []
         for separation in SEPARATION_CRITERIA:
-            members = self._inside(span, span_todo, separation)
+            members = self._inside(span, span_todo & work.span_needs.completes, separation)
             if members.size < PLANE_MIN:
                 continue
             zeta, lam = span.zeta[members], span.lam[members]
@@ -458,7 +479,7 @@ class PlanePath(SweepPath):
             except InterpolationError:  # integrated by the lanes instead
                 continue
             taken[members] = True
-            rows = self._inside(d, todo, separation)
+            rows = self._inside(d, todo & work.needs.completes, separation)
             outside = rows[(d.zeta[rows] < f.zeta_min) | (d.zeta[rows] > f.zeta_max)
                            | (d.lam[rows] < f.lam_min) | (d.lam[rows] > f.lam_max)]
             if outside.size:
@@ -491,7 +512,7 @@ class RungeKuttaLanesPath(_ByCriterion):
     summary = "batched Runge-Kutta lanes"
 
     def admits(self, d, needs):
-        return d.batched
+        return d.batched & ~_beyond_lanes(d, _series_lanes(d))
 
     def solve(self, d, rows, separation, target, needs):
         return batch.integrate(d.zeta[rows], d.lam[rows], d.gamma[rows], d.modified[rows], separation, target,

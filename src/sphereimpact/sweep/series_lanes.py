@@ -347,8 +347,9 @@ def _events(records: dict, two_zeta, lam, at_root, continued_all, extremes: bool
     out["j_p"] = 1.0 - first_zero  # the impulse of P_hat while positive, no gravity: v_n (1 - y_p)
     if extremes:
         # P_hat = -y' on a step polynomial: 0 at both ends (x = 0 with the ramp off, or the force criterion's
-        # P_hat = 0), and at every turning point before separation (roots of y''); a continued lane's minima
-        # past delta = 0 are not the contact's (the force criterion's end is P_hat = 0, P_hat >= 0 before it)
+        # P_hat = 0), and at every turning point before separation (roots of y'', where it is evaluated from
+        # the state); a continued lane's minima past delta = 0 are not the contact's (the force criterion's
+        # end is P_hat = 0, P_hat >= 0 before it)
         out["p_max"], out["p_min"] = np.zeros(n), np.zeros(n)
         turn = _join(records["turn"])
         if turn is not None:
@@ -356,7 +357,11 @@ def _events(records: dict, two_zeta, lam, at_root, continued_all, extremes: bool
             rising = turn["rising"]  # P_hat rose at the step's start: it turns to a maximum in this step
             f = np.where(rising, -d2, d2)  # P_hat' (maximum) or -P_hat' (minimum): falls through 0
             s = np.where(f[0] > 0, _polynomial_root(f, turn["h"], turn["tau"]), 0.0)  # at the start: s = 0
-            value = -_horner(_derivative(turn["ys"]), s)
+            # P_hat from the state there, x Q(x, y): the step polynomial's own derivative -y' carries its
+            # truncation error over the step's length (1.8e-8 of the largest force at lam ~ 1e3)
+            x, y = _horner(turn["xs"], s), _horner(turn["ys"], s)
+            j = turn["lane"]
+            value = x * ratio(x, y, two_zeta[j], lam[j])
             inside = turn["tau"] + s < out["tau_f"][turn["lane"]]
             top = inside & rising
             low = inside & ~rising & ~continued_all[turn["lane"]]

@@ -1,0 +1,244 @@
+"""One answer whatever the path: seeded random scenes across the accepted domain, mixed in one table, swept,
+and every row compared with ``simulate`` of its scene (the differential test of the sweep's paths).
+
+The scenes (:func:`random_scenes`) draw every law with its own parameters (a Hertz law by k or by modulus),
+every tangential model a sweep serves, spin of both signs, gravity on level and sloped flats, the three ways
+of giving the approach (the flat's tilt, the incidence, the angle to the surface), both separation criteria,
+and mass, size and speed over decades; every description is written as a table a user may write, an empty
+cell meaning "not given".  Balls come in groups of scenes (one ball at many angles and speeds, as a map
+asks), so that the interpolants' paths take rows too.  :func:`compare` sweeps the table and measures every
+row against ``simulate`` (at rtol 1e-12, :data:`REFERENCE`) on every
+output, in the measure of :func:`sphereimpact.numerics.reference.relative_errors`; :func:`summary` tabulates the
+worst error per path, law and tangential model.  The test suite runs a few thousand rows (tests/
+test_consistency.py, every path also forced alone); the pipeline at least 10^5 (``results/consistency.csv``).
+"""
+
+from __future__ import annotations
+
+import logging
+import warnings
+
+import numpy as np
+import pandas as pd
+
+from ..contact.laws import LAWS
+from ..errors import BeyondRadiusWarning, ImpactError
+from ..impact.outcome import SCALAR_OUTPUTS
+from ..impact.scene import SolverOptions
+from ..impact.solve import simulate
+from ..sweep.engine import SCENE_COLUMNS, scene_of, scene_table, sweep
+from ..sweep.paths import single_options
+from ..sweep.scenes import numbers
+from .reference import relative_errors
+
+log = logging.getLogger(__name__)
+#: The outputs compared (every scalar output; regime and beyond_radius must be equal).
+COMPARED = tuple(key for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius"))
+#: The reference's options (see :func:`references`).
+REFERENCE = SolverOptions(rtol=1e-12, atol=1e-12)
+#: Largest dimensionless gravity g_n / (w v_n) drawn (see :func:`random_scenes`).
+GRAVITY_SHARE = 0.05
+#: Tangential models by the spring they need: a compliant scene draws one that serves its law.
+COMPLIANT = {"linear": ("linear",), "hertz": ("mindlin", "mindlin-displacement", "microslip")}
+
+
+def _loguniform(rng, low: float, high: float, n: int) -> np.ndarray:
+    return np.exp(rng.uniform(np.log(low), np.log(high), n))
+
+
+def _balls(rng, n: int) -> pd.DataFrame:
+    """``n`` random balls: mass, size, law and its parameters, friction, criterion, tangential model."""
+    models = np.array(sorted(LAWS))
+    model = rng.choice(models, n)
+    mass, diameter = _loguniform(rng, 0.005, 2.0, n), _loguniform(rng, 0.005, 0.3, n)
+    separation = np.where(rng.uniform(size=n) < 0.3, "penetration", "force")
+    spring = np.array([LAWS[m].spring for m in model])
+    k_linear = _loguniform(rng, 1e3, 1e7, n)
+    zeta = np.where(separation == "penetration", _loguniform(rng, 1e-3, 0.9, n), _loguniform(rng, 1e-3, 3.0, n))
+    zeta[rng.uniform(size=n) < 0.05] = 0.0  # undamped
+    modulus = _loguniform(rng, 1e6, 1e10, n)
+    by_modulus = rng.uniform(size=n) < 0.5
+    k_hertz = 4.0 / 3.0 * modulus * np.sqrt(0.5 * diameter)
+    table = pd.DataFrame({
+        "mass": mass, "diameter": diameter, "inertia_factor": rng.uniform(0.2, 2 / 3, n),
+        "mu": np.where(rng.uniform(size=n) < 0.1, 0.0, rng.uniform(0.0, 0.8, n)), "model": model,
+        "k": np.where(spring == "linear", k_linear, np.where(by_modulus, np.nan, k_hertz)),
+        "modulus": np.where((spring == "hertz") & by_modulus, modulus, np.nan),
+        "b": np.where(np.isin(model, ["kelvin-voigt", "modified"]), 2.0 * zeta * np.sqrt(k_linear * mass), np.nan),
+        "ramp": np.where(model == "modified", _loguniform(rng, 20.0, 500.0, n), np.nan),
+        "chi": np.where(np.isin(model, ["hunt-crossley", "linear-hunt-crossley"]), _loguniform(rng, 1e-3, 0.3, n),
+                        np.nan),
+        "exponent": np.where((model == "hunt-crossley") & (rng.uniform(size=n) < 0.3), rng.uniform(1.2, 2.0, n),
+                             np.nan),
+        "separation": separation})
+    hertzian = (spring == "hertz") & np.isnan(table["exponent"].to_numpy())  # exponent 3/2: the Hertz models
+    compliant = rng.uniform(size=n) < 0.12
+    tangential = np.full(n, "rigid", dtype=object)
+    for i in np.flatnonzero(compliant & ((spring == "linear") | hertzian)):
+        tangential[i] = rng.choice(COMPLIANT[spring[i]])
+    table["tangential"] = tangential
+    table["kappa"] = np.where(tangential != "rigid", rng.uniform(0.5, 1.2, n), np.nan)
+    return table
+
+
+def _approaches(rng, n: int, size: float) -> pd.DataFrame:
+    """``n`` random approaches of a ball of diameter ``size`` [m]: speed, one description of the direction
+    (tilt, incidence or angle to the surface), spin of either sign, gravity on or off."""
+    speed = _loguniform(rng, 0.2, 40.0, n)
+    way = rng.choice(3, n)
+    direction = rng.uniform(0.0, 85.0, n)
+    direction[rng.uniform(size=n) < 0.08] = 0.0  # a normal approach
+    spin = np.where(rng.uniform(size=n) < 0.5, 0.0, rng.uniform(-1.5, 1.5, n) * speed / (0.5 * size))
+    return pd.DataFrame({
+        "speed": speed, "angle": np.where(way == 0, direction, np.nan),
+        "incidence": np.where(way == 1, direction, np.nan),
+        "angle_to_surface": np.where(way == 2, 90.0 - direction, np.nan),
+        "spin": spin, "gravity": np.where(rng.uniform(size=n) < 0.3, 9.80665, 0.0)})
+
+
+#: The groups of :func:`random_scenes`, in turn: one ball of each law an interpolant serves at many angles
+#: and speeds (eq. 4.2: the lam interpolant; the Hunt-Crossley laws: the family interpolant), and many balls
+#: of eq. 4.2 at one scene each (the (zeta, lam) plane).
+GROUPS = ("modified", "hunt-crossley", "linear-hunt-crossley", "many modified balls")
+
+
+def random_scenes(n: int, seed: int = 0, groups: int = 4, group_size: int = 0) -> pd.DataFrame:
+    """``n`` random scenes (see the module docstring), shuffled: ``groups`` groups of ``group_size`` scenes
+    (:data:`GROUPS` in turn; default: a quarter of ``n`` between them), the rest one to four scenes per ball.
+
+    A group's scenes are weightless, of a rigid contact, and of eq. 4.2 at damping ratios up to 0.5 or of a
+    Hunt-Crossley law, so that a table large enough takes the interpolants.
+    """
+    rng = np.random.default_rng(seed)
+    group_size = group_size or max(1, n // (4 * max(groups, 1)))
+    parts, left = [], n
+    for g in range(groups):
+        size = min(group_size, left)
+        if size <= 0:
+            break
+        kind = GROUPS[g % len(GROUPS)]
+        if kind == "many modified balls":  # sports balls: the plane's rectangle spans a few decades of lam
+            balls = pd.concat([_balls_of("modified", rng) for _ in range(size)], ignore_index=True).assign(
+                mass=rng.uniform(0.05, 0.5, size), diameter=rng.uniform(0.04, 0.08, size), ramp=100.0,
+                k=rng.uniform(2e4, 2e5, size))
+            balls["b"] = 2.0 * rng.uniform(0.01, 0.5, size) * np.sqrt(balls["k"] * balls["mass"])
+            scenes = pd.concat([_approaches(rng, 1, float(d)) for d in balls["diameter"]], ignore_index=True)
+            scenes["speed"] = rng.uniform(0.5, 30.0, size)
+        else:
+            ball = _balls_of(kind, rng)
+            balls = ball.loc[[0] * size].reset_index(drop=True)
+            scenes = _approaches(rng, size, float(ball["diameter"].iloc[0]))
+        parts.append(pd.concat([balls, scenes.assign(gravity=0.0)], axis=1))
+        left -= size
+    while left > 0:
+        count = min(int(rng.integers(1, 5)), left)
+        ball = _balls(rng, 1)
+        parts.append(pd.concat([ball.loc[[0] * count].reset_index(drop=True),
+                                _approaches(rng, count, float(ball["diameter"].iloc[0]))], axis=1))
+        left -= count
+    table = pd.concat(parts, ignore_index=True)
+    # gravity where the ball still bounces: a weight comparable with the contact's force, or damping beyond
+    # critical, keeps the ball on the flat (no separation: outside what a bounce is)
+    weight = table["gravity"].to_numpy().copy()
+    d = numbers(scene_table(table.assign(gravity=0.0)))
+    tilt = np.radians(np.nan_to_num(table["angle"].to_numpy()))
+    gamma = weight * np.cos(tilt) / (d.w * d.v_n)
+    zeta = np.where(np.isnan(table["b"]), 0.0, d.zeta)  # the linear damping's ratio (eq. 4.1, 4.2)
+    chi_v = np.where(np.isnan(table["chi"]), 0.0, table["chi"] * d.v_n)  # Hunt-Crossley's damping number
+    weight[(gamma > GRAVITY_SHARE) | (zeta > 1.0) | (chi_v > 1.0)] = 0.0
+    for i in np.flatnonzero(weight > 0):  # the weight alone must not compress the contact beyond the radius
+        try:
+            scene_of(scene_table(table.iloc[[i]].assign(gravity=weight[i])).iloc[0].to_dict())
+        except ValueError:
+            weight[i] = 0.0
+    table["gravity"] = weight
+    return table.iloc[rng.permutation(len(table))].reset_index(drop=True)
+
+
+def _balls_of(model: str, rng) -> pd.DataFrame:
+    """A group's ball of law ``model``: its parameters drawn as for any ball, eq. 4.2 at a damping ratio up to
+    0.5 (the plane's domain), a rigid contact."""
+    ball = _balls(rng, 1)
+    k, m = _loguniform(rng, 1e3, 1e7, 1)[0], float(ball["mass"].iloc[0])
+    law = {"modified": {"b": 2.0 * rng.uniform(0.01, 0.5) * np.sqrt(k * m), "ramp": _loguniform(rng, 20.0, 500.0, 1)[0],
+                        "chi": np.nan, "exponent": np.nan},
+           "linear-hunt-crossley": {"b": np.nan, "ramp": np.nan, "chi": _loguniform(rng, 1e-3, 0.3, 1)[0],
+                                    "exponent": np.nan}}
+    if model == "hunt-crossley":
+        modulus = _loguniform(rng, 1e6, 1e10, 1)[0]
+        fields = {"k": np.nan, "modulus": modulus, "b": np.nan, "ramp": np.nan,
+                  "chi": _loguniform(rng, 1e-3, 0.3, 1)[0], "exponent": np.nan}
+    else:
+        fields = law[model] | {"k": k, "modulus": np.nan}
+    return ball.assign(model=model, separation=ball["separation"].iloc[0], tangential="rigid", kappa=np.nan, **fields)
+
+
+def references(table: pd.DataFrame) -> tuple[pd.DataFrame, list]:
+    """``simulate`` of every scene of ``table`` at :data:`REFERENCE` (the tolerance the sweep's accuracy
+    tests take: at the default 1e-10 a grip near the end of the contact, where the impulse levels off, is
+    itself off by up to 3e-8 of t_f): (the scenes it solves, renumbered, with a column ``reference`` holding
+    each Outcome; the refusals, (row, message) for each scene it refuses: outside the accepted domain, not
+    compared)."""
+    frame = scene_table(table)
+    kept, outcomes, refused = [], [], []
+    with warnings.catch_warnings():  # compressions beyond the radius: flagged in both, not warned about
+        warnings.simplefilter("ignore", BeyondRadiusWarning)
+        for i in range(len(frame)):
+            try:
+                outcomes.append(simulate(scene_of(frame.iloc[i].to_dict()), REFERENCE))
+                kept.append(i)
+            except ImpactError as err:
+                refused.append((i, str(err)))
+    solved = table.iloc[kept].reset_index(drop=True)
+    return solved.assign(reference=pd.Series(outcomes, dtype=object)), refused
+
+
+def compare(solved: pd.DataFrame, swept: pd.DataFrame | None = None, target: float = 1e-8) -> pd.DataFrame:
+    """Each row of ``swept`` (the sweep of ``solved``'s scenes, swept here when not given) against its
+    ``reference`` (:func:`references`): the row's path, law and tangential model, its worst relative error
+    over :data:`COMPARED` and on which output, and whether regime and beyond_radius agree.  A row of the
+    single-impact path is ``simulate`` itself at the sweep's options, and is compared with that (its error
+    is 0 unless it is not; simulate's own accuracy is the work-precision study's); rows no path took (a
+    sweep restricted to some paths) are left out."""
+    if swept is None:
+        swept = sweep(solved.drop(columns="reference"), target=target)
+    rows = []
+    alone = single_options(target)  # the single path's
+    for i in np.flatnonzero(swept["path"].to_numpy() != ""):
+        row, ref = swept.iloc[i], solved["reference"].iloc[i]
+        if row["path"] == "single":  # simulate itself, at the sweep's options: it must be that, to the bit
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", BeyondRadiusWarning)
+                ref = simulate(ref.scene, alone)
+        errors = relative_errors(row, ref.to_dict(), ref.scene, COMPARED)
+        worst = max(errors, key=errors.get)
+        rows.append({"row": int(i), "path": row["path"], "model": row["model"], "tangential": row["tangential"],
+                     "error": errors[worst], "output": worst, "regime_agrees": row["regime"] == ref.regime,
+                     "beyond_radius_agrees": bool(row["beyond_radius"]) == ref.beyond_radius})
+    return pd.DataFrame(rows)
+
+
+def summary(errors: pd.DataFrame) -> pd.DataFrame:
+    """Per path, law and tangential model: rows, the worst relative error and its output, and the rows whose
+    regime or beyond_radius disagree."""
+    def worst(group):
+        top = group.loc[group["error"].idxmax()]
+        return pd.Series({"rows": len(group), "worst_error": top["error"], "worst_output": top["output"],
+                          "regime_disagrees": int((~group["regime_agrees"]).sum()),
+                          "beyond_radius_disagrees": int((~group["beyond_radius_agrees"]).sum())})
+
+    return (errors.groupby(["path", "model", "tangential"], sort=True).apply(worst, include_groups=False)
+            .reset_index())
+
+
+def run(csv_path: str, rows: int, seed: int = 0, target: float = 1e-8) -> pd.DataFrame:
+    """The pipeline's differential test: ``rows`` random scenes swept in one table and compared row by row
+    with ``simulate``; writes the summary (:func:`summary`) to ``csv_path``."""
+    solved, refused = references(random_scenes(rows, seed=seed))
+    log.info("consistency: %d random scenes, %d refused by simulate (outside the accepted domain)", rows,
+             len(refused))
+    errors = compare(solved, target=target)
+    frame = summary(errors)
+    frame.to_csv(csv_path, index=False, float_format="%.3g")
+    log.info("consistency: worst relative error %.3g over %d rows", errors["error"].max(), len(errors))
+    return frame

@@ -1,0 +1,61 @@
+"""One answer whatever the path: every row of a random mixed table, swept, agrees with ``simulate`` of its
+scene within the sweep's target, on every path, whatever the chunk size or sharding, and on each path forced
+alone (the differential test; the pipeline runs it on 10^5 rows, results/consistency.csv)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from sphereimpact.numerics.consistency import compare, random_scenes, references
+from sphereimpact.sweep import paths
+from sphereimpact.sweep.engine import PATHS, sweep
+
+TARGET = 1e-8
+#: Thresholds at which a table of a few thousand rows takes every path (the engine's own are sized for
+#: sweeps of thousands of scenes per ball): the interpolants on the table's groups of one ball.
+SMALL = {"SIMILARITY_MIN": 100, "PLANE_MIN": 60, "FAMILY_MIN": 40, "GRIP_TABLE_MIN": 50}
+pytestmark = pytest.mark.filterwarnings("ignore::sphereimpact.BeyondRadiusWarning")
+
+
+@pytest.fixture(scope="module")
+def solved():
+    """1600 random scenes and simulate's outcome of each (the scenes simulate refuses are left out)."""
+    table, refused = references(random_scenes(1600, seed=3, groups=6, group_size=160))
+    assert len(refused) <= 5, refused  # the generator stays inside the accepted domain but for a few
+    return table
+
+
+@pytest.fixture
+def small_thresholds(monkeypatch):
+    for name, value in SMALL.items():
+        monkeypatch.setattr(paths, name, value)
+
+
+def assert_agrees(errors: pd.DataFrame) -> None:
+    """Every compared row within the target, with regime and beyond_radius equal; the worst rows named."""
+    bad = errors[(errors["error"] > TARGET) | ~errors["regime_agrees"] | ~errors["beyond_radius_agrees"]]
+    assert bad.empty, bad.sort_values("error").tail(10).to_string()
+
+
+def test_every_row_of_a_mixed_table_agrees_with_simulate_whatever_the_chunks_and_shards(solved, small_thresholds):
+    table = solved.drop(columns="reference")
+    whole = sweep(table)
+    assert set(whole["path"]) == set(PATHS)  # the table reaches every path
+    assert_agrees(compare(solved, whole))
+    assert sweep(table, chunk_size=97).equals(whole)
+    shards = [sweep(table.iloc[rows], span=table) for rows in np.array_split(np.arange(len(table)), 3)]
+    assert pd.concat(shards, ignore_index=True).equals(whole)
+
+
+@pytest.mark.parametrize("path", [name for name in PATHS if name != "single"])
+def test_each_path_alone_agrees_with_simulate_on_the_rows_it_admits(solved, small_thresholds, path):
+    """Forced alone, a path takes every row it admits (not only those no earlier path took)."""
+    alone = sweep(solved.drop(columns="reference"), paths=[path])
+    taken = alone["path"] == path
+    assert taken.sum() >= 40 and set(alone.loc[~taken, "path"]) <= {""}
+    assert_agrees(compare(solved, alone))
+
+
+def test_paths_are_named():
+    with pytest.raises(ValueError, match="paths must be some of single, family-interpolant"):
+        sweep({"angle": [30.0]}, paths=["fastest"])
