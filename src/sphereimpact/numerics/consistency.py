@@ -28,7 +28,7 @@ from ..impact.scene import SolverOptions
 from ..impact.solve import simulate
 from ..sweep.engine import SCENE_COLUMNS, scene_of, scene_table, sweep
 from ..sweep.paths import single_options
-from ..sweep.scenes import numbers
+from ..sweep.scenes import law_view, numbers
 from .reference import relative_errors
 
 log = logging.getLogger(__name__)
@@ -81,14 +81,15 @@ def _balls(rng, n: int) -> pd.DataFrame:
     return table
 
 
-def _approaches(rng, n: int, size: float) -> pd.DataFrame:
-    """``n`` random approaches of a ball of diameter ``size`` [m]: speed, one description of the direction
-    (tilt, incidence or angle to the surface), spin of either sign, gravity on or off."""
+def _approaches(rng, diameter: np.ndarray) -> pd.DataFrame:
+    """One random approach for each ball of diameter ``diameter`` [m]: speed, one description of the
+    direction (tilt, incidence or angle to the surface), spin of either sign, gravity on or off."""
+    n = diameter.size
     speed = _loguniform(rng, 0.2, 40.0, n)
     way = rng.choice(3, n)
     direction = rng.uniform(0.0, 85.0, n)
     direction[rng.uniform(size=n) < 0.08] = 0.0  # a normal approach
-    spin = np.where(rng.uniform(size=n) < 0.5, 0.0, rng.uniform(-1.5, 1.5, n) * speed / (0.5 * size))
+    spin = np.where(rng.uniform(size=n) < 0.5, 0.0, rng.uniform(-1.5, 1.5, n) * speed / (0.5 * diameter))
     return pd.DataFrame({
         "speed": speed, "angle": np.where(way == 0, direction, np.nan),
         "incidence": np.where(way == 1, direction, np.nan),
@@ -100,6 +101,27 @@ def _approaches(rng, n: int, size: float) -> pd.DataFrame:
 #: and speeds (eq. 4.2: the lam interpolant; the Hunt-Crossley laws: the family interpolant), and many balls
 #: of eq. 4.2 at one scene each (the (zeta, lam) plane).
 GROUPS = ("modified", "hunt-crossley", "linear-hunt-crossley", "many modified balls")
+
+
+def _group_balls(kind: str, rng, n: int) -> pd.DataFrame:
+    """``n`` balls of a group (see :data:`GROUPS`): the law's parameters drawn as for any ball, eq. 4.2 at a
+    damping ratio up to 0.5 (the plane's domain), a rigid contact; the many balls are sports balls, so that
+    the plane's rectangle spans a few decades of lam."""
+    model = "modified" if kind == "many modified balls" else kind
+    balls = _balls(rng, n).assign(model=model, tangential="rigid", kappa=np.nan, k=np.nan, modulus=np.nan,
+                                  b=np.nan, ramp=np.nan, chi=np.nan, exponent=np.nan)
+    if kind == "many modified balls":
+        balls = balls.assign(mass=rng.uniform(0.05, 0.5, n), diameter=rng.uniform(0.04, 0.08, n), ramp=100.0,
+                             k=rng.uniform(2e4, 2e5, n))
+    elif model == "modified":
+        balls = balls.assign(k=_loguniform(rng, 1e3, 1e7, n), ramp=_loguniform(rng, 20.0, 500.0, n))
+    if model == "modified":
+        balls["b"] = 2.0 * rng.uniform(0.01, 0.5, n) * np.sqrt(balls["k"] * balls["mass"])
+    elif model == "hunt-crossley":
+        balls = balls.assign(modulus=_loguniform(rng, 1e6, 1e10, n), chi=_loguniform(rng, 1e-3, 0.3, n))
+    else:
+        balls = balls.assign(k=_loguniform(rng, 1e3, 1e7, n), chi=_loguniform(rng, 1e-3, 0.3, n))
+    return balls
 
 
 def random_scenes(n: int, seed: int = 0, groups: int = 4, group_size: int = 0) -> pd.DataFrame:
@@ -117,60 +139,45 @@ def random_scenes(n: int, seed: int = 0, groups: int = 4, group_size: int = 0) -
         if size <= 0:
             break
         kind = GROUPS[g % len(GROUPS)]
-        if kind == "many modified balls":  # sports balls: the plane's rectangle spans a few decades of lam
-            balls = pd.concat([_balls_of("modified", rng) for _ in range(size)], ignore_index=True).assign(
-                mass=rng.uniform(0.05, 0.5, size), diameter=rng.uniform(0.04, 0.08, size), ramp=100.0,
-                k=rng.uniform(2e4, 2e5, size))
-            balls["b"] = 2.0 * rng.uniform(0.01, 0.5, size) * np.sqrt(balls["k"] * balls["mass"])
-            scenes = pd.concat([_approaches(rng, 1, float(d)) for d in balls["diameter"]], ignore_index=True)
+        balls = _group_balls(kind, rng, size if kind == "many modified balls" else 1)
+        balls = balls.loc[np.zeros(size, int) if len(balls) == 1 else np.arange(size)].reset_index(drop=True)
+        scenes = _approaches(rng, balls["diameter"].to_numpy())
+        if kind == "many modified balls":
             scenes["speed"] = rng.uniform(0.5, 30.0, size)
-        else:
-            ball = _balls_of(kind, rng)
-            balls = ball.loc[[0] * size].reset_index(drop=True)
-            scenes = _approaches(rng, size, float(ball["diameter"].iloc[0]))
         parts.append(pd.concat([balls, scenes.assign(gravity=0.0)], axis=1))
         left -= size
-    while left > 0:
-        count = min(int(rng.integers(1, 5)), left)
-        ball = _balls(rng, 1)
-        parts.append(pd.concat([ball.loc[[0] * count].reset_index(drop=True),
-                                _approaches(rng, count, float(ball["diameter"].iloc[0]))], axis=1))
-        left -= count
+    if left > 0:  # one to four scenes per ball
+        counts = rng.integers(1, 5, left)
+        counts = counts[:np.searchsorted(np.cumsum(counts), left) + 1]
+        counts[-1] -= counts.sum() - left
+        balls = _balls(rng, counts.size).loc[np.repeat(np.arange(counts.size), counts)].reset_index(drop=True)
+        parts.append(pd.concat([balls, _approaches(rng, balls["diameter"].to_numpy())], axis=1))
     table = pd.concat(parts, ignore_index=True)
-    # gravity where the ball still bounces: a weight comparable with the contact's force, or damping beyond
-    # critical, keeps the ball on the flat (no separation: outside what a bounce is)
+    table["gravity"] = _gravity_where_it_bounces(table)
+    return table.iloc[rng.permutation(len(table))].reset_index(drop=True)
+
+
+def _gravity_where_it_bounces(table: pd.DataFrame) -> np.ndarray:
+    """The table's gravity, off where the ball would not bounce: a weight comparable with the contact's force,
+    or damping beyond critical, keeps it on the flat (no separation: outside what a bounce is); and where the
+    weight alone would compress the contact beyond the radius (a scene refuses that)."""
     weight = table["gravity"].to_numpy().copy()
-    d = numbers(scene_table(table.assign(gravity=0.0)))
-    tilt = np.radians(np.nan_to_num(table["angle"].to_numpy()))
+    frame = scene_table(table.assign(gravity=0.0))
+    d = numbers(frame)
+    tilt = np.radians(frame["angle"].to_numpy())
     gamma = weight * np.cos(tilt) / (d.w * d.v_n)
     zeta = np.where(np.isnan(table["b"]), 0.0, d.zeta)  # the linear damping's ratio (eq. 4.1, 4.2)
     chi_v = np.where(np.isnan(table["chi"]), 0.0, table["chi"] * d.v_n)  # Hunt-Crossley's damping number
     weight[(gamma > GRAVITY_SHARE) | (zeta > 1.0) | (chi_v > 1.0)] = 0.0
-    for i in np.flatnonzero(weight > 0):  # the weight alone must not compress the contact beyond the radius
-        try:
-            scene_of(scene_table(table.iloc[[i]].assign(gravity=weight[i])).iloc[0].to_dict())
-        except ValueError:
-            weight[i] = 0.0
-    table["gravity"] = weight
-    return table.iloc[rng.permutation(len(table))].reset_index(drop=True)
-
-
-def _balls_of(model: str, rng) -> pd.DataFrame:
-    """A group's ball of law ``model``: its parameters drawn as for any ball, eq. 4.2 at a damping ratio up to
-    0.5 (the plane's domain), a rigid contact."""
-    ball = _balls(rng, 1)
-    k, m = _loguniform(rng, 1e3, 1e7, 1)[0], float(ball["mass"].iloc[0])
-    law = {"modified": {"b": 2.0 * rng.uniform(0.01, 0.5) * np.sqrt(k * m), "ramp": _loguniform(rng, 20.0, 500.0, 1)[0],
-                        "chi": np.nan, "exponent": np.nan},
-           "linear-hunt-crossley": {"b": np.nan, "ramp": np.nan, "chi": _loguniform(rng, 1e-3, 0.3, 1)[0],
-                                    "exponent": np.nan}}
-    if model == "hunt-crossley":
-        modulus = _loguniform(rng, 1e6, 1e10, 1)[0]
-        fields = {"k": np.nan, "modulus": modulus, "b": np.nan, "ramp": np.nan,
-                  "chi": _loguniform(rng, 1e-3, 0.3, 1)[0], "exponent": np.nan}
-    else:
-        fields = law[model] | {"k": k, "modulus": np.nan}
-    return ball.assign(model=model, separation=ball["separation"].iloc[0], tangential="rigid", kappa=np.nan, **fields)
+    radius = 0.5 * frame["diameter"].to_numpy()
+    models = frame["model"].to_numpy()
+    for model in dict.fromkeys(models.tolist()):  # the spring at delta = R must hold the weight
+        rows = np.flatnonzero((models == model) & (weight > 0))
+        if rows.size:
+            view = law_view(frame.iloc[rows], d.v_n[rows])
+            holds = LAWS[model].force(radius[rows], np.zeros(rows.size), view)
+            weight[rows[holds < frame["mass"].to_numpy()[rows] * weight[rows] * np.cos(tilt[rows])]] = 0.0
+    return weight
 
 
 def references(table: pd.DataFrame) -> tuple[pd.DataFrame, list]:

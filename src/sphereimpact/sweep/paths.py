@@ -511,8 +511,8 @@ class RungeKuttaLanesPath(_ByCriterion):
     name = "runge-kutta-lanes"
     summary = "batched Runge-Kutta lanes"
 
-    def admits(self, d, needs):
-        return d.batched & ~_beyond_lanes(d, _series_lanes(d))
+    def admits(self, d, needs):  # (eq. 4.2 beyond LANES_LAM_MAX also where the Taylor lanes would take it)
+        return d.batched & ~_beyond_lanes(d, np.zeros(len(d), bool))
 
     def solve(self, d, rows, separation, target, needs):
         return batch.integrate(d.zeta[rows], d.lam[rows], d.gamma[rows], d.modified[rows], separation, target,

@@ -81,9 +81,9 @@ class PlaneInterpolant:
     target : float
         Accuracy the interpolant must meet (its Chebyshev tails below it, see the module docstring).
     extremes : bool
-        Also the force's largest value on the calm piece (it comes before any tension, so it is smooth on
-        the whole rectangle); the least value is 0 wherever the force does not pull before the contact ends,
-        and is integrated by the Taylor lanes where it does (the penetration criterion's tension).
+        Also the force's extremes: the largest by the Taylor lanes up to maximum compression (see
+        :meth:`__call__`), the least 0 wherever the force does not pull before the contact ends, and by the
+        Taylor lanes where it does (the penetration criterion's tension).
 
     Attributes
     ----------
@@ -106,7 +106,7 @@ class PlaneInterpolant:
                                      f"[{LAM_MIN:g}, {LAM_MAX:g}]; got zeta [{zeta_min:g}, {zeta_max:g}], "
                                      f"lam [{lam_min:g}, {lam_max:g}]")
         self.separation, self.extremes, self.target = separation, extremes, target
-        self.calm_keys = CALM + (("p_max",) if extremes else ())
+
         self.zeta_min, self.zeta_max, self.lam_min, self.lam_max = zeta_min, zeta_max, lam_min, lam_max
         self.zeta = (zeta_min, max(zeta_max, zeta_min * (1.0 + 1e-6)))
         u_lo, u_hi = math.log(lam_min), math.log(lam_max)
@@ -131,10 +131,10 @@ class PlaneInterpolant:
             lam = np.concatenate([g[1].ravel() for g in grids.values()])
             split = grids["calm"][0].size
             ends = np.where(np.arange(zeta.size) < split, "penetration", "continued")
-            solved = series_lanes.integrate(zeta, lam, ends, node_target, extremes=extremes)
+            solved = series_lanes.integrate(zeta, lam, ends, node_target)
             self.nodes += zeta.size
-            self.calm = Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"])
-                                                     for k in self.calm_keys], -1), target)
+            self.calm = Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"]) for k in CALM], -1),
+                               target)
             self.tension = Tensor(*self.zeta, np.stack([solved[k][split:].reshape(sizes["tension"])
                                                          for k in TENSION], -1), target)
             grown = {piece: tuple(_odd(GROWTH * n) if tail > TAIL_FACTOR * target else n
@@ -157,22 +157,25 @@ class PlaneInterpolant:
         return np.broadcast_arrays(zeta, lam)
 
     def __call__(self, zeta, lam, levels=None) -> dict:
-        """tau_m, x_m, tau_f, y_f and j_p at each (zeta, lam) of the rectangle; p_max and p_min if built with
-        extremes; with ``levels`` (of the impulse j, NaN: none), tau_g, the instant j reaches each, by the Taylor
-        lanes, each stopping there (:func:`.series_lanes.integrate`, ``grip_only``)."""
+        """tau_m, x_m, tau_f, y_f and j_p at each (zeta, lam) of the rectangle; with ``levels`` (of the impulse j,
+        NaN: none), tau_g, the instant j reaches each; built with extremes, p_max and p_min.  The instants and
+        the largest force come from the Taylor lanes, each stopping once it has them (:func:`.series_lanes.
+        integrate`, ``partial``): the largest force is not smooth on the plane (where the ramp's early peak
+        overtakes the peak near maximum compression a tensor series needs ten times the nodes in zeta)."""
         zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
         calm = self.calm(zeta, (np.log(lam) - self.u[0]) / (self.u[1] - self.u[0]))
-        out = dict(zip(self.calm_keys, calm))
+        out = dict(zip(CALM, calm))
         out["j_p"] = 1.0 - out["y_f"]
+        if self.extremes or levels is not None:
+            rows = np.arange(zeta.size) if self.extremes else np.flatnonzero(np.isfinite(levels))
+            if rows.size:
+                solved = series_lanes.integrate(zeta[rows], lam[rows], self.separation, self.target,
+                                                levels=None if levels is None else levels[rows],
+                                                extremes=self.extremes, partial=True)
+                for key, values in solved.items():
+                    out.setdefault(key, np.full(zeta.size, np.nan))[rows] = values
         if self.extremes:
             out["p_min"] = np.zeros(zeta.size)
-        if levels is not None:
-            out["tau_g"] = np.full(zeta.size, np.nan)
-            known = np.flatnonzero(np.isfinite(levels))
-            if known.size:
-                out["tau_g"][known] = series_lanes.integrate(zeta[known], lam[known], self.separation,
-                                                             self.target, levels=levels[known],
-                                                             grip_only=True)["tau_g"]
         pulls = np.flatnonzero(1.0 + 2.0 * zeta * lam * out["y_f"] < 0)
         if pulls.size:
             z = zeta[pulls]

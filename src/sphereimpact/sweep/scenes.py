@@ -121,8 +121,9 @@ def incidence(frame: pd.DataFrame) -> np.ndarray:
     return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, frame["angle"].to_numpy()))
 
 
-def _law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
-    """The columns a law's vectorised functions read: mass, radius, v_normal and its parameters."""
+def law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+    """The columns of scenes of one law that its vectorised functions read: mass, radius, v_normal and its
+    parameters (the ``p`` of :class:`~sphereimpact.contact.laws.ContactLaw`'s functions)."""
     return SimpleNamespace(mass=frame["mass"].to_numpy(), radius=0.5 * frame["diameter"].to_numpy(), v_normal=v_n,
                            **{name: frame[name].to_numpy() for name in PARAMETER_NAMES})
 
@@ -196,7 +197,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
         if law.closed_form is not None and not set(law.closed_form.reads) <= {"zeta", "lam"}:
             raise ValueError(f"model {model!r} declares a closed form reading {', '.join(law.closed_form.reads)}; "
                              f"the sweep carries zeta and lam only: declare closed_form=None to be solved per family")
-        view = _law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
+        view = law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
         with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
             w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
             values = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)

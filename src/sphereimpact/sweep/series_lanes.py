@@ -120,7 +120,7 @@ def _second_derivative(ys, s):
 
 
 def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes: bool = False,
-              grip_only: bool = False) -> dict:
+              partial: bool = False) -> dict:
     """Integrate every lane to separation by the Taylor method.
 
     Parameters
@@ -137,15 +137,18 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     extremes : bool
         Also the extremes ``p_max`` and ``p_min`` of P_hat over the contact (its ends and its turning points;
         ``continued`` lanes: its ends and maxima).
-    grip_only : bool
-        Only ``tau_g``: each lane stops once it has its instant (the rest of its motion is not integrated).
+    partial : bool
+        Only ``tau_g`` (with ``levels``) and ``p_max`` (with ``extremes``): each lane stops once it has both,
+        its level's instant and maximum compression (the force's largest value comes before it: there
+        dP_hat/dtau = -2 zeta P_hat r < 0, and after it P_hat < x < x_m = P_hat(tau_m)); the rest of its motion
+        is not integrated.
 
     Returns
     -------
     dict of ndarray
         :data:`~.outputs.NORMAL_OUTPUTS` as :func:`.batch.integrate` gives them, here without gravity: j_p =
         1 - y_p (``continued``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g``;
-        with ``extremes``, ``p_max`` and ``p_min``.  ``grip_only``: ``tau_g`` alone.
+        with ``extremes``, ``p_max`` and ``p_min``.  ``partial``: ``tau_g`` and ``p_max`` alone.
 
     Raises
     ------
@@ -158,8 +161,8 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     kind = np.broadcast_to(np.asarray(separation), zeta.shape)
     if not np.isin(kind, SEPARATIONS).all():
         raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}")
-    wanted = ["tau_g"] if grip_only else [*NORMAL_OUTPUTS, *(["tau_g"] if levels is not None else []),
-                                          *(["p_max", "p_min"] if extremes else [])]
+    wanted = ([*(["tau_g"] if levels is not None else []), *(["p_max"] if extremes else [])] if partial else
+              [*NORMAL_OUTPUTS, *(["tau_g"] if levels is not None else []), *(["p_max", "p_min"] if extremes else [])])
     if n == 0:
         return {k: np.empty(0) for k in wanted}
     level = np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float).copy()
@@ -207,7 +210,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
         cross = ~crossed & (1.0 - y1 >= level)  # the impulse j = 1 - y reaches the level within this step
         crossed |= cross
         masks = [("max", hit_max), ("tension", first), ("end", done), ("grip", cross)]
-        if extremes and not grip_only:  # records carry the sign at the step's start (turning before the update)
+        if extremes:  # records carry the sign at the step's start (turning before the update)
             turned = np.sign(-_second_derivative(ys, h))
             masks.append(("turn", (turned != turning) & (turned != 0)))
         for event, mask in masks:
@@ -216,7 +219,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
                 records[event].append({"lane": lane[i], "tau": tau[i], "h": h[i], "xs": xs[:, i], "ys": ys[:, i],
                                        "x_end": x_end[i], "seen": tension_seen[i], "level": level[i],
                                        "rising": turning[i] > 0})
-        if extremes and not grip_only:
+        if extremes:
             turning = np.where(turned != 0, turned, turning)
         tau = tau + h
         x, y = x1, y1
@@ -224,8 +227,8 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
         if late.any():
             raise ImpactError(f"no separation within the horizon for {int(late.sum())} scene(s) "
                               f"(first: zeta = {two_zeta[late][0] / 2:.3g}, lam = {lam_a[late][0]:.3g})")
-        if grip_only:  # a lane is done once it has its instant, or once P_hat first falls to 0 (j is largest)
-            done = crossed | pulls | x_end
+        if partial:  # done with its instant (or once P_hat first falls to 0: j is largest) and, for the
+            done = (crossed | pulls | x_end) & (past | (not extremes))  # force's maximum, past maximum compression
         if done.any():  # ended lanes leave the batch
             keep = ~done
             lane, x, y, tau = lane[keep], x[keep], y[keep], tau[keep]
@@ -234,8 +237,13 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
             at_root, at_zero, continued = at_root[keep], at_zero[keep], continued[keep]
     else:
         raise ImpactError(f"the Taylor lanes took more than {MAX_STEPS} steps")
-    if grip_only:
-        return {"tau_g": _grip_events(records, 2.0 * zeta, lam, np.ones(n, bool), level_all(levels, n), None)}
+    if partial:
+        out = {}
+        if levels is not None:
+            out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, np.ones(n, bool), level_all(levels, n), None)
+        if extremes:
+            out["p_max"] = _turns(records, 2.0 * zeta, lam, np.full(n, np.inf), kind == "continued")[0]
+        return out
     out = _events(records, 2.0 * zeta, lam, kind != "penetration", continued_all=kind == "continued",
                   extremes=extremes)
     if levels is not None:
@@ -346,25 +354,31 @@ def _events(records: dict, two_zeta, lam, at_root, continued_all, extremes: bool
     first_zero[j[fresh]] = np.where(root | search, y_p, y_end)[fresh]
     out["j_p"] = 1.0 - first_zero  # the impulse of P_hat while positive, no gravity: v_n (1 - y_p)
     if extremes:
-        # P_hat = -y' on a step polynomial: 0 at both ends (x = 0 with the ramp off, or the force criterion's
-        # P_hat = 0), and at every turning point before separation (roots of y'', where it is evaluated from
-        # the state); a continued lane's minima past delta = 0 are not the contact's (the force criterion's
-        # end is P_hat = 0, P_hat >= 0 before it)
-        out["p_max"], out["p_min"] = np.zeros(n), np.zeros(n)
-        turn = _join(records["turn"])
-        if turn is not None:
-            d2 = _derivative(_derivative(turn["ys"]))
-            rising = turn["rising"]  # P_hat rose at the step's start: it turns to a maximum in this step
-            f = np.where(rising, -d2, d2)  # P_hat' (maximum) or -P_hat' (minimum): falls through 0
-            s = np.where(f[0] > 0, _polynomial_root(f, turn["h"], turn["tau"]), 0.0)  # at the start: s = 0
-            # P_hat from the state there, x Q(x, y): the step polynomial's own derivative -y' carries its
-            # truncation error over the step's length (1.8e-8 of the largest force at lam ~ 1e3)
-            x, y = _horner(turn["xs"], s), _horner(turn["ys"], s)
-            j = turn["lane"]
-            value = x * ratio(x, y, two_zeta[j], lam[j])
-            inside = turn["tau"] + s < out["tau_f"][turn["lane"]]
-            top = inside & rising
-            low = inside & ~rising & ~continued_all[turn["lane"]]
-            np.maximum.at(out["p_max"], turn["lane"][top], value[top])
-            np.minimum.at(out["p_min"], turn["lane"][low], value[low])
+        out["p_max"], out["p_min"] = _turns(records, two_zeta, lam, out["tau_f"], continued_all)
     return out
+
+
+def _turns(records: dict, two_zeta, lam, tau_f, continued) -> tuple:
+    """(p_max, p_min): 0 (P_hat at both ends of the contact: x = 0 with the ramp off, or the force criterion's
+    P_hat = 0), and P_hat at every recorded turning point before tau_f (roots of y'', where P_hat is evaluated
+    from the state); a continued lane's minima past delta = 0 are not the contact's (the force criterion's
+    end is P_hat = 0, and P_hat >= 0 before it)."""
+    n = two_zeta.size
+    p_max, p_min = np.zeros(n), np.zeros(n)
+    turn = _join(records["turn"])
+    if turn is not None:
+        d2 = _derivative(_derivative(turn["ys"]))
+        rising = turn["rising"]  # P_hat rose at the step's start: it turns to a maximum in this step
+        f = np.where(rising, -d2, d2)  # P_hat' (maximum) or -P_hat' (minimum): falls through 0
+        s = np.where(f[0] > 0, _polynomial_root(f, turn["h"], turn["tau"]), 0.0)  # at the start: s = 0
+        # P_hat from the state there, x Q(x, y): the step polynomial's own derivative -y' carries its
+        # truncation error over the step's length (1.8e-8 of the largest force at lam ~ 1e3)
+        x, y = _horner(turn["xs"], s), _horner(turn["ys"], s)
+        j = turn["lane"]
+        value = x * ratio(x, y, two_zeta[j], lam[j])
+        inside = turn["tau"] + s < tau_f[j]
+        top = inside & rising
+        low = inside & ~rising & ~continued[j]
+        np.maximum.at(p_max, j[top], value[top])
+        np.minimum.at(p_min, j[low], value[low])
+    return p_max, p_min

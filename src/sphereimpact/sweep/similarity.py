@@ -388,7 +388,7 @@ class LambdaInterpolant(_Pieces):
             n = lam.size
             if taylor:
                 return series_lanes.integrate(np.full(n, zeta), lam, criterion, node_target, **asked)
-            asked.pop("grip_only", None)
+            asked.pop("partial", None)
             return batch.integrate(np.full(n, zeta), lam, np.zeros(n), np.ones(n, bool), criterion, node_target,
                                    **asked)
 
@@ -400,7 +400,7 @@ class LambdaInterpolant(_Pieces):
             if asked.grip:  # one lane per node and level, each stopping at its instant
                 levels = _profile(out, asked)
                 tau = lanes(np.repeat(lam, levels.shape[1]), criterion, node_target, levels=levels.ravel(),
-                            grip_only=True)["tau_g"].reshape(levels.shape)
+                            partial=True)["tau_g"].reshape(levels.shape)
                 out |= dict(zip(asked.keys(), tau.T))
             return out
 
@@ -414,7 +414,7 @@ class LambdaInterpolant(_Pieces):
 
     def late(self, u, levels) -> np.ndarray:
         """The lanes for each scene, stopping at its instant."""
-        return self._lanes(np.exp(u), self.separation, self.target, levels=levels, grip_only=True)["tau_g"]
+        return self._lanes(np.exp(u), self.separation, self.target, levels=levels, partial=True)["tau_g"]
 
 
 def dimensionless_motion(scene: Scene, options: SolverOptions, extremes: bool = False, levels=None,

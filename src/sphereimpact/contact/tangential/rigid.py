@@ -195,9 +195,28 @@ class PositiveImpulse:
         t = np.where(gap_high > 0, high, low)  # beyond J+(t_f): t_f; at a sample: that sample
         if inside.any():
             i = np.flatnonzero(inside)
+            start = self._first_guess(times, on_grid, impulses[i], upper[i])
+            # J+ is read off the motion's state, m (v0 - v): its round-off, a few ulp of m v0, ends the search
+            f_tol = 8.0 * np.finfo(float).eps * normal.scene.mass * normal.scene.v_normal
             t[i] = falling_root(lambda s: (impulses[i] - self(s), -np.maximum(normal.force(s), 0.0)), low[i],
-                                high[i], gap_low[i], gap_high[i])
+                                high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
         return np.where(impulses <= 0, 0.0, t)
+
+    def _first_guess(self, times, on_grid, impulses, upper) -> np.ndarray:
+        """Where J+ reaches each impulse, to start Newton from: the secant of its grid interval, but in the
+        first interval, where J+ grows as a power p of the time (2 for a linear spring, 2.5 for Hertz), the
+        power law through J+(t1) with p read off J+(t1 / 2) (the secant started Newton far to the left of a
+        small impulse's instant, and it needed a dozen steps to come back)."""
+        low, high = times[upper - 1], times[upper]
+        j_low, j_high = on_grid[upper - 1], on_grid[upper]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            guess = low + (impulses - j_low) / (j_high - j_low) * (high - low)
+            first = upper == 1
+            if first.any() and on_grid[1] > 0:
+                half = float(self(0.5 * times[1]))
+                power = np.log2(on_grid[1] / half) if half > 0 else 1.0
+                guess = np.where(first, times[1] * (impulses / on_grid[1]) ** (1.0 / power), guess)
+        return np.clip(guess, low, high)
 
     def integral(self, t):
         """K+(t) = integral of J+ from 0 to t [N s^2]."""
