@@ -45,6 +45,8 @@ if config["study"] == "chapter4":
             "results/readme/replication.md",
             "results/readme/speed.md",
             "results/readme/validation.md",
+            "results/readme/consistency.md",
+            "results/consistency.csv",
             expand("results/notebooks/{name}.html", name=NOTEBOOKS),
         default_target: True
 

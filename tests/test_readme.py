@@ -65,11 +65,13 @@ def test_check_and_update_round_trip(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text("# T\n<!-- BEGIN GENERATED speed: x -->\nold\n<!-- END GENERATED speed -->\n"
                       "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n"
-                      "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n")
+                      "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n"
+                      "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n")
     snippets = tmp_path / "snippets"
     snippets.mkdir()
     (snippets / "speed.md").write_text(TABLE)
     (snippets / "validation.md").write_text("measured\n")
+    (snippets / "consistency.md").write_text("compared\n")
     (snippets / "replication.md").write_text("fresh\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))

@@ -20,7 +20,8 @@ ROOT = Path(__file__).resolve().parents[1]
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
            "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
-           "results/readme/speed.md", "results/readme/validation.md",
+           "results/readme/speed.md", "results/readme/validation.md", "results/readme/consistency.md",
+           "results/consistency.csv",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
            "results/notebooks/validation.html",

@@ -35,7 +35,8 @@ rule replicate:
 
 
 rule readme_snippets:
-    """The README's generated blocks (replication, speed and validation tables), from the result files."""
+    """The README's generated blocks (replication, speed and validation tables, the sweep's differential test),
+    from the result files."""
     input:
         replication="results/replication.csv",
         findings="results/replication_findings.md",
@@ -43,11 +44,13 @@ rule readme_snippets:
         bench_sweep="results/bench_sweep.csv",
         validation_summary="results/validation_summary.csv",
         validation="results/validation.csv",
+        consistency="results/consistency.csv",
         code=code("workflow/scripts/readme_snippets.py"),
     output:
         replication="results/readme/replication.md",
         speed="results/readme/speed.md",
         validation="results/readme/validation.md",
+        consistency="results/readme/consistency.md",
     params:
         config=params_for("readme"),
     log:

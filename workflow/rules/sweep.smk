@@ -111,3 +111,43 @@ rule bench_sweep:
         ENV
     script:
         "../scripts/bench_sweep.py"
+
+
+CONSISTENCY_SHARDS = list(range(config["consistency"]["shards"]))
+
+
+rule consistency_references:
+    """simulate of one block of the differential test's random scenes: each row's reference."""
+    input:
+        code=code("workflow/scripts/consistency_references.py"),
+    output:
+        parquet=temp("results/consistency/references_{shard}.parquet"),
+    params:
+        config=params_for("consistency"),
+        shard=lambda wildcards: int(wildcards.shard),
+        shards=len(CONSISTENCY_SHARDS),
+    wildcard_constraints:
+        shard="[0-9]+",
+    log:
+        "logs/consistency/references_{shard}.log",
+    conda:
+        ENV
+    script:
+        "../scripts/consistency_references.py"
+
+
+rule consistency:
+    """The differential test: the random scenes in one table, swept, every row against its reference."""
+    input:
+        references=expand("results/consistency/references_{shard}.parquet", shard=CONSISTENCY_SHARDS),
+        code=code("workflow/scripts/consistency.py"),
+    output:
+        csv=report("results/consistency.csv", caption="../report/consistency.rst", category="Sweeps"),
+    params:
+        config=params_for("consistency"),
+    log:
+        "logs/consistency/consistency.log",
+    conda:
+        ENV
+    script:
+        "../scripts/consistency.py"

@@ -180,48 +180,53 @@ def _gravity_where_it_bounces(table: pd.DataFrame) -> np.ndarray:
     return weight
 
 
-def references(table: pd.DataFrame) -> tuple[pd.DataFrame, list]:
+def references(table: pd.DataFrame) -> pd.DataFrame:
     """``simulate`` of every scene of ``table`` at :data:`REFERENCE` (the tolerance the sweep's accuracy
     tests take: at the default 1e-10 a grip near the end of the contact, where the impulse levels off, is
-    itself off by up to 3e-8 of t_f): (the scenes it solves, renumbered, with a column ``reference`` holding
-    each Outcome; the refusals, (row, message) for each scene it refuses: outside the accepted domain, not
-    compared)."""
+    itself off by up to 3e-8 of t_f): one row per scene, in order, of its outputs (:data:`SCALAR_OUTPUTS`, NaN
+    t_roll where it never grips) and ``refused``, simulate's message where it refuses the scene (outside the
+    accepted domain: not compared), else ''."""
     frame = scene_table(table)
-    kept, outcomes, refused = [], [], []
+    rows = []
     with warnings.catch_warnings():  # compressions beyond the radius: flagged in both, not warned about
         warnings.simplefilter("ignore", BeyondRadiusWarning)
         for i in range(len(frame)):
             try:
-                outcomes.append(simulate(scene_of(frame.iloc[i].to_dict()), REFERENCE))
-                kept.append(i)
+                outcome = simulate(scene_of(frame.iloc[i].to_dict()), REFERENCE)
             except ImpactError as err:
-                refused.append((i, str(err)))
-    solved = table.iloc[kept].reset_index(drop=True)
-    return solved.assign(reference=pd.Series(outcomes, dtype=object)), refused
+                rows.append({"refused": str(err)})
+                continue
+            values = {key: getattr(outcome, key) for key in SCALAR_OUTPUTS}
+            rows.append(values | {"t_roll": np.nan if outcome.t_roll is None else outcome.t_roll, "refused": ""})
+    return pd.DataFrame(rows, columns=[*SCALAR_OUTPUTS, "refused"])
 
 
-def compare(solved: pd.DataFrame, swept: pd.DataFrame | None = None, target: float = 1e-8) -> pd.DataFrame:
-    """Each row of ``swept`` (the sweep of ``solved``'s scenes, swept here when not given) against its
-    ``reference`` (:func:`references`): the row's path, law and tangential model, its worst relative error
-    over :data:`COMPARED` and on which output, and whether regime and beyond_radius agree.  A row of the
-    single-impact path is ``simulate`` itself at the sweep's options, and is compared with that (its error
-    is 0 unless it is not; simulate's own accuracy is the work-precision study's); rows no path took (a
-    sweep restricted to some paths) are left out."""
-    if swept is None:
-        swept = sweep(solved.drop(columns="reference"), target=target)
+def compare(table: pd.DataFrame, reference: pd.DataFrame, swept: pd.DataFrame | None = None,
+            target: float = 1e-8) -> pd.DataFrame:
+    """Each row of ``swept`` (the sweep of ``table``, swept here when not given) against ``reference``
+    (:func:`references` of the same rows, none refused): the row's path, law and tangential model, its worst
+    relative error over :data:`COMPARED` and on which output, and whether regime and beyond_radius agree.  A
+    row of the single-impact path is ``simulate`` itself at the sweep's options (which are the reference's at
+    the default target: it must equal it to the bit; simulate's own accuracy is the work-precision study's);
+    rows no path took (a sweep restricted to some paths) are left out."""
+    if (reference["refused"] != "").any():
+        raise ValueError("compare: leave out the scenes simulate refuses (reference['refused'])")
+    alone = single_options(target)
+    swept = sweep(table, target=target) if swept is None else swept
+    frame = swept[list(SCENE_COLUMNS)]
     rows = []
-    alone = single_options(target)  # the single path's
     for i in np.flatnonzero(swept["path"].to_numpy() != ""):
-        row, ref = swept.iloc[i], solved["reference"].iloc[i]
-        if row["path"] == "single":  # simulate itself, at the sweep's options: it must be that, to the bit
+        row, ref = swept.iloc[i], reference.iloc[i].to_dict()
+        scene = scene_of(frame.iloc[i].to_dict())
+        if row["path"] == "single" and alone != REFERENCE:  # simulate at the sweep's own options
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
-                ref = simulate(ref.scene, alone)
-        errors = relative_errors(row, ref.to_dict(), ref.scene, COMPARED)
+                ref = simulate(scene, alone).to_dict()
+        errors = relative_errors(row, ref, scene, COMPARED)
         worst = max(errors, key=errors.get)
         rows.append({"row": int(i), "path": row["path"], "model": row["model"], "tangential": row["tangential"],
-                     "error": errors[worst], "output": worst, "regime_agrees": row["regime"] == ref.regime,
-                     "beyond_radius_agrees": bool(row["beyond_radius"]) == ref.beyond_radius})
+                     "error": errors[worst], "output": worst, "regime_agrees": row["regime"] == ref["regime"],
+                     "beyond_radius_agrees": bool(row["beyond_radius"]) == bool(ref["beyond_radius"])})
     return pd.DataFrame(rows)
 
 
@@ -238,14 +243,31 @@ def summary(errors: pd.DataFrame) -> pd.DataFrame:
             .reset_index())
 
 
-def run(csv_path: str, rows: int, seed: int = 0, target: float = 1e-8) -> pd.DataFrame:
-    """The pipeline's differential test: ``rows`` random scenes swept in one table and compared row by row
-    with ``simulate``; writes the summary (:func:`summary`) to ``csv_path``."""
-    solved, refused = references(random_scenes(rows, seed=seed))
+def reference_shard(rows: int, seed: int, shard: int, shards: int) -> pd.DataFrame:
+    """:func:`references` of one of ``shards`` contiguous blocks of :func:`random_scenes` (``rows``,
+    ``seed``), with each scene's ``row`` in the whole table (the pipeline's jobs share the references' cost)."""
+    table = random_scenes(rows, seed=seed)
+    block = np.array_split(np.arange(len(table)), shards)[shard]
+    return references(table.iloc[block]).assign(row=block)
+
+
+def run(csv_path: str, reference_files, rows: int, seed: int = 0, target: float = 1e-8) -> pd.DataFrame:
+    """The pipeline's differential test: :func:`random_scenes` (``rows``, ``seed``) with the references of
+    ``reference_files`` (:func:`reference_shard`), those simulate solves swept in one table and compared row
+    by row; writes the summary (:func:`summary`, one row ``refused by simulate`` counting the others) to
+    ``csv_path``."""
+    table = random_scenes(rows, seed=seed)
+    reference = pd.concat([pd.read_parquet(path) for path in reference_files]).sort_values("row")
+    solved = reference["refused"] == ""
+    kept = reference["row"].to_numpy()[solved.to_numpy()]
     log.info("consistency: %d random scenes, %d refused by simulate (outside the accepted domain)", rows,
-             len(refused))
-    errors = compare(solved, target=target)
+             int((~solved).sum()))
+    errors = compare(table.iloc[kept].reset_index(drop=True),
+                     reference[solved].drop(columns="row").reset_index(drop=True), target=target)
     frame = summary(errors)
+    refused = pd.DataFrame([{"path": "refused by simulate", "model": "", "tangential": "",
+                             "rows": int((~solved).sum())}])
+    frame = pd.concat([frame, refused], ignore_index=True)
     frame.to_csv(csv_path, index=False, float_format="%.3g")
     log.info("consistency: worst relative error %.3g over %d rows", errors["error"].max(), len(errors))
     return frame

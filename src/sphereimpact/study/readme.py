@@ -27,14 +27,14 @@ from ..numerics.reference import FINE_DIGITS
 from .tables import markdown_table
 
 #: Blocks of the README, in order.
-BLOCKS = ("replication", "speed", "validation")
+BLOCKS = ("replication", "speed", "validation", "consistency")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on
 #: this project's 2-core machines: one timing moved by up to 1.8x between two idle runs (garbage collector
 #: off), and a speed-up is the ratio of two timings.
 TIMING_RANGE = 3.0
 #: Table headers whose cells are timings or ratios of timings.
 TIMED = ("simulate [ms]", "script [ms]", "simulate / script", "time", "impacts/s", "speed-up", "time per impact [ms]",
-         "time ratio")
+         "time ratio", "time, every output", "every / fast")
 
 _BEGIN = re.compile(r"<!-- BEGIN GENERATED (\w+)[^>]*-->\n")
 _UNITS = {"delta_m": (1e3, "mm"), "t_m": (1e3, "ms"), "t_f": (1e3, "ms"), "ve_t": (1.0, "m/s"),
@@ -100,9 +100,10 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         goal = "" if pd.isna(r.target_speedup) else f"{r.target_speedup:g}×"
         rows.append((r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{r.throughput:.3g}",
                      f"{r.speedup_over_handwritten:.3g}×", f"{r.worst_error:.1e}",
-                     f"{r.handwritten_error:.1e} at rtol {r.handwritten_rtol:.0e}{reached}", goal))
+                     f"{r.handwritten_error:.1e} at rtol {r.handwritten_rtol:.0e}{reached}", goal,
+                     _seconds(r.seconds_all), f"{r.all_over_fast:.2g}"))
     many = _table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
-                   "target speed-up"), rows)
+                   "target speed-up", "time, every output", "every / fast"), rows)
     repeats = int(sweeps["repeats"].iloc[0])
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options (method `auto`: the law's closed "
@@ -122,7 +123,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
         f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
         f"the median of {repeats} complete runs; speed-up = the script's time per scene × the engine's "
-        "impacts per second.",
+        "impacts per second. The engine is timed on the outputs the script computes too (`--outputs fast`), and "
+        "with every output, the default (t_roll and the force's extremes besides).",
         many,
         f"Timings vary from run to run and machine to machine: CI fails when a fresh run's timed cell differs "
         f"from these by more than a factor {TIMING_RANGE:g}.",
@@ -169,17 +171,36 @@ def validation_block(summary_csv: str, residual_csv: str) -> str:
     ]) + "\n"
 
 
+def consistency_block(consistency_csv: str, target: float = 1e-8) -> str:
+    """The sweep's differential test in a sentence: rows compared, the worst error and where, agreement."""
+    table = pd.read_csv(consistency_csv, keep_default_na=False)
+    refused = int(table.loc[table["path"] == "refused by simulate", "rows"].sum())
+    rows = table[table["path"] != "refused by simulate"]
+    worst = rows.loc[rows["worst_error"].astype(float).idxmax()]
+    disagree = int(rows["regime_disagrees"].astype(int).sum() + rows["beyond_radius_disagrees"].astype(int).sum())
+    paths = sorted(set(rows["path"]))
+    verdict = "within" if float(worst["worst_error"]) <= target else "**beyond**"
+    agreement = "agree on every row" if disagree == 0 else f"**disagree on {disagree} rows**"
+    return (f"Differential test (`results/consistency.csv`): {int(rows['rows'].astype(int).sum()):,} random scenes "
+            f"mixed in one table and swept, every row against `simulate` of its scene at rtol 1e-12, on "
+            f"{len(paths)} paths ({', '.join(f'`{p}`' for p in paths)}): worst relative error "
+            f"{float(worst['worst_error']):.2g} ({worst['path']}, {worst['model']}, {worst['tangential']}, "
+            f"{worst['worst_output']}), {verdict} the sweep's {target:g} target; regime and beyond_radius "
+            f"{agreement}; {refused} scenes simulate refuses (outside the accepted domain) left out.\n")
+
+
 def _seconds(value: float) -> str:
     return f"{value * 1e3:.3g} ms" if value < 1 else f"{value:.3g} s"
 
 
 def write_snippets(config: dict, replication_csv: str, findings_md: str, bench_csv: str, bench_sweep_csv: str,
-                   validation_summary_csv: str, validation_csv: str, replication_out: str, speed_out: str,
-                   validation_out: str) -> None:
+                   validation_summary_csv: str, validation_csv: str, consistency_csv: str, replication_out: str,
+                   speed_out: str, validation_out: str, consistency_out: str) -> None:
     """Write the README's generated blocks (see the module docstring)."""
     Path(replication_out).write_text(replication_block(config, replication_csv, findings_md), encoding="utf-8")
     Path(speed_out).write_text(speed_block(bench_csv, bench_sweep_csv), encoding="utf-8")
     Path(validation_out).write_text(validation_block(validation_summary_csv, validation_csv), encoding="utf-8")
+    Path(consistency_out).write_text(consistency_block(consistency_csv), encoding="utf-8")
 
 
 def blocks(text: str) -> dict[str, tuple[int, int]]:

@@ -43,6 +43,7 @@ RULE_KEYS = {
     "bench": (*_SCENE, "cases", "primary", "bench.repeats", "bench.domain", "numerics.microslip", "validation"),
     "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million", "bench.laws"),
     "sweep_paths": ("bench.repeats", "bench.path_sizes"),
+    "consistency": ("consistency",),
     "readme": ("primary",),
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
