@@ -230,9 +230,9 @@ def test_the_batched_series_of_eq_4_2_is_its_series():
 
 
 def test_the_lanes_event_functions_are_the_laws_force_per_compression():
-    """Both batched lanes end contact on Q = P_hat / x (tension, or the force criterion's end), each in its own
-    cancellation-free form; Q x is the law's own dimensionless force, and Q tends to 1 + 2 zeta lam y as
-    x -> 0+ on eq. 4.2."""
+    """Both batched lanes end contact on Q = P_hat / x (tension, or the force criterion's end), eq. 4.2's in the
+    law's own cancellation-free form (its ``per_compression``); Q x is the law's own dimensionless force, and Q
+    tends to 1 + 2 zeta lam y as x -> 0+ on eq. 4.2."""
     from sphereimpact.contact.laws.linear import kelvin_voigt_scaled, modified_scaled
     from sphereimpact.sweep import batch, series_lanes
 
@@ -250,4 +250,5 @@ def test_the_lanes_event_functions_are_the_laws_force_per_compression():
     at_touch = 1.0 + 2.0 * zeta * lam * y
     assert np.allclose(series_lanes.ratio(np.zeros(n), y, 2.0 * zeta, lam), at_touch, rtol=1e-14, atol=1e-14)
     limit = batch._Lanes(zeta, lam, np.zeros(n), ramped).ratio(np.zeros(n), y)
-    assert np.array_equal(limit[ramped], at_touch[ramped]) and np.all(limit[~ramped] == -np.inf)
+    assert np.allclose(limit[ramped], at_touch[ramped], rtol=1e-14, atol=1e-14) and np.all(limit[~ramped] == -np.inf)
+    assert LAWS["modified"].per_compression is series_lanes.modified_per_compression

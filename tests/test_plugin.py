@@ -20,18 +20,13 @@ NAME = "growing-damping"
 OUTPUTS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")
 
 
-def _force(delta, delta_dot, p):
-    delta = np.asarray(delta, dtype=float)
-    return np.where(delta > 0, p.k * delta + p.b * np.asarray(delta_dot, dtype=float) * delta / p.radius, 0.0)
-
-
 def _continued(delta, delta_dot, p):
     delta = np.asarray(delta, dtype=float)
     return p.k * delta + p.b * np.asarray(delta_dot, dtype=float) * delta / p.radius
 
 
 GROWING = ContactLaw(
-    NAME, "P = k delta + b delta_dot delta / R (test law)", (K, B), _force, _continued, natural_frequency,
+    NAME, "P = k delta + b delta_dot delta / R (test law)", (K, B), _continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p), "depth": p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)), damping="b")
 

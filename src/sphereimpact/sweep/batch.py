@@ -24,7 +24,7 @@ from scipy.special import wrightomega
 
 from ..errors import ImpactError
 from ..contact.laws import ramp_continued
-from ..contact.laws.linear import kelvin_voigt_scaled, modified_scaled
+from ..contact.laws.linear import kelvin_voigt_scaled, modified_per_compression, modified_scaled
 from .outputs import NORMAL_OUTPUTS
 
 #: The dimensionless forces these lanes integrate (a law's ``ContactLaw.scaled``, by identity) -> whether
@@ -91,12 +91,14 @@ class _Lanes:
         Same sign as P_hat while x > 0, but without P_hat's forced zero at x = 0; through restitution
         it only decreases, so its first root (tension, or the force criterion's end) is never skipped
         by a step that P_hat dips below zero and rises again within.  At x -> 0+ it tends to
-        G = 1 + 2 zeta lam y (modified) or -inf (kelvin-voigt).
+        G = 1 + 2 zeta lam y (modified: the law's :func:`~sphereimpact.contact.laws.linear.modified_per_compression`)
+        or -inf (kelvin-voigt).
         """
         positive, safe, ramp = self._ratio_terms(x) if terms is None else terms
-        inside = 1.0 + self.two_zeta * y * ramp / safe
-        limit = np.where(self.modified, 1.0 + self.two_zeta * self.lam * y, -np.inf)
-        return np.where(positive, inside, limit)
+        modified = modified_per_compression(x, y, self.numbers)  # eq. 4.2's own, continued through x = 0
+        if self.kind == "modified":
+            return modified
+        return np.where(self.modified, modified, np.where(positive, 1.0 + self.two_zeta * y / safe, -np.inf))
 
     def ratio_and_rate(self, x, y, dy):
         """The function whose root ends the force criterion's contact, and its tau-derivative along the motion

@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 from . import series_lanes
+from ..contact.laws.linear import modified_per_compression
 from ..errors import InterpolationError
 from .chebyshev import Tensor, lobatto
 from .similarity import NODE_FACTOR, NODE_TARGET_MIN
@@ -176,7 +177,7 @@ class PlaneInterpolant:
                     out.setdefault(key, np.full(zeta.size, np.nan))[rows] = values
         if self.extremes:
             out["p_min"] = np.zeros(zeta.size)
-        pulls = np.flatnonzero(1.0 + 2.0 * zeta * lam * out["y_f"] < 0)
+        pulls = np.flatnonzero(modified_per_compression(0.0, out["y_f"], {"zeta": zeta, "lam": lam}) < 0)
         if pulls.size:
             z = zeta[pulls]
             edge = onset_edge(z)

@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..contact.laws.linear import modified_series_batched
+from ..contact.laws.linear import modified_per_compression, modified_series_batched, ramp_per_x
 from ..errors import ImpactError
 from ..ode.roots import falling_root
 from ..ode.series import BAND_EDGE, MAX_STEPS, band_limit, order_for
@@ -69,25 +69,18 @@ def _derivative(coefficients):
     return coefficients[1:] * np.arange(1, coefficients.shape[0])[:, None]
 
 
-def _per_x(x, lam):
-    """(1 - exp(-lam x)) / x, lam at x = 0 (entire in x)."""
-    u = lam * x
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(u != 0, -np.expm1(-u) / np.where(u != 0, x, 1.0), lam)
-
-
 def ratio(x, y, two_zeta, lam):
-    """Q = P_hat / x = 1 + 2 zeta y (1 - exp(-lam x)) / x, for any x (G = 1 + 2 zeta lam y at x = 0)."""
-    return 1.0 + two_zeta * y * _per_x(x, lam)
+    """Q = P_hat / x, the law's (:func:`~sphereimpact.contact.laws.linear.modified_per_compression`)."""
+    return modified_per_compression(x, y, {"zeta": 0.5 * two_zeta, "lam": lam})
 
 
 def _ratio_and_slope(xs, ys, two_zeta, lam):
-    """s -> (Q, dQ/ds) along step polynomials: d/ds = 2 zeta (y' phi + y x' dphi/dx), phi = :func:`_per_x`."""
+    """s -> (Q, dQ/ds) along step polynomials: d/ds = 2 zeta (y' phi + y x' dphi/dx), phi = :func:`~sphereimpact.contact.laws.linear.ramp_per_x`."""
     dxs, dys = _derivative(xs), _derivative(ys)
 
     def value(s):
         x, y = _horner(xs, s), _horner(ys, s)
-        phi = _per_x(x, lam)
+        phi = ramp_per_x(x, lam)
         u = lam * x
         with np.errstate(divide="ignore", invalid="ignore"):  # (lam exp(-u) - phi) / x; -lam^2 / 2 near x = 0
             slope = np.where(np.abs(u) > 1e-4, (lam * np.exp(-u) - phi) / np.where(x != 0, x, 1.0),

@@ -50,6 +50,7 @@ from scipy.optimize import brentq
 from ..errors import InterpolationError
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import normal_motion
+from ..contact.laws.linear import modified_per_compression
 from ..contact.tangential import PositiveImpulse
 from . import batch, series_lanes
 from .chebyshev import Series, Tensor, lobatto
@@ -404,8 +405,8 @@ class LambdaInterpolant(_Pieces):
                 out |= dict(zip(asked.keys(), tau.T))
             return out
 
-        def exit_ratio(u, y_f):  # P / (k delta) as delta -> 0+: 1 + 2 zeta lam y
-            return 1.0 + 2.0 * zeta * np.exp(u) * y_f
+        def exit_ratio(u, y_f):  # P / (k delta) as delta -> 0+, the law's: 1 + 2 zeta lam y
+            return modified_per_compression(0.0, y_f, {"zeta": zeta, "lam": np.exp(u)})
 
         self.zeta = zeta
         self._lanes = lanes

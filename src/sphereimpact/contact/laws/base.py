@@ -73,15 +73,12 @@ class ContactLaw:
         One line for help texts and reports.
     parameters : tuple of Parameter
         The law's parameters; a Scene refuses any other law parameter.
-    force : callable
-        ``force(delta, delta_dot, p) -> P`` [N]: the law, 0 outside contact (delta <= 0), never
-        evaluating anything that can overflow there.
     continued : callable
         ``continued(delta, delta_dot, p)``: the in-contact formula continued smoothly a little past
         delta = 0.  Integrators use it for their stages and the force during contact is evaluated with
         it, so the ends of [0, t_f] are one-sided limits whatever side of zero round-off puts delta (a
         kink or jump at separation spoils the crossing step's interpolant: COR error 8.9e-11 with it,
-        8.4e-13 without, at rtol 1e-12 for eq. 4.1).  Separation events use ``force``.
+        8.4e-13 without, at rtol 1e-12 for eq. 4.1).  The law itself, :meth:`force`, derives from it.
     frequency : callable
         ``frequency(p) -> 1 / T`` [1/s], numpy-vectorised: the inverse of the contact's natural time T.
         The normal motion is solved in tau = t / T, x = delta / (v_n T), y = delta_dot / v_n, so one
@@ -135,12 +132,16 @@ class ContactLaw:
         P_hat is analytic in x >= 0 and y (a recurrence on its series exists): then the Taylor method
         (:mod:`sphereimpact.ode.series`) integrates it.  None: the law has no series, and ``auto`` takes the
         Runge-Kutta integrator.
+    per_compression : callable or None
+        ``per_compression(x, y, numbers) -> Q``: P_hat / x, continued through x = 0, for a law whose force
+        has a forced zero at first touch and separation (eq. 4.2): its sign is the force's inside the contact,
+        without the zero, and Q(0, y_f) < 0 says the force pulls before delta returns to 0.  The sweep's
+        lanes end a contact on its root, and its interpolants cut at its sign change.
     """
 
     name: str
     doc: str
     parameters: tuple
-    force: Callable
     continued: Callable
     frequency: Callable
     family: Callable
@@ -155,6 +156,7 @@ class ContactLaw:
     scalar: Callable | None = None
     rate: Callable | None = None
     series: Callable | None = None
+    per_compression: Callable | None = None
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]
@@ -183,6 +185,12 @@ class ContactLaw:
             warnings.warn(f"ContactLaw(kernel={self.kernel!r}) is deprecated: give scaled=LAWS[{self.kernel!r}].scaled",
                           DeprecationWarning, stacklevel=3)
             object.__setattr__(self, "scaled", LAWS[self.kernel].scaled)
+
+    def force(self, delta, delta_dot, p):
+        """P [N] of the law: ``continued`` inside contact (delta > 0) and 0 outside, where nothing is evaluated
+        beyond delta = 0 (continued at max(delta, 0)).  Separation events use it."""
+        delta = np.asarray(delta, dtype=float)
+        return np.where(delta > 0, self.continued(np.maximum(delta, 0.0), delta_dot, p), 0.0)
 
     @property
     def parameter_names(self) -> tuple:

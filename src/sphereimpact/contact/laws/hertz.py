@@ -34,21 +34,9 @@ def _power(delta, n):
     return np.sign(delta) * np.abs(delta) ** n
 
 
-def hertz_force(delta, delta_dot, p):
-    """P = k delta^(3/2) [N] for delta > 0 (elastic Hertz)."""
-    delta = np.asarray(delta, dtype=float)
-    return np.where(delta > 0, p.k * np.maximum(delta, 0.0) ** HERTZ, 0.0)
-
-
 def hertz_continued(delta, delta_dot, p):
     """k sign(delta) |delta|^(3/2)."""
     return p.k * _power(np.asarray(delta, dtype=float), HERTZ)
-
-
-def hunt_crossley_force(delta, delta_dot, p):
-    """P = k delta^n (1 + chi delta_dot) [N] for delta > 0 (Hunt & Crossley 1975)."""
-    delta, delta_dot = np.asarray(delta, dtype=float), np.asarray(delta_dot, dtype=float)
-    return np.where(delta > 0, p.k * np.maximum(delta, 0.0) ** p.exponent * (1.0 + p.chi * delta_dot), 0.0)
 
 
 def hunt_crossley_continued(delta, delta_dot, p):
@@ -93,13 +81,13 @@ def hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
 
 LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
-    (K,), hertz_force, hertz_continued, hertz_frequency,
+    (K,), hertz_continued, hertz_frequency,
     family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
     scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
-    (K, CHI, EXPONENT), hunt_crossley_force, hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
+    (K, CHI, EXPONENT), hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,

@@ -44,13 +44,6 @@ def damping_ratio(p):
 
 
 # --- eq. 4.1 ------------------------------------------------------------------------------------------
-def kelvin_voigt_force(delta, delta_dot, p):
-    """Eq. 4.1: P = k delta + b delta_dot [N] for delta > 0; jumps to b v_n at first touch, pulls before
-    delta returns to zero."""
-    delta, delta_dot = _arrays(delta, delta_dot)
-    return np.where(delta > 0, p.k * delta + p.b * delta_dot, 0.0)
-
-
 def kelvin_voigt_continued(delta, delta_dot, p):
     """k delta + b delta_dot for every delta (the linear law's own continuation)."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -107,18 +100,6 @@ def ramp_continued(u):
     return ramp.reshape(u.shape)
 
 
-def modified_force(delta, delta_dot, p):
-    """Eq. 4.2: P = k delta + b delta_dot (1 - exp(-c delta / R)) [N] for delta > 0.
-
-    The ramp (c = ``p.ramp``, 100 in the chapter) makes P start from zero; it is evaluated as ``-expm1``
-    of a non-positive argument, so it is exact for small delta and cannot overflow.
-    """
-    delta, delta_dot = _arrays(delta, delta_dot)
-    inside = np.maximum(delta, 0.0)
-    ramp = -np.expm1(-p.ramp * inside / p.radius)
-    return np.where(delta > 0, p.k * inside + p.b * delta_dot * ramp, 0.0)
-
-
 def modified_continued(delta, delta_dot, p):
     """Eq. 4.2 with the ramp continued past delta = 0 by :func:`ramp_continued`."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -144,6 +125,24 @@ def modified_scaled(x, y, numbers):
     """Dimensionless eq. 4.2, P_hat = x + 2 zeta y (1 - exp(-lam x)), the ramp continued past x = 0 as in
     :func:`modified_continued` (see :attr:`~sphereimpact.contact.laws.ContactLaw.scaled`)."""
     return x + 2.0 * numbers["zeta"] * y * ramp_continued(numbers["lam"] * x)
+
+
+def ramp_per_x(x, lam):
+    """(1 - exp(-lam x)) / x, and lam at x = 0: eq. 4.2's ramp per unit compression, entire in x (no 0 / 0)."""
+    u = lam * x
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(u != 0, -np.expm1(-u) / np.where(u != 0, x, 1.0), lam)
+
+
+def modified_per_compression(x, y, numbers):
+    """Q = P_hat / x of eq. 4.2: 1 + 2 zeta y (1 - exp(-lam x)) / x, entire in x.
+
+    P_hat = x Q has a forced zero at x = 0 (the ramp switches the damping off), so the force's sign inside
+    the contact is Q's, and Q's first root after maximum compression is where the force falls to 0 (the
+    force criterion's end, or tension).  At x = 0 it is G = 1 + 2 zeta lam y: at the rebound rate y_f, the
+    force pulls before delta returns to 0 iff G < 0.  (See :attr:`ContactLaw.per_compression`.)
+    """
+    return 1.0 + 2.0 * numbers["zeta"] * y * ramp_per_x(x, numbers["lam"])
 
 
 def modified_rate(delta, delta_dot, delta_ddot, p):
@@ -201,12 +200,6 @@ def modified_series_batched(x, y, two_zeta, lam, order: int):
 
 
 # --- Hunt-Crossley damping on a linear spring ---------------------------------------------------------
-def linear_hunt_crossley_force(delta, delta_dot, p):
-    """P = k delta (1 + chi delta_dot) [N] for delta > 0: starts from zero, pulls where delta_dot < -1/chi."""
-    delta, delta_dot = _arrays(delta, delta_dot)
-    return np.where(delta > 0, p.k * delta * (1.0 + p.chi * delta_dot), 0.0)
-
-
 def linear_hunt_crossley_continued(delta, delta_dot, p):
     """k delta (1 + chi delta_dot) for every delta (a polynomial: its own continuation)."""
     delta, delta_dot = _arrays(delta, delta_dot)
@@ -264,7 +257,7 @@ def hunt_crossley_relations() -> dict:
 
 LAWS.register(ContactLaw(
     "kelvin-voigt", "eq. 4.1, linear spring-damper P = k delta + b delta_dot (the chapter's 'previous' model)",
-    (K, B), kelvin_voigt_force, kelvin_voigt_continued, natural_frequency,
+    (K, B), kelvin_voigt_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=kelvin_voigt_scaled, closed_form=SPRING_DAMPER, scalar=kelvin_voigt_scalar,
@@ -272,15 +265,15 @@ LAWS.register(ContactLaw(
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
-    (K, B, RAMP), modified_force, modified_continued, natural_frequency,
+    (K, B, RAMP), modified_continued, natural_frequency,
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=modified_scaled, ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
-    rate=modified_rate, series=modified_series))
+    rate=modified_rate, series=modified_series, per_compression=modified_per_compression))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
-    (K, CHI), linear_hunt_crossley_force, linear_hunt_crossley_continued, natural_frequency,
+    (K, CHI), linear_hunt_crossley_continued, natural_frequency,
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     damping="chi", cor_relations=hunt_crossley_relations(), scaled=linear_hunt_crossley_scaled,
