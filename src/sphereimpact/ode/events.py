@@ -25,9 +25,17 @@ def _scalar(f):
 
 
 def _refine(f, a: float, b: float) -> float:
+    """The root of ``f`` in [a, b], a sign change of its vectorised values there.  Evaluated one instant at a
+    time (the scalar path a function may take) the sign change can vanish into round-off at one end: the end
+    that is exactly zero, or else the end nearer zero, is then the root (a random scene's force, 1e-17 from 0
+    at a grid point, had Brent's method refuse the bracket)."""
     from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
 
-    return brentq(_scalar(f), a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=200)
+    g = _scalar(f)
+    g_a, g_b = g(a), g(b)
+    if g_a == 0.0 or g_b == 0.0 or (g_a > 0) == (g_b > 0):
+        return a if g_a == 0.0 or (g_b != 0.0 and abs(g_a) < abs(g_b)) else b
+    return brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=200)
 
 
 def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float]:

@@ -33,6 +33,12 @@ KAPPA_FROM = {"poisson": "kappa = 2 (1 - nu) / (2 - nu)", "shear_modulus": "kapp
 TANGENTIAL_PARAMETERS = tuple(p.name for p in STIFFNESS)
 
 
+def slip_per_impulse(mass, alpha):
+    """(1 + 1/alpha) / m [1/kg]: the change of the contact point's slip v - omega R per unit tangential impulse
+    at the contact (1/m from the centre's velocity, R^2 / I = 1 / (alpha m) from the spin).  Floats or arrays."""
+    return (1.0 + 1.0 / alpha) / mass
+
+
 def kappa_from_poisson(nu):
     """kappa = k_t / k_n = 2 (1 - nu) / (2 - nu) for two bodies of one elastic material (Mindlin 1949)."""
     return 2.0 * (1.0 - nu) / (2.0 - nu)

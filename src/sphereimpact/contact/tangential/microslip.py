@@ -39,7 +39,7 @@ import math
 
 import numpy as np
 
-from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel
+from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import PositiveImpulse
 
 #: Default resolution: cells of the element row and time steps per contact (the convergence study's choice).
@@ -229,7 +229,7 @@ def resolution(scene, normal, options) -> tuple[int, int]:
         return elements, options.time_steps
     e_star, g_star = hertz_moduli(scene)
     a_max = math.sqrt(scene.radius * max(normal.delta_m, 0.0))
-    omega_t = math.sqrt(2.0 * g_star * a_max * (1.0 + 1.0 / scene.inertia_factor) / scene.mass)
+    omega_t = math.sqrt(2.0 * g_star * a_max * slip_per_impulse(scene.mass, scene.inertia_factor))
     return elements, max(TIME_STEPS, math.ceil(STEPS_PER_PERIOD * normal.t_f * omega_t / (2.0 * math.pi)))
 
 
@@ -243,7 +243,7 @@ def _inputs(normal, time_steps: int):
     cap[0] = cap[-1] = 0.0  # the contact's ends: no area, no load
     positive = PositiveImpulse(normal)(t)
     stiffness = 2.0 * hertz_moduli(s)[1] * math.sqrt(s.radius * delta_m)
-    inverse_mass = (1.0 + 1.0 / s.inertia_factor) / s.mass
+    inverse_mass = slip_per_impulse(s.mass, s.inertia_factor)
     return t, (np.sqrt(delta / delta_m), cap, s.mu * np.diff(positive), float(t[1] - t[0]), stiffness,
                inverse_mass, s.g_tangent, s.slip0)
 

@@ -30,7 +30,7 @@ from ...errors import ImpactError
 from ...ode.events import first_root, roots
 from ...ode.roots import falling_root
 from ...integrators.normal import NormalMotion
-from .base import TANGENTIALS, SweptTangential, TangentialModel
+from .base import TANGENTIALS, SweptTangential, TangentialModel, slip_per_impulse
 
 #: More mode switches than this in one contact means something is wrong.
 MAX_PHASES = 50
@@ -120,7 +120,7 @@ def impulse_outcome(v_t, spin, impulse, mass, radius, alpha, mu):
     """
     slip0 = np.asarray(v_t - spin * radius)
     sigma = np.where(slip0 < 0, -1.0, 1.0)  # the direction the contact point first slips
-    slides = mu * (1.0 + 1.0 / alpha) * impulse / mass < np.abs(slip0)
+    slides = mu * slip_per_impulse(mass, alpha) * impulse < np.abs(slip0)
     slid_v, slid_omega = kick(v_t, spin, -sigma * mu * impulse, mass, radius, alpha)
     vc_t = np.where(slides, slid_v, (v_t + alpha * radius * spin) / (1.0 + alpha))  # rolling: L about the contact
     omega = np.where(slides, slid_omega, vc_t / radius)
@@ -348,7 +348,7 @@ def grip_impulses(rows):
     v_t - spin R its first slip: 0 where it rolls from the start, NaN where it never can (mu = 0)."""
     slip0 = rows.v_tangent - rows.spin * rows.radius
     with np.errstate(divide="ignore", invalid="ignore"):
-        impulse = rows.mass * np.abs(slip0) / (rows.mu * (1.0 + 1.0 / rows.inertia_factor))
+        impulse = np.abs(slip0) / (rows.mu * slip_per_impulse(rows.mass, rows.inertia_factor))
     return np.where(slip0 == 0, 0.0, np.where(rows.mu > 0, impulse, np.nan))
 
 

@@ -58,7 +58,7 @@ from ...errors import ImpactError
 from ...ode.events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
 from ...integrators.normal import NormalMotion
-from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel
+from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
 STICKING, SLIDING = "sticking", "sliding"
@@ -127,7 +127,7 @@ class CompliantTangential:
         # An undamped tangential spring rings: each half-period can stick and slip once more as P falls, so
         # the bound on switches grows with the number of tangential half-periods in the contact.
         k_max = float(self.stiffness(normal.t_m))
-        ringing = t_f * np.sqrt(k_max * (1.0 + 1.0 / s.inertia_factor) / s.mass) / np.pi
+        ringing = t_f * np.sqrt(k_max * slip_per_impulse(s.mass, s.inertia_factor)) / np.pi
         limit = MAX_PHASES + int(4.0 * ringing)
         self.phases: list[CompliantPhase] = []
         phase = self._first_phase()
@@ -216,7 +216,7 @@ class CompliantTangential:
             return done, CompliantPhase(STICKING, t_switch, t_f, v, omega, x,
                                         force0=-p.sigma * float(self.cap(t_switch)))
         w, opts = self._w, self._options
-        slip0, inverse_mass = p.v0 - p.omega0 * s.radius, (1.0 + 1.0 / s.inertia_factor) / s.mass
+        slip0, inverse_mass = p.v0 - p.omega0 * s.radius, slip_per_impulse(s.mass, s.inertia_factor)
         fs, js = self._fs, self._js
 
         g_t = s.g_tangent
