@@ -64,3 +64,33 @@ def test_an_extremum_inside_an_end_interval_is_found():
     calls = []
     extremum(lambda x: calls.append(x) or x * x, [0.0, 0.5, 1.0], "max")  # monotone into its end: no search
     assert len(calls) <= 5
+
+
+def test_a_root_inside_the_last_interval_is_found():
+    """f = (1 - t)(20 (1 - t) - 1) crosses 0 at t = 0.95 and returns to 0 at the end, both inside the last
+    grid interval, whose samples are positive and zero: the root at 0.95 is found from f just inside the end
+    (before, none was, and a force's brief pull just before delta returns to 0 counted as pushing: simulate's
+    friction impulse J+ 1e-6 off, found by the sweep's differential test)."""
+    from sphereimpact.ode.events import roots
+
+    def f(t):
+        return (1.0 - np.asarray(t, dtype=float)) * (20.0 * (1.0 - np.asarray(t, dtype=float)) - 1.0)
+
+    found = roots(f, [0.0, 0.5, 1.0])
+    assert found[0] == pytest.approx(0.95, rel=1e-14) and found[-1] == 1.0
+    assert roots(f, [0.0, 0.5, 1.0], direction=-1)[0] == pytest.approx(0.95, rel=1e-14)  # the downward one
+    assert roots(lambda t: 1.0 - np.asarray(t, dtype=float), [0.0, 0.5, 1.0]) == [1.0]  # no dip: the end
+
+
+def test_a_brief_pull_inside_the_last_step_leaves_the_friction_impulse_exact():
+    """The scene the differential test found: eq. 4.2 under the penetration criterion, the pull before delta
+    returns to 0 inside the last step at rtol 1e-10 and 1e-12 but not at 1e-13; every tolerance now gives the
+    same sliding ball, as the planar body does."""
+    from sphereimpact import Scene, SolverOptions, simulate
+
+    scene = Scene(mass=0.436573, diameter=0.227728, inertia_factor=0.5969, mu=0.022844, k=37495.384737,
+                  b=86.381474, ramp=27.778466, separation="penetration", speed=3.664594, angle=30.934473)
+    outs = [simulate(scene, SolverOptions(rtol=tol, atol=tol)) for tol in (1e-10, 1e-12, 1e-13)]
+    planar = simulate(scene, SolverOptions(method="DOP853", rtol=1e-12, atol=1e-12), body="planar")
+    for out in outs:
+        assert out.force_min < 0 and out.ve_t == pytest.approx(planar.ve_t, rel=1e-9)

@@ -73,6 +73,13 @@ def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float
             found.append(float(grid[i + 1]))
         else:
             found.append(_refine(f, grid[i], grid[i + 1]))
+    if grid.size > 1 and sign[-2] != 0 and sign[-1] in (0, sign[-2]):
+        # a function that ends at (or near) zero may dip through it and back within the last interval, where
+        # no sample shows it (the brief pull of a force before delta returns to 0: J+ was 1e-6 off): the
+        # value just inside the end decides
+        near = float(grid[-1]) - 1e-3 * (float(grid[-1]) - float(grid[-2]))
+        if np.sign(_scalar(f)(near)) == -sign[-2] and not (direction and direction * sign[-2] > 0):
+            found = sorted([*found, _refine(f, float(grid[-2]), near)])
     return found
 
 

@@ -118,7 +118,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                 (regime if key == "regime" else result[key] if way.gives == "all" else normal[key])[task.rows] = values
             path[task.rows] = way.name
             todo[task.rows] = False
-            rest[task.rows] = way.gives == "normal"  # completed below by the impulse algebra
+            rest[task.rows] = way.gives == "normal"  # completed below: tangential models, then outputs()
         span_todo &= ~taken.span
     if todo.any() and paths is None:  # every row has a path: the last takes every batched kernel, earlier the others
         raise ImpactError(f"sweep: no path takes row {int(np.flatnonzero(todo)[0])}")
@@ -163,8 +163,7 @@ def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
         mine = np.flatnonzero(moving & (names == name))
         completes[mine] = ~slope[mine]
         if "t_roll" in wanted:
-            view = SimpleNamespace(**{key: value[mine] for key, value in vars(rows).items()})
-            levels[mine] = model.levels(view) / (rows.mass[mine] * rows.v_normal[mine])
+            levels[mine] = model.levels(_Rows(rows, mine)) / (rows.mass[mine] * rows.v_normal[mine])
     return Needs(extremes=bool({"force_min", "force_max"} & wanted), levels=levels, completes=completes)
 
 
@@ -185,8 +184,7 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
     names = part["tangential"].to_numpy()
     for name in dict.fromkeys(names[moving].tolist()):
         mine = np.flatnonzero(moving & (names == name))
-        view = SimpleNamespace(**{key: value[mine] for key, value in vars(rows).items()})
-        for key, value in TANGENTIALS[name].swept.end(view, impulse[mine], instants[mine]).items():
+        for key, value in TANGENTIALS[name].swept.end(_Rows(rows, mine), impulse[mine], instants[mine]).items():
             tangential[key][mine] = value
     force = m * v_n * w  # the force scale [N]
     end = EndState(mass=m, radius=rows.radius, inertia_factor=rows.inertia_factor, v_normal=v_n,
@@ -194,6 +192,19 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
                    delta_m=dim["x_m"] * v_n / w, t_f=dim["tau_f"] / w, vc_n=-dim["y_f"] * v_n, u_t=np.zeros(n),
                    force_min=dim["p_min"] * force, force_max=dim["p_max"] * force, **tangential)
     return outputs(end)
+
+
+class _Rows:
+    """The columns of ``rows`` (a :func:`tangential_rows` namespace) at ``index``, each sliced when a model first
+    reads it (a model reads a few of the table's columns; slicing them all cost a tenth of a large sweep)."""
+
+    def __init__(self, rows: SimpleNamespace, index: np.ndarray):
+        self._rows, self._index = rows, index
+
+    def __getattr__(self, name: str):
+        value = getattr(self._rows, name)[self._index]
+        setattr(self, name, value)
+        return value
 
 
 def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:

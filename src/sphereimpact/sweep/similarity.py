@@ -189,10 +189,11 @@ def _fit(solve, a: float, b: float, separation: str, target: float, keys, asked:
                              f"u = log of the family number in [{a:g}, {b:g}])")
 
 
-def _grip_resolution(solve, a: float, b: float, separation: str, target: float, reference: str,
-                     stretch: Stretch, what: str) -> int:
-    """Nodes of a grip table's stretch on [a, b] in u: the fewest Lobatto levels (from FIRST_GRIP_NODES, 2n - 1
-    at a time) whose interpolant meets 0.1 target at the midpoints (above S_NOISE), at u = a, (a + b) / 2, b.
+def _grip_resolution(solve, a: float, b: float, separation: str, target: float, reference: str, power: float,
+                     what: str) -> tuple:
+    """The grip table's stretches (:func:`stretches`) with their nodes on [a, b] in u: for each, the fewest
+    Lobatto levels (from FIRST_GRIP_NODES, 2n - 1 at a time) whose interpolant meets 0.1 target at the
+    midpoints (above S_NOISE), at u = a, (a + b) / 2 and b; the stretches still refining share each solve.
 
     Raises
     ------
@@ -200,21 +201,27 @@ def _grip_resolution(solve, a: float, b: float, separation: str, target: float, 
         If MAX_GRIP_NODES nodes do not meet the check.
     """
     u = np.array([b, 0.5 * (a + b), a])
-    n = FIRST_GRIP_NODES
-    while 2 * n - 1 <= MAX_GRIP_NODES:
-        fine = 2 * n - 1
-        solved = solve(u, separation, _node_target(target), Asked(grip=((stretch, fine),), reference=reference))
-        profile = np.stack([solved[k] for k in stretch.keys(fine)])  # (fine, 3), x from hi down to lo
-        x = lobatto(stretch.lo, stretch.hi, fine)
-        coarse = Series(stretch.lo, stretch.hi, {str(i): profile[0::2, i] for i in range(u.size)})(x[1::2])
-        checked = stretch.fraction(x[1::2]) >= S_NOISE
-        error = max(np.max(np.abs(coarse[str(i)] - profile[1::2, i])[checked]) / solved["tau_f"][i]
-                    for i in range(u.size))
-        if error <= 0.1 * target:
-            return n
-        n = fine
-    raise InterpolationError(f"the grip instants did not reach {target:g} with {MAX_GRIP_NODES} nodes ({what}, "
-                             f"{stretch.name} stretch)")
+    nodes = {stretch: FIRST_GRIP_NODES for stretch in stretches(power)}
+    done: dict = {}
+    while len(done) < len(nodes):
+        refining = [stretch for stretch in nodes if stretch not in done]
+        if any(2 * nodes[stretch] - 1 > MAX_GRIP_NODES for stretch in refining):
+            raise InterpolationError(f"the grip instants did not reach {target:g} with {MAX_GRIP_NODES} nodes "
+                                     f"({what}, {refining[0].name} stretch)")
+        asked = Asked(grip=tuple((stretch, 2 * nodes[stretch] - 1) for stretch in refining), reference=reference)
+        solved = solve(u, separation, _node_target(target), asked)
+        for stretch, fine in asked.grip:
+            profile = np.stack([solved[k] for k in stretch.keys(fine)])  # (fine, 3), x from hi down to lo
+            x = lobatto(stretch.lo, stretch.hi, fine)
+            coarse = Series(stretch.lo, stretch.hi, {str(i): profile[0::2, i] for i in range(u.size)})(x[1::2])
+            checked = stretch.fraction(x[1::2]) >= S_NOISE
+            error = max(np.max(np.abs(coarse[str(i)] - profile[1::2, i])[checked]) / solved["tau_f"][i]
+                        for i in range(u.size))
+            if error <= 0.1 * target:
+                done[stretch] = nodes[stretch]
+            else:
+                nodes[stretch] = fine
+    return tuple((stretch, done[stretch]) for stretch in nodes)
 
 
 def _onset(exit_ratio, series: Series, what: str) -> tuple[float | None, bool]:
@@ -306,8 +313,7 @@ class _Pieces:
 
         def fit(a, b, criterion, calm):
             reference = "y_f" if calm else "j_p"
-            grip = tuple((stretch, _grip_resolution(solve, a, b, criterion, target, reference, stretch, what))
-                         for stretch in stretches(power)) if grips else ()
+            grip = _grip_resolution(solve, a, b, criterion, target, reference, power, what) if grips else ()
             asked = Asked(extremes, grip, reference)
             keys = (*(SMOOTH if calm else NORMAL_OUTPUTS), *((("p_max", "p_ends") if calm else EXTREMES) * extremes),
                     *asked.keys())
