@@ -63,3 +63,21 @@ def test_each_path_alone_agrees_with_simulate_on_the_rows_it_admits(solved, smal
 def test_paths_are_named():
     with pytest.raises(ValueError, match="paths must be some of single, family-interpolant"):
         sweep({"angle": [30.0]}, paths=["fastest"])
+
+
+def test_compare_measures_each_row_as_relative_errors_does(solved):
+    """compare's measure, computed on every row at once, is relative_errors' on each row (worst output)."""
+    from sphereimpact import Scene
+    from sphereimpact.numerics.consistency import COMPARED
+    from sphereimpact.numerics.reference import relative_errors
+    from sphereimpact.sweep.engine import SCENE_COLUMNS, scene_of
+
+    table, reference = solved
+    rows = np.arange(0, len(table), 97)
+    swept = sweep(table.iloc[rows]).reset_index(drop=True)
+    errors = compare(table.iloc[rows].reset_index(drop=True), reference.iloc[rows].reset_index(drop=True), swept)
+    for i in range(len(rows)):
+        scene = scene_of(swept.loc[i, list(SCENE_COLUMNS)].to_dict())
+        assert isinstance(scene, Scene)
+        expected = relative_errors(swept.iloc[i], reference.iloc[rows[i]].to_dict(), scene, COMPARED)
+        assert errors["error"].iloc[i] == pytest.approx(max(expected.values()), rel=1e-12, abs=1e-300)
