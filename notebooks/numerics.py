@@ -25,7 +25,7 @@ from IPython.display import Image, Markdown, display
 from sphereimpact import SolverOptions
 from sphereimpact.numerics.bench import speedups
 from sphereimpact.numerics.workprecision import TARGET, choose_default
-from sphereimpact.impact.scene import DEFAULT_INTEGRATOR
+from sphereimpact.integrators import DEFAULT_INTEGRATOR
 
 pd.set_option("display.width", 200)
 pd.set_option("display.max_colwidth", 90)

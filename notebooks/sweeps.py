@@ -140,7 +140,8 @@ bench
 for _, row in bench.iterrows():
     goal = "" if pd.isna(row.target_speedup) else (
         f" (target {row.target_speedup:g}×: {'met' if row.speedup_over_handwritten >= row.target_speedup else '**missed**'})")
-    reached = "" if row.handwritten_reached else " — the script never reached the engine's error, so it ran at its tightest tolerance"
+    reached = ("" if row.handwritten_reached
+               else " — the script never reached the engine's error, so it ran at its tightest tolerance")
     display(Markdown(f"- {row.sweep}: **{row.speedup_over_handwritten:,.0f}×** over the hand-written script{goal}, "
                      f"{row.speedup_over_simulate:,.0f}× over `simulate`; {row.throughput:,.0f} impacts/s; worst "
                      f"error {row.worst_error:.1e} (script {row.handwritten_error:.1e} at rtol "

@@ -65,21 +65,12 @@ def test_the_dimensionless_force_is_the_law(name):
         assert np.allclose(law.scaled(x, y, numbers), expected, rtol=1e-12, atol=1e-14), (speed, mass)
 
 
-def test_a_law_declared_the_old_way_still_works_with_a_warning():
-    """``closed_form`` and ``kernel`` were names for one release: they map to the objects, or are refused."""
+def test_a_closed_form_is_an_object():
+    """A law declares its exact solution as a ClosedForm (a name is refused, naming the object to give)."""
     from dataclasses import replace
 
-    from sphereimpact.contact.laws.exact import SPRING_DAMPER
-
-    kv = LAWS["kelvin-voigt"]
-    with pytest.warns(DeprecationWarning, match="closed_form='kelvin-voigt'"):
-        assert replace(kv, name="old", closed_form="kelvin-voigt").closed_form is SPRING_DAMPER
-    with pytest.warns(DeprecationWarning, match="kernel='modified'"):
-        assert replace(kv, name="old", scaled=None, kernel="modified").scaled is LAWS["modified"].scaled
-    with pytest.raises(ValueError, match="closed_form must be a ClosedForm"):
-        replace(kv, name="old", closed_form="hertz")
-    with pytest.raises(ValueError, match="kernel 'hertz' is not a batched kernel"):
-        replace(kv, name="old", kernel="hertz")
+    with pytest.raises(ValueError, match="closed_form must be a ClosedForm .*SPRING_DAMPER"):
+        replace(LAWS["kelvin-voigt"], name="old", closed_form="kelvin-voigt")
 
 
 def test_ramp_continuation_is_smooth_and_bounded():

@@ -84,7 +84,7 @@ def test_large_lam_with_gravity_leaves_the_runge_kutta_lanes():
     """Beyond LANES_LAM_MAX the lanes' landing on delta = 0 under the penetration criterion lost the COR (2e-4
     at zeta 0.01, lam 1e4, gravity on): such scenes are solved one by one and meet the contract (a crowd of
     200, which the cost model would otherwise keep in the lanes)."""
-    from sphereimpact.sweep.path_study import scene_for
+    from sphereimpact.numerics.sweep_paths import scene_for
     from sphereimpact.sweep.paths import LANES_LAM_MAX
 
     lam = np.logspace(2, 4, 200)
@@ -285,7 +285,7 @@ def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
     for law, extra in flags.items():
         out = tmp_path / f"{law}.csv"
         assert run(["sweep", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra, "--out", str(out)]) == 0
-        assert capsys.readouterr().err.startswith(f"sphereimpact sweep: 6 scenes in")
+        assert capsys.readouterr().err.startswith("sphereimpact sweep: 6 scenes in")
         table = pd.read_csv(out)
         for row in table.iloc[[1, 5]].to_dict("records"):
             one = simulate(scene_of({k: row[k] for k in SCENE_COLUMNS}))

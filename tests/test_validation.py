@@ -55,13 +55,6 @@ def test_rigid_model_fails_below_grip_and_compliance_fixes_it(exp, data):
     assert reversed_.ve_t < 0 and simulate(exp.scene.with_(angle=20.0)).ve_t == 0.0
 
 
-def test_experiment_model_is_a_deprecated_alias_of_with_tangential(exp):
-    with pytest.warns(DeprecationWarning, match="with_tangential"):
-        scene = exp.model("mindlin")
-    assert scene == exp.with_tangential("mindlin") and scene.tangential == "mindlin"
-    assert scene.shear_modulus == exp.g_star
-
-
 def test_above_grip_both_models_agree_with_each_other_and_the_data(exp, data):
     high = data[(data["incidence_deg"] > 38) & (data["quantity"] == "e_t")]
     table = residuals(exp, high, ["rigid", "mindlin"])

@@ -1,6 +1,6 @@
 """Snakemake script: the sweep-path study (see rule sweep_paths)."""
 from sphereimpact.study.workflow import job_log
-from sphereimpact.sweep.path_study import run
+from sphereimpact.numerics.sweep_paths import run
 
 with job_log(snakemake.log[0], "sweep-path study"):
     bench = snakemake.params.config["bench"]

@@ -23,7 +23,8 @@ from scipy.integrate import solve_ivp
 
 from ..errors import ImpactError
 from ..integrators.normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
-from .scene import Scene, SolverOptions, ivp_method
+from ..integrators import ivp_method
+from .scene import Scene, SolverOptions
 from ..contact.tangential import MAX_PHASES, phase_index
 from ..contact.tangential.rigid import RIGID
 

@@ -15,13 +15,11 @@ from functools import cached_property
 import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
-from ..methods import DEFAULT_INTEGRATOR, ivp_method  # noqa: F401  (re-exported)
-from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,  # noqa: F401
-                         kappa_from_poisson, kappa_from_shear_modulus)
-# the input rules moved to .inputs; re-exported here, where they were
-from .inputs import (PATH_RULES, RULES, SEPARATION_CRITERIA, SQUARE_LIMIT, TEXT_FIELDS,  # noqa: F401
-                     _check, _check_choice, as_number, check_columns, law_parameters, magnitude_problem,
-                     scale_problem)
+from ..integrators import method_names
+from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
+                                  kappa_from_shear_modulus)
+from .inputs import (PATH_RULES, RULES, SEPARATION_CRITERIA, _check, _check_choice, as_number, law_parameters,
+                     magnitude_problem, scale_problem)
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
@@ -382,8 +380,6 @@ class SolverOptions:
     time_steps: int | None = None
 
     def __post_init__(self):
-        from ..integrators import method_names  # the registry imports the scene: looked up when used
-
         _check_choice("method", self.method, method_names())
         object.__setattr__(self, "rtol", _check("rtol", self.rtol, RTOL_RANGE, lambda x: 1e-13 <= x <= 1e-2))
         object.__setattr__(self, "atol", _check("atol", self.atol, ATOL_RANGE, lambda x: 1e-16 <= x <= 1e-2))
@@ -400,20 +396,3 @@ class SolverOptions:
             object.__setattr__(self, name, int(value))
         object.__setattr__(self, "max_step", step)
 
-
-def __getattr__(name):
-    """``METHODS``, the method names (computed: registered integrators included); names that moved to
-    :mod:`sphereimpact.contact.tangential`, kept for one release."""
-    if name == "METHODS":
-        from ..integrators import method_names
-
-        return method_names()
-    moved = {"TANGENTIAL_MODELS": lambda: tuple(TANGENTIALS),
-             "TANGENTIAL_RULES": lambda: {p.name: (p.range_text, p.ok) for p in STIFFNESS}}
-    if name in moved:
-        import warnings
-
-        warnings.warn(f"sphereimpact.impact.scene.{name} is deprecated: use "
-                      "sphereimpact.contact.tangential.TANGENTIALS", DeprecationWarning, stacklevel=2)
-        return moved[name]()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

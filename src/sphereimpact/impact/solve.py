@@ -21,7 +21,8 @@ import numpy as np
 
 from ..errors import BeyondRadiusWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
-from ..integrators.normal import NormalMotion, describe_family
+from ..contact.motion import NormalMotion
+from ..integrators.normal import describe_family
 from .outcome import Outcome
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS

@@ -7,37 +7,17 @@
 from __future__ import annotations
 
 from dataclasses import replace
-from functools import cache
 
-from . import base
-from .base import Integrator
+from . import closed, taylor, runge_kutta  # noqa: F401  (each registers itself, in the order of the help)
+from .base import AUTO_ORDER, DEFAULT_INTEGRATOR, INTEGRATORS, Integrator
 
-__all__ = ["AUTO_ORDER", "INTEGRATORS", "Integrator", "choose", "method_names", "normal_motion", "resolve_method"]
-
-#: What ``auto`` tries, in order: the first that can serve the scene and does not decline it (exact first,
-#: then the cheapest at equal accuracy in the work-precision study).
-AUTO_ORDER = ("closed", "taylor", "DOP853-scalar")
-
-
-@cache
-def _registry():
-    """The registry with the built-in integrators in it.  They register on first use, not on import: the
-    contact's tangential models import :mod:`.normal` from here while the scene they need is still loading.
-    Cached: ``choose`` asks for it on every impact."""
-    from . import closed, taylor, runge_kutta  # noqa: F401  (registration order: the help's order)
-
-    return base.INTEGRATORS
-
-
-def __getattr__(name: str):
-    if name == "INTEGRATORS":
-        return _registry()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["AUTO_ORDER", "DEFAULT_INTEGRATOR", "INTEGRATORS", "Integrator", "choose", "ivp_method", "method_names",
+           "normal_motion", "resolve_method"]
 
 
 def method_names() -> tuple:
     """Every name ``SolverOptions.method`` accepts: ``auto`` and the registered integrators."""
-    return ("auto", *_registry())
+    return ("auto", *INTEGRATORS)
 
 
 def choose(scene, options):
@@ -49,14 +29,14 @@ def choose(scene, options):
     and do not decline it.
     """
     if options.method != "auto":
-        integrator = _registry().named(options.method)
+        integrator = INTEGRATORS.named(options.method)
         reason = integrator.cannot(scene)
         if reason is not None:
             raise ValueError(f"method {integrator.name!r} {reason}")
         yield integrator
         return
     for name in AUTO_ORDER:
-        integrator = _registry()[name]
+        integrator = INTEGRATORS[name]
         if integrator.cannot(scene) is None and integrator.declines(scene) is None:
             yield integrator
 
@@ -83,3 +63,13 @@ def normal_motion(scene, options):
     if overflow is None:
         raise AssertionError("unreachable: auto always has an integrator that serves the scene")
     raise overflow
+
+
+def ivp_method(method: str) -> str:
+    """The :func:`scipy.integrate.solve_ivp` method that runs ``method`` where the float integrator cannot
+    (the planar body, a law without a scalar formula, naive formulations): ``auto`` is
+    :data:`DEFAULT_INTEGRATOR`'s.  ``ValueError`` for a method that runs on the reduced body only."""
+    integrator = INTEGRATORS.named(DEFAULT_INTEGRATOR if method == "auto" else method)
+    if integrator.ivp is None:
+        raise ValueError(f"method {method!r} is only available for the reduced model")
+    return integrator.ivp

@@ -14,7 +14,7 @@ def _always(scene) -> None:
 
 @dataclass(frozen=True)
 class Integrator:
-    """One way of solving a scene's normal motion into a :class:`~sphereimpact.integrators.normal.NormalMotion`.
+    """One way of solving a scene's normal motion into a :class:`~sphereimpact.contact.motion.NormalMotion`.
 
     Parameters
     ----------
@@ -63,3 +63,10 @@ class Integrator:
 
 #: The integrators by name, in registration order (the order of ``--method``'s help).
 INTEGRATORS = Registry(Integrator, "integrator", "method")
+
+#: What ``auto`` tries, in order: the first that can serve the scene and does not decline it (exact first,
+#: then the cheapest at equal accuracy in the work-precision study).
+AUTO_ORDER = ("closed", "taylor", "DOP853-scalar")
+#: The last of them, which serves every law: what ``auto`` means where a method must be named (the planar body,
+#: a law without a closed form or a series).
+DEFAULT_INTEGRATOR = AUTO_ORDER[-1]

@@ -9,14 +9,18 @@ and refined with Brent's method to a few ulp.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import ImpactError
 from ..ode.events import first_root
 from ..contact.laws import LAWS
-from .normal import NormalMotion, no_separation_message, separation_function
-from ..impact.scene import Scene
+from ..contact.motion import NormalMotion
+from .normal import no_separation_message, separation_function
+
+if TYPE_CHECKING:
+    from ..impact.scene import Scene
 
 #: Uniform and geometric samples used to bracket events.
 GRID_POINTS = 4097

@@ -24,7 +24,7 @@ from .workprecision import TARGET
 log = logging.getLogger(__name__)
 
 #: Tolerances tried for a per-scene contender, loosest first: the first whose error meets the one it is
-#: compared with is timed (here and in :mod:`sphereimpact.sweep.bench`).
+#: compared with is timed (here and in :mod:`sphereimpact.numerics.bench_sweep`).
 TOLERANCES = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
 #: Calls per timed run: one impact takes milliseconds, so each run times a batch.
 BATCH = 10

@@ -31,7 +31,8 @@ from scipy.integrate import solve_ivp
 from ..errors import BeyondRadiusWarning, ImpactError
 from ..integrators import INTEGRATORS
 from ..integrators.normal import separation_function
-from ..impact.scene import Scene, SolverOptions, ivp_method
+from ..impact.scene import Scene, SolverOptions
+from ..integrators import ivp_method
 from ..impact.solve import simulate
 from .reference import reference, worst_error
 from .timing import median_time

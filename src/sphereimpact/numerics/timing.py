@@ -39,7 +39,7 @@ def _timed(call) -> float:
 
 def median_seconds(call, repeats: int) -> float:
     """Median wall time [s] of ``repeats`` complete calls: the one protocol of every contender of the
-    speed benchmarks (``numerics.bench``, ``sweep.bench``), garbage collector off (:func:`_timed`)."""
+    speed benchmarks (``numerics.bench``, ``numerics.bench_sweep``), garbage collector off (:func:`_timed`)."""
     return statistics.median(_timed(call) for _ in range(repeats))
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from ..impact.calibrate import calibrate
 from ..integrators import INTEGRATORS
 from ..contact.laws import LAWS, PARAMETER_NAMES
-from ..methods import DEFAULT_INTEGRATOR
+from ..integrators import DEFAULT_INTEGRATOR
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
 

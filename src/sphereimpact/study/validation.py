@@ -18,7 +18,6 @@ from __future__ import annotations
 import logging
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,12 +70,6 @@ class Experiment:
         if "shear_modulus" in TANGENTIALS.model(tangential).parameter_names:
             return self.scene.with_(tangential=tangential, shear_modulus=self.g_star)
         return self.scene.with_(tangential=tangential)
-
-    def model(self, tangential: str) -> Scene:
-        """Deprecated name of :meth:`with_tangential` (``model`` is the normal law everywhere else)."""
-        warnings.warn("Experiment.model is deprecated: use Experiment.with_tangential", DeprecationWarning,
-                      stacklevel=2)
-        return self.with_tangential(tangential)
 
 
 def effective_moduli(e1: float, nu1: float, e2: float, nu2: float) -> tuple[float, float]:

@@ -7,7 +7,7 @@ tangential output; only the single-impact path (``gives = "all"``) returns every
 builds on the whole sweep (an interpolant over its range) reads the sweep's scenes that no earlier path
 took (``span_todo``), so a shard takes the paths the whole sweep would.  Which path solved each row is the
 sweep table's ``path`` column; ``results/sweep_paths.csv`` measures the paths against each other where two
-apply (:mod:`sphereimpact.sweep.path_study`).
+apply (:mod:`sphereimpact.numerics.sweep_paths`).
 """
 
 from __future__ import annotations

@@ -16,8 +16,8 @@ import pandas as pd
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, scale_problem
-from ..impact.scene import TANGENTIAL_PARAMETERS, Scene
-from ..contact.tangential import TANGENTIALS
+from ..impact.scene import Scene
+from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
 
 #: Scene parameters, with the single-impact defaults for missing columns.
@@ -135,8 +135,8 @@ class Numbers:
     and ``lam`` where the batched lanes or a closed form read them (0 elsewhere), masks of eq. 4.2's form
     (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
     (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
-    as an index into :data:`CLOSED_FORMS` (``exact``, -1 without), the similarity ``family`` as a hashable key (laws the lanes do not
-    take; None otherwise) and the ``separation`` criterion."""
+    as an index into :data:`CLOSED_FORMS` (``exact``, -1 without), the similarity ``family`` as a hashable key
+    (laws the lanes do not take; None otherwise) and the ``separation`` criterion."""
 
     w: np.ndarray
     v_n: np.ndarray

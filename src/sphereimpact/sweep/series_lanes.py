@@ -6,10 +6,10 @@ Per lane (the dimensionless problem of :mod:`.batch`, without gravity, law ``mod
 
 Each step is the law's Taylor recurrence to order p on every active lane at once
 (:func:`sphereimpact.contact.laws.linear.modified_series_batched`, beside the one-impact
-:func:`~sphereimpact.contact.laws.linear.modified_series`), its size from the last two coefficients and its ramp band as in :mod:`sphereimpact.ode.series`.  On the
-plane's nodes both these and the Runge-Kutta lanes (:mod:`.batch`) take about 30 steps, but a Taylor step is
-p orders of a few array operations where a Runge-Kutta step is 12 evaluations of the ramp, and events need no
-extra steps.  Their cost is the steps', nearly whatever
+:func:`~sphereimpact.contact.laws.linear.modified_series`), its size from the last two coefficients and its ramp
+band as in :mod:`sphereimpact.ode.series`.  On the plane's nodes both these and the Runge-Kutta lanes
+(:mod:`.batch`) take about 30 steps, but a Taylor step is p orders of a few array operations where a Runge-Kutta
+step is 12 evaluations of the ramp, and events need no extra steps.  Their cost is the steps', nearly whatever
 the number of lanes, so they suit batches of a few hundred to a few thousand nodes of an interpolant.
 
 Events are roots on each lane's step polynomials, located after the march in one vectorised pass per kind
@@ -75,7 +75,8 @@ def ratio(x, y, two_zeta, lam):
 
 
 def _ratio_and_slope(xs, ys, two_zeta, lam):
-    """s -> (Q, dQ/ds) along step polynomials: d/ds = 2 zeta (y' phi + y x' dphi/dx), phi = :func:`~sphereimpact.contact.laws.linear.ramp_per_x`."""
+    """s -> (Q, dQ/ds) along step polynomials: d/ds = 2 zeta (y' phi + y x' dphi/dx), phi the law's
+    :func:`~sphereimpact.contact.laws.linear.ramp_per_x`."""
     dxs, dys = _derivative(xs), _derivative(ys)
 
     def value(s):

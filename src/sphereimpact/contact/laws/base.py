@@ -14,14 +14,13 @@ sweeps), and is numpy-vectorised.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
 import numpy as np
 
 from ...ode.dense import is_instant
-from .exact import SPRING_DAMPER, ClosedForm
+from .exact import ClosedForm
 from ...registry import Registry as BaseRegistry
 
 #: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
@@ -110,9 +109,6 @@ class ContactLaw:
     closed_form : ClosedForm or None
         The law's exact solution (:class:`sphereimpact.contact.laws.exact.ClosedForm`: one scene's motion in SI
         units for the ``closed`` integrator, the weightless events vectorised for sweeps), or None.
-    kernel : str or None
-        Deprecated: give ``scaled`` instead.  ``kernel="modified"`` (or ``"kelvin-voigt"``) sets ``scaled``
-        to that law's form, with a DeprecationWarning.
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
         u = (c / R) delta; integrators bound their steps where it switches off.
@@ -151,7 +147,6 @@ class ContactLaw:
     cor_relations: Mapping[str, Callable] = field(default_factory=dict)
     scaled: Callable | None = None
     closed_form: ClosedForm | None = None
-    kernel: str | None = None
     ramp_rate: Callable | None = None
     scalar: Callable | None = None
     rate: Callable | None = None
@@ -168,23 +163,9 @@ class ContactLaw:
             raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
         if self.damping is not None and self.damping not in names:
             raise ValueError(f"law {self.name!r}: damping {self.damping!r} is not one of its parameters")
-        if isinstance(self.closed_form, str):
-            if self.closed_form != "kelvin-voigt":
-                raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's "
-                                 f"is sphereimpact.contact.laws.exact.SPRING_DAMPER); got {self.closed_form!r}")
-            warnings.warn("ContactLaw(closed_form='kelvin-voigt') is deprecated: give closed_form=SPRING_DAMPER "
-                          "(sphereimpact.contact.laws.exact)", DeprecationWarning, stacklevel=3)
-            object.__setattr__(self, "closed_form", SPRING_DAMPER)
         if self.closed_form is not None and not isinstance(self.closed_form, ClosedForm):
-            raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm or None; "
-                             f"got {type(self.closed_form).__name__}")
-        if self.kernel is not None:
-            if self.kernel not in ("kelvin-voigt", "modified") or self.kernel not in LAWS:
-                raise ValueError(f"law {self.name!r}: kernel {self.kernel!r} is not a batched kernel (kelvin-voigt, "
-                                 f"modified); declare scaled (the law's dimensionless force) instead")
-            warnings.warn(f"ContactLaw(kernel={self.kernel!r}) is deprecated: give scaled=LAWS[{self.kernel!r}].scaled",
-                          DeprecationWarning, stacklevel=3)
-            object.__setattr__(self, "scaled", LAWS[self.kernel].scaled)
+            raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's is "
+                             f"sphereimpact.contact.laws.exact.SPRING_DAMPER) or None; got {self.closed_form!r}")
 
     def force(self, delta, delta_dot, p):
         """P [N] of the law: ``continued`` inside contact (delta > 0) and 0 outside, where nothing is evaluated

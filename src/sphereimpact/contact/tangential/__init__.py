@@ -23,6 +23,7 @@ from .rigid import (MAX_PHASES, Phase, PositiveImpulse, TangentialMotion, by_pha
 from .springs import CompliantTangential
 from .microslip import MicroslipTangential
 
-__all__ = ["CompliantTangential", "MicroslipTangential", "KAPPA", "KAPPA_FROM", "MAX_PHASES", "POISSON", "Phase", "PositiveImpulse", "SHEAR_MODULUS",
-           "STIFFNESS", "SweptTangential", "TANGENTIALS", "TANGENTIAL_PARAMETERS", "TangentialModel", "TangentialMotion", "by_phase",
-           "from_impulse", "impulse_outcome", "kick", "kappa_from_poisson", "kappa_from_shear_modulus", "phase_index"]
+__all__ = ["CompliantTangential", "KAPPA", "KAPPA_FROM", "MAX_PHASES", "MicroslipTangential", "POISSON", "Phase",
+           "PositiveImpulse", "SHEAR_MODULUS", "STIFFNESS", "SweptTangential", "TANGENTIALS", "TANGENTIAL_PARAMETERS",
+           "TangentialModel", "TangentialMotion", "by_phase", "from_impulse", "impulse_outcome", "kick",
+           "kappa_from_poisson", "kappa_from_shear_modulus", "phase_index"]

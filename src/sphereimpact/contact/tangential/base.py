@@ -94,7 +94,7 @@ class TangentialModel:
         The normal law's spring it needs: ``linear`` (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
     motion : callable
         ``motion(normal, options)``: the tangential motion over the solved normal motion ``normal``
-        (:class:`sphereimpact.integrators.normal.NormalMotion`) with solver options ``options``, an object with
+        (:class:`sphereimpact.contact.motion.NormalMotion`) with solver options ``options``, an object with
         ``t_roll`` [s or None], ``regime``, ``switches``, ``at(t)`` -> (v_t [m/s], omega [rad/s], x_t [m])
         and ``force(t)`` -> the tangential force on the ball [N].
     swept : SweptTangential or None

@@ -29,7 +29,7 @@ from ...ode.dense import SMALL, is_instant
 from ...errors import ImpactError
 from ...ode.events import first_root, roots
 from ...ode.roots import falling_root
-from ...integrators.normal import NormalMotion
+from ..motion import NormalMotion
 from .base import TANGENTIALS, SweptTangential, TangentialModel, slip_per_impulse
 
 #: More mode switches than this in one contact means something is wrong.

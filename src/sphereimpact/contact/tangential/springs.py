@@ -57,7 +57,7 @@ from ...ode.dense import is_instant
 from ...errors import ImpactError
 from ...ode.events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
-from ...integrators.normal import NormalMotion
+from ..motion import NormalMotion
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 

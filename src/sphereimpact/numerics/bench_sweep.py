@@ -28,15 +28,15 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from ..numerics.bench import LAW_SCENES, TOLERANCES
-from ..numerics.handwritten import handwritten
-from ..numerics.reference import relative_errors
-from ..numerics.timing import interleaved_seconds
+from .bench import LAW_SCENES, TOLERANCES
+from .handwritten import handwritten
+from .reference import relative_errors
+from .timing import interleaved_seconds
 from ..impact.scene import Scene, SolverOptions
 from ..errors import BeyondRadiusWarning
 from ..impact.solve import simulate
 from ..parsing import parse_range
-from .engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
+from ..sweep.engine import FAST_OUTPUTS, SCENE_COLUMNS, grid, scene_of, sweep
 
 log = logging.getLogger(__name__)
 KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor")

@@ -24,12 +24,12 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..numerics.timing import interleaved_seconds
+from .timing import interleaved_seconds
 from ..impact.inputs import SEPARATION_CRITERIA
 from ..impact.scene import Scene, SolverOptions
-from . import batch, plane, series_lanes
-from .outputs import NORMAL_OUTPUTS
-from .similarity import LambdaInterpolant, _errors, dimensionless_motion
+from ..sweep import batch, plane, series_lanes
+from ..sweep.outputs import NORMAL_OUTPUTS
+from ..sweep.similarity import LambdaInterpolant, _errors, dimensionless_motion
 
 log = logging.getLogger(__name__)
 #: The reference: the single-impact model in plain-float DOP853, at a tolerance far below the target.

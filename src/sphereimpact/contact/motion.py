@@ -1,0 +1,66 @@
+"""The contract of a solved normal motion: what the integrators produce and the tangential models read.
+
+It sits in the contact layer, below both: an integrator (:mod:`sphereimpact.integrators`) solves a scene's
+normal motion into a :class:`NormalMotion`; a tangential model (:mod:`sphereimpact.contact.tangential`)
+builds its motion on one, whoever solved it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..ode.dense import is_instant
+
+if TYPE_CHECKING:
+    from ..impact.scene import Scene
+
+
+class NormalMotion:
+    """A solved normal motion: delta(t) on [0, t_f] with its events.
+
+    Subclasses set ``scene``, ``t_m`` [s], ``t_f`` [s], ``grid`` (increasing
+    sample times on [0, t_f] fine enough to bracket every event) and ``stats``,
+    and implement :meth:`state`.
+    """
+
+    scene: Scene
+    t_m: float
+    t_f: float
+    grid: np.ndarray
+    stats: dict
+
+    def state(self, t):
+        """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]."""
+        raise NotImplementedError
+
+    def force(self, t):
+        """Normal force P(t) [N] during contact, t in [0, t_f].
+
+        Evaluated with the in-contact formula, so the ends are the one-sided
+        limits (kelvin-voigt starts at b v_n, not 0, and ends at b delta_dot(t_f)),
+        however round-off puts delta(t_f) on either side of zero.
+        """
+        scalar = self.scene.law.scalar
+        if scalar is not None and is_instant(t):  # one instant (root and extremum searches): plain floats
+            delta, delta_dot = self.state(t)
+            return scalar(float(delta), float(delta_dot), self.scene)
+        return self.scene.stage_force(*self.state(t))
+
+    def impulse(self, t):
+        """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
+        s = self.scene
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
+        return s.mass * (s.v_normal - self.state(t)[1] + s.g_normal * t)
+
+    def impulse_integral(self, t):
+        """K(t) = integral of J from 0 to t [N s^2], exact from delta(t)."""
+        s = self.scene
+        t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
+        return s.mass * (s.v_normal * t - self.state(t)[0] + 0.5 * s.g_normal * t * t)
+
+    @property
+    def delta_m(self) -> float:
+        """Maximum compression [m] (at t_m)."""
+        return float(self.state(self.t_m)[0])
