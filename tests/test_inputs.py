@@ -4,6 +4,8 @@ on the command line, in the config and in the Python API.
 The tables below are the inputs tried as a new user would; add a row for every new one.
 """
 
+import ast
+import json
 import math
 from pathlib import Path
 
@@ -13,7 +15,7 @@ import pytest
 import yaml
 
 import sphereimpact.sweep.engine as engine
-from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, SolverOptions, simulate
+from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, Separation, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.impact.scene import STANDARD_GRAVITY
 from sphereimpact.study.config import config_errors
@@ -199,6 +201,8 @@ def test_numpy_scalars_are_numbers(value):
     (lambda: simulate(None), TypeError, "scene must be a sphereimpact.Scene"),
     (lambda: simulate({"angle": 60.0}), TypeError, "scene must be a sphereimpact.Scene"),
     (lambda: simulate(Scene(), "DOP853"), TypeError, "options must be a sphereimpact.SolverOptions"),
+    (lambda: Scene(separation="sometimes"), ValueError, "separation must be one of force, penetration; got 'sometimes'"),
+    (lambda: Scene(separation=None), ValueError, "separation must be one of force, penetration; got None"),
 ])
 def test_api_input_is_refused_with_what_was_expected(make, error, message):
     with pytest.raises(error) as exc:
@@ -323,3 +327,29 @@ def test_a_ramp_that_underflows_is_an_elastic_contact():
 def test_a_sweep_row_whose_scales_leave_double_precision_is_named():
     with pytest.raises(ValueError, match=r"acceleration scale v_n / T = 0 .* \(row 1\)"):
         sweep(engine.rows(mass=[1.0, 2.62e181], speed=[3.0, 8.54e-252], angle=[10.0, 0.64]))
+
+
+def test_the_separation_criterion_is_parsed_once_and_written_by_its_name(tmp_path):
+    """A name or the member gives the same scene; outputs, tables and JSON carry the name."""
+    by_name, by_member = Scene(separation="penetration"), Scene(separation=Separation.PENETRATION)
+    assert by_name == by_member and by_name.separation is Separation.PENETRATION
+    assert by_name.separation.pulls and not by_name.separation.on_force and Scene().separation.on_force
+    assert simulate(by_name).cor == simulate(by_member).cor
+    table = sweep(grid(angle=[30.0], separation=["force", "penetration"]))
+    table.to_csv(tmp_path / "t.csv", index=False)
+    assert pd.read_csv(tmp_path / "t.csv")["separation"].tolist() == ["force", "penetration"]
+    assert json.loads(json.dumps({"s": by_name.separation})) == {"s": "penetration"}
+
+
+def test_the_separation_criterion_is_not_compared_as_a_string():
+    """Behaviour comes from the criterion (``Separation.on_force``, ``pulls``): no module compares a value with a
+    criterion's name, so a new criterion is one member, not a hunt through the package."""
+    names = {member.value for member in Separation}
+    found = []
+    for path in sorted((Path(__file__).resolve().parents[1] / "src/sphereimpact").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Compare):
+                for side in (node.left, *node.comparators):
+                    if isinstance(side, ast.Constant) and side.value in names:
+                        found.append(f"{path}:{node.lineno}")
+    assert not found, found

@@ -6,6 +6,7 @@ import pandas as pd
 import pytest
 
 from sphereimpact import SolverOptions, simulate
+from sphereimpact.contact.separation import Separation
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch, chebyshev, engine, paths, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
@@ -27,7 +28,7 @@ def inside(rectangle, n, seed):
     return rng.uniform(zeta_lo, zeta_hi, n), np.exp(rng.uniform(np.log(lam_lo), np.log(lam_hi), n))
 
 
-@pytest.mark.parametrize("separation", ["force", "penetration"])
+@pytest.mark.parametrize("separation", list(Separation))
 @pytest.mark.parametrize("rectangle", [BALLS, (0.05, 0.06, 1.0, 10.0), (0.01, 0.5, 1e-3, 1e4), (1e-4, 0.01, 10.0, 1e6)],
                          ids=["random balls", "narrow, across the onset", "up to its largest zeta", "light damping"])
 def test_plane_meets_the_target_between_its_nodes(separation, rectangle):
@@ -44,7 +45,7 @@ def test_the_onset_estimate_is_within_five_percent_and_the_edge_below_the_onset(
     """v* = log(2 zeta lam*) where the force first pulls before delta = 0, as the one-ball interpolant locates
     it (G = 1 + 2 zeta lam y_f = 0 on its penetration series)."""
     lam_star = 1.0 / (2 * zeta)  # v* >= 0: the onset lies above lam = 1 / (2 zeta)
-    (cut,) = similarity.LambdaInterpolant(zeta, lam_star, 10 * lam_star, "force", 1e-8).cuts
+    (cut,) = similarity.LambdaInterpolant(zeta, lam_star, 10 * lam_star, Separation.FORCE, 1e-8).cuts
     v_star = cut + np.log(2 * zeta)
     estimate = plane.onset_edge(zeta) / plane.ONSET_MARGIN
     assert abs(estimate / v_star - 1) < 0.05
@@ -55,17 +56,17 @@ def test_points_pulling_below_the_tension_piece_are_integrated(monkeypatch):
     """With the piece's edge put above the onset (margin 1.6 instead of 0.8) the scenes that pull below it
     are solved by the lanes, and every output still meets the target."""
     monkeypatch.setattr(plane, "ONSET_MARGIN", 1.6)
-    interpolant = plane.PlaneInterpolant(0.05, 0.3, 1.0, 50.0, "force", 1e-8)
+    interpolant = plane.PlaneInterpolant(0.05, 0.3, 1.0, 50.0, Separation.FORCE, 1e-8)
     zeta, lam = inside((0.05, 0.3, 1.0, 50.0), 300, seed=2)
-    pen = direct(zeta, lam, "penetration")
+    pen = direct(zeta, lam, Separation.PENETRATION)
     v, v_star = np.log(2 * zeta * lam), -np.log(-pen["y_f"])
     below = (v > v_star) & (v < plane.onset_edge(zeta))
     assert below.sum() > 10
-    assert _errors(interpolant(zeta, lam), direct(zeta, lam, "force"), OUTPUTS) < 1e-8
+    assert _errors(interpolant(zeta, lam), direct(zeta, lam, Separation.FORCE), OUTPUTS) < 1e-8
 
 
 def test_a_point_has_the_same_value_however_many_are_evaluated_with_it():
-    interpolant = plane.PlaneInterpolant(*BALLS, "force", 1e-8)
+    interpolant = plane.PlaneInterpolant(*BALLS, Separation.FORCE, 1e-8)
     zeta, lam = inside(BALLS, 2 * chebyshev.EVAL_BLOCK + 37, seed=3)
     whole = interpolant(zeta, lam)
     for size in (1, 5, chebyshev.EVAL_BLOCK - 1, chebyshev.EVAL_BLOCK + 1):
@@ -78,13 +79,13 @@ def test_a_point_has_the_same_value_however_many_are_evaluated_with_it():
 @pytest.mark.parametrize("rectangle", [(0.1, 0.6, 1.0, 10.0), (0.1, 0.2, 1e-4, 10.0), (0.1, 0.2, 1.0, 1e7)])
 def test_outside_its_domain_the_plane_refuses(rectangle):
     with pytest.raises(InterpolationError, match="covers zeta"):
-        plane.PlaneInterpolant(*rectangle, "force", 1e-8)
+        plane.PlaneInterpolant(*rectangle, Separation.FORCE, 1e-8)
 
 
 def test_a_plane_that_cannot_reach_the_target_refuses_and_the_engine_integrates(monkeypatch):
     monkeypatch.setattr(plane, "MAX_NODES", 200)
     with pytest.raises(InterpolationError, match="did not reach"):
-        plane.PlaneInterpolant(*BALLS, "force", 1e-8)
+        plane.PlaneInterpolant(*BALLS, Separation.FORCE, 1e-8)
     monkeypatch.setattr(paths, "PLANE_MIN", 50)
     scenes = random_balls(120, seed=4)
     monkeypatch.setattr(plane, "PlaneInterpolant", _refusing)
@@ -112,7 +113,7 @@ def test_engine_takes_the_plane_for_many_balls_and_shards_equal_the_whole(monkey
     monkeypatch.setattr(plane, "PlaneInterpolant", lambda *a, **k: built.append(a) or original(*a, **k))
     scenes = random_balls(400, seed=5)
     whole = sweep(scenes)
-    assert sorted(args[4] for args in built) == ["force", "penetration"]
+    assert sorted(args[4] for args in built) == [Separation.FORCE, Separation.PENETRATION]
     for row in whole.iloc[::10].to_dict("records"):  # the sweep's contract, against the single-impact path
         scene = engine.scene_of({k: row[k] for k in engine.SCENE_COLUMNS})
         ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))

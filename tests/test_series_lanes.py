@@ -6,8 +6,10 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from sphereimpact import ImpactError
+from sphereimpact.contact.separation import Separation
 from sphereimpact.sweep import batch, plane, series_lanes
 from sphereimpact.sweep.outputs import NORMAL_OUTPUTS as OUTPUTS
+from sphereimpact.sweep.series_lanes import End
 from sphereimpact.sweep.similarity import _errors
 
 RNG = np.random.default_rng(3)
@@ -19,7 +21,7 @@ def reference(zeta, lam, separation):
     return batch.integrate(zeta, lam, np.zeros(zeta.size), np.ones(zeta.size, bool), separation, 1e-12)
 
 
-@pytest.fixture(scope="module", params=["force", "penetration"])
+@pytest.fixture(scope="module", params=list(Separation))
 def separation_and_reference(request):
     return request.param, reference(ZETA, LAM, request.param)
 
@@ -37,8 +39,8 @@ def test_continued_end_is_the_force_criterion_where_the_force_pulls_and_smooth_a
     [edge, edge + 0.5] at zeta = 0.2, the onset at v* = 0.40."""
     zeta = np.full(200, 0.2)
     lam = np.exp(np.linspace(0.0, 0.5, 200) + float(plane.onset_edge(0.2))) / 0.4
-    force, continued = (series_lanes.integrate(zeta, lam, end, 1e-10) for end in ("force", "continued"))
-    pen = series_lanes.integrate(zeta, lam, "penetration", 1e-10)
+    force, continued = (series_lanes.integrate(zeta, lam, end, 1e-10) for end in (Separation.FORCE, End.CONTINUED))
+    pen = series_lanes.integrate(zeta, lam, Separation.PENETRATION, 1e-10)
     pulls = 1 + 2 * zeta * lam * pen["y_f"] < 0
     assert 20 < pulls.sum() < 180  # the onset lies inside the range
     for key in ("tau_f", "y_f"):
@@ -54,9 +56,9 @@ def test_continued_end_is_the_force_criterion_where_the_force_pulls_and_smooth_a
 def test_a_lane_does_not_depend_on_the_lanes_beside_it():
     """The order comes from the target (not from the batch's most damped lane), so a scene's outputs are bit
     for bit the same alone and in any batch: the plane's fallback integrates whatever subset a shard holds."""
-    whole = series_lanes.integrate(ZETA[:50], LAM[:50], "force", 1e-8)
+    whole = series_lanes.integrate(ZETA[:50], LAM[:50], Separation.FORCE, 1e-8)
     for i in (0, 17, 49):
-        alone = series_lanes.integrate(ZETA[i:i + 1], LAM[i:i + 1], "force", 1e-8)
+        alone = series_lanes.integrate(ZETA[i:i + 1], LAM[i:i + 1], Separation.FORCE, 1e-8)
         assert all(alone[k][0] == whole[k][i] for k in OUTPUTS)
 
 
@@ -66,12 +68,12 @@ def test_high_orders_land_on_the_band_edge_after_maximum_compression(monkeypatch
     maximum and half the band at once (COR off by 1e-9 at order 16, 3e-4 at 18)."""
     zeta, lam = RNG.uniform(0.005, 0.4, 60), RNG.uniform(38.0, 70.0, 60)
     monkeypatch.setattr(series_lanes, "order_for", lambda tol: order)
-    got = series_lanes.integrate(zeta, lam, "force", 1e-9)
-    assert _errors(got, reference(zeta, lam, "force"), OUTPUTS) < 2e-10
+    got = series_lanes.integrate(zeta, lam, Separation.FORCE, 1e-9)
+    assert _errors(got, reference(zeta, lam, Separation.FORCE), OUTPUTS) < 2e-10
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")  # scipy's trial steps past the event overflow exp(lam |x|)
-@pytest.mark.parametrize("separation", ["force", "penetration"])
+@pytest.mark.parametrize("separation", list(Separation))
 def test_lanes_against_scipy_where_the_ramp_is_sharp(separation):
     """lam 1e4-1e6 (the ramp switches on within 1e-6 of the deflection scale): scipy's DOP853 at rtol 1e-13
     with steps capped at 2e-4, as a second method (the Runge-Kutta lanes lose up to 6e-5 in y_f here)."""
@@ -79,7 +81,7 @@ def test_lanes_against_scipy_where_the_ramp_is_sharp(separation):
         got = series_lanes.integrate(np.array([zeta]), np.array([lam]), separation, 1e-11)
 
         def end(t, z):  # the criterion's end after maximum compression: x = 0, or P / x = 0
-            return z[0] if separation == "penetration" else float(series_lanes.ratio(z[0], z[1], 2 * zeta, lam))
+            return z[0] if separation.pulls else float(series_lanes.ratio(z[0], z[1], 2 * zeta, lam))
 
         end.terminal, end.direction = True, -1
         ref = solve_ivp(rhs(zeta, lam), [1.0, 4.0], list(peak(zeta, lam)), method="DOP853", rtol=1e-13, atol=1e-16,
@@ -102,13 +104,13 @@ def peak(zeta, lam):
 
 
 def test_bad_separation_is_refused_and_no_lanes_give_empty_outputs():
-    with pytest.raises(ValueError, match="separation must be one of"):
+    with pytest.raises(ValueError, match="end must be a Separation"):
         series_lanes.integrate(ZETA[:3], LAM[:3], "sideways", 1e-8)
-    assert all(v.size == 0 for v in series_lanes.integrate(ZETA[:0], LAM[:0], "force", 1e-8).values())
+    assert all(v.size == 0 for v in series_lanes.integrate(ZETA[:0], LAM[:0], Separation.FORCE, 1e-8).values())
 
 
 def test_a_lane_that_never_separates_is_an_error():
     """Critically damped and beyond under the penetration criterion x creeps towards 0: zeta = 5 with a huge
     lam does not return within the horizon."""
     with pytest.raises(ImpactError, match="horizon|steps"):
-        series_lanes.integrate(np.array([0.1, 40.0]), np.array([1.0, 1e5]), "penetration", 1e-8)
+        series_lanes.integrate(np.array([0.1, 40.0]), np.array([1.0, 1e5]), Separation.PENETRATION, 1e-8)

@@ -6,6 +6,7 @@ import pandas as pd
 import pytest
 
 from sphereimpact import Scene
+from sphereimpact.contact.separation import Separation
 from sphereimpact.sweep import batch, similarity
 from sphereimpact.sweep.engine import grid, sweep
 
@@ -13,7 +14,7 @@ ZETA = Scene().zeta
 LAM_MIN, LAM_MAX = 0.05, 150.0  # the chapter's ball from 0.01 to 30 m/s normal speed
 
 
-def solve(lam, separation="force", target=1e-12):
+def solve(lam, separation=Separation.FORCE, target=1e-12):
     lam = np.atleast_1d(np.asarray(lam, float))
     return batch.integrate(np.full(lam.size, ZETA), lam, np.zeros(lam.size), np.ones(lam.size, bool), separation,
                            target)
@@ -21,7 +22,7 @@ def solve(lam, separation="force", target=1e-12):
 
 @pytest.fixture(scope="module")
 def interpolant():
-    return similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, "force", 1e-8)
+    return similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, Separation.FORCE, 1e-8)
 
 
 def test_tension_onset_is_where_the_exit_force_ratio_vanishes(interpolant):
@@ -29,16 +30,16 @@ def test_tension_onset_is_where_the_exit_force_ratio_vanishes(interpolant):
     delta = 0 like the penetration criterion, just above it at P = 0, before delta = 0."""
     (cut,) = interpolant.cuts
     lam_star = np.exp(cut)
-    y_f = solve(lam_star, "penetration")["y_f"][0]
+    y_f = solve(lam_star, Separation.PENETRATION)["y_f"][0]
     assert abs(1 + 2 * ZETA * lam_star * y_f) < 1e-9
     below, above = solve(lam_star * (1 - 1e-4)), solve(lam_star * (1 + 1e-4))
-    pen_below = solve(lam_star * (1 - 1e-4), "penetration")
-    pen_above = solve(lam_star * (1 + 1e-4), "penetration")
+    pen_below = solve(lam_star * (1 - 1e-4), Separation.PENETRATION)
+    pen_above = solve(lam_star * (1 + 1e-4), Separation.PENETRATION)
     assert below["tau_f"][0] == pytest.approx(pen_below["tau_f"][0], abs=1e-12)
     assert above["tau_f"][0] < pen_above["tau_f"][0] - 1e-9
 
 
-@pytest.mark.parametrize("separation", ["force", "penetration"])
+@pytest.mark.parametrize("separation", list(Separation))
 @pytest.mark.parametrize("lam_range, cuts", [((LAM_MIN, LAM_MAX), 1), ((LAM_MIN, 5.0), 0), ((20.0, LAM_MAX), 0)],
                          ids=["across the onset", "no tension", "tension throughout"])
 def test_interpolant_matches_direct_solves_between_nodes(separation, lam_range, cuts):
@@ -55,7 +56,7 @@ def test_failed_check_falls_back_to_integration(monkeypatch):
     monkeypatch.setattr(similarity, "FIRST_NODES", 3)
     monkeypatch.setattr(similarity, "MAX_NODES", 5)
     with pytest.raises(similarity.InterpolationError, match="did not reach"):
-        similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, "force", 1e-8)
+        similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, Separation.FORCE, 1e-8)
     monkeypatch.setattr("sphereimpact.sweep.paths.SIMILARITY_MIN", 100)
     fallback = sweep(scenes, outputs=["cor"])
     monkeypatch.undo()
@@ -67,7 +68,7 @@ LAW_BALLS = {"linear-hunt-crossley": Scene(model="linear-hunt-crossley", k=6.0e4
              "hunt-crossley": Scene(model="hunt-crossley", k=8.8e5, chi=0.05)}
 
 
-@pytest.mark.parametrize("separation", ["force", "penetration"])
+@pytest.mark.parametrize("separation", list(Separation))
 @pytest.mark.parametrize("model", LAW_BALLS)
 def test_family_interpolant_matches_direct_solves_between_nodes(model, separation):
     """A law without a batched kernel, interpolated in chi v_n over the chapter ball's 0.5-30 m/s: against
@@ -89,7 +90,7 @@ def test_family_interpolant_matches_direct_solves_between_nodes(model, separatio
 def test_family_interpolant_needs_a_number_proportional_to_the_speed():
     """kelvin-voigt's family (zeta) does not move with the speed: no interpolant, the sweep solves per family."""
     with pytest.raises(similarity.InterpolationError, match="not proportional to the approach speed"):
-        similarity.FamilyInterpolant(Scene(model="kelvin-voigt"), 0.01, 0.1, "force", 1e-8)
+        similarity.FamilyInterpolant(Scene(model="kelvin-voigt"), 0.01, 0.1, Separation.FORCE, 1e-8)
 
 
 @pytest.mark.filterwarnings("ignore::sphereimpact.BeyondRadiusWarning")  # 30 m/s compresses past R here

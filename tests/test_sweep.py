@@ -6,6 +6,7 @@ import pytest
 
 from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
+from sphereimpact.contact.separation import Separation
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
 from sphereimpact.sweep.paths import SIMILARITY_MIN
@@ -75,7 +76,7 @@ def test_runge_kutta_lanes_meet_their_target_where_ramp_and_damping_are_both_str
     from sphereimpact.sweep.similarity import _errors
 
     zeta, lam = (a.ravel() for a in np.meshgrid(10 ** np.linspace(-2, 0, 9), 10 ** np.arange(-1, 3.01, 0.25)))
-    for separation in ("force", "penetration"):
+    for separation in Separation:
         got = batch.integrate(zeta, lam, np.zeros(zeta.size), np.ones(zeta.size, bool), separation, target)
         assert _errors(got, series_lanes.integrate(zeta, lam, separation, 1e-12), NORMAL_OUTPUTS) <= target
 

@@ -16,6 +16,8 @@ from matplotlib.testing.compare import compare_images
 
 from conftest import finish, project_copy, snakemake, start_snakemake
 
+pytestmark = pytest.mark.pipeline
+
 ROOT = Path(__file__).resolve().parents[1]
 FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",

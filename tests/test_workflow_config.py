@@ -9,6 +9,8 @@ import pytest
 
 from conftest import TEST_CONFIG, project_copy, snakemake
 
+pytestmark = pytest.mark.pipeline
+
 
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):

@@ -81,5 +81,6 @@ def test_conda_environment_mirrors_environment_txt():
     pins = {line.split("#")[0].strip() for line in (ROOT / "environment.txt").read_text().splitlines()}
     conda = yaml.safe_load((ROOT / "workflow/envs/sphereimpact.yaml").read_text())
     pip = {p for entry in conda["dependencies"] if isinstance(entry, dict) for p in entry["pip"]}
-    tools = {p for p in pins if p.split("==")[0] in ("snakemake", "pytest", "pytest-xdist", "snakemake-executor-plugin-slurm")}
+    tool_names = ("snakemake", "pytest", "pytest-xdist", "ruff", "snakemake-executor-plugin-slurm")
+    tools = {p for p in pins if p.split("==")[0] in tool_names}
     assert {p for p in pins if "==" in p} - tools == {p for p in pip if "==" in p}

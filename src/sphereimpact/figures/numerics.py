@@ -6,6 +6,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from ..contact.separation import Separation
 from .style import RC, save
 
 COLORS = {"taylor": "tab:pink", "DOP853-scalar": "tab:olive", "RK23": "tab:blue", "RK45": "tab:orange",
@@ -129,7 +130,7 @@ def microslip_resolution_figure(csv_path: str, outputs) -> None:
 
 PATH_COLORS = {"lambda-interpolant": "tab:blue", "plane": "tab:orange", "taylor-lanes": "tab:pink",
                "runge-kutta-lanes": "tab:green"}
-CRITERION_STYLE = {"force": "-", "penetration": "--"}
+CRITERION_STYLE = {Separation.FORCE: "-", Separation.PENETRATION: "--"}
 
 
 def sweep_paths_figure(csv_path: str, outputs) -> None:

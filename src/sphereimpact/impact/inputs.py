@@ -11,11 +11,11 @@ import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES, hertz_constant
 from ..contact.laws.base import MODULUS
+from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 
-#: Separation criteria: ``force`` ends contact when P returns to 0 (a
-#: unilateral contact cannot pull), ``penetration`` when delta returns to 0.
-SEPARATION_CRITERIA = ("force", "penetration")
+#: Names of the separation criteria (:class:`~sphereimpact.contact.separation.Separation`).
+SEPARATION_CRITERIA = tuple(Separation)
 
 #: Scene fields that hold names, not numbers.
 TEXT_FIELDS = ("model", "separation", "tangential")

@@ -15,10 +15,11 @@ from functools import cached_property
 import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
                                   kappa_from_shear_modulus)
-from .inputs import (PATH_RULES, RULES, SEPARATION_CRITERIA, _check, _check_choice, as_number, law_parameters,
+from .inputs import (PATH_RULES, RULES, _check, _check_choice, as_number, law_parameters,
                      magnitude_problem, scale_problem)
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
@@ -61,8 +62,9 @@ class Scene:
     gravity : float
         Gravitational acceleration g [m/s^2], >= 0; 0 (off) by default.  The weight alone must not
         compress the contact beyond the radius (m g cos(beta) / k <= R).
-    separation : str
-        ``force`` or ``penetration``, see :data:`SEPARATION_CRITERIA`.
+    separation : Separation or str
+        When contact ends: ``force`` (P returns to 0, default) or ``penetration`` (delta returns to 0), see
+        :class:`~sphereimpact.contact.separation.Separation`; a name is parsed into the criterion.
     tangential : str
         Tangential contact model, a key of :data:`sphereimpact.contact.tangential.TANGENTIALS`: ``rigid``
         (default, the chapter's), ``linear`` (needs a linear-spring law), ``mindlin`` (needs a Hertz spring,
@@ -98,7 +100,7 @@ class Scene:
     exponent: float | None = None
     modulus: float | None = None
     gravity: float = 0.0
-    separation: str = "force"
+    separation: Separation = Separation.FORCE
     tangential: str = "rigid"
     kappa: float | None = None
     poisson: float | None = None
@@ -115,7 +117,7 @@ class Scene:
             raise ValueError(problem)
         self._check_path()
         _check_choice("model", self.model, tuple(LAWS))
-        _check_choice("separation", self.separation, SEPARATION_CRITERIA)
+        object.__setattr__(self, "separation", Separation.parse(self.separation))
         given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
                  for name in PARAMETER_NAMES}
         values = law_parameters(self.model, given, self.radius)

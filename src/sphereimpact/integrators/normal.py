@@ -70,14 +70,14 @@ def separation_function(scene: Scene):
     P (at 2.345 m/s it did, and t_f flipped by 0.7 % on a 1-ulp change of speed).  Strictly negative
     outside, the function crosses zero once: at P = 0, or at delta = 0 by a jump when P stays positive.
     """
-    if scene.separation == "penetration":
+    if scene.separation.pulls:
         return lambda delta, delta_dot: delta
     return lambda delta, delta_dot: np.where(np.asarray(delta) > 0, scene.force(delta, delta_dot), -1.0)
 
 
 def scalar_separation_function(scene: Scene):
     """:func:`separation_function` for Python floats, by the law's scalar formula (``ContactLaw.scalar``)."""
-    if scene.separation == "penetration":
+    if scene.separation.pulls:
         return lambda delta, delta_dot: delta
     law = scene.law.scalar
     return lambda delta, delta_dot: law(delta, delta_dot, scene) if delta > 0 else -1.0
@@ -102,8 +102,8 @@ def _join(first, later):
 
 def no_separation_message(scene: Scene, t_end: float) -> str:
     """One line explaining a contact that never ends under the chosen criterion."""
-    what = "delta never returns to 0" if scene.separation == "penetration" else "P never returns to 0"
-    hint = " (try --separation force)" if scene.separation == "penetration" else ""
+    what = f"{scene.separation.end_quantity} never returns to 0"
+    hint = " (try --separation force)" if scene.separation.pulls else ""
     when = (f"within {t_end:.3g} s" if np.isfinite(t_end)
             else "(an over-damped contact: it decays to 0 only asymptotically)")
     return (f"no separation: {what} {when} under the '{scene.separation}' criterion "
@@ -160,7 +160,7 @@ def conditioned_tolerances(scene: Scene, options: SolverOptions, floor: float = 
     The outcome reports the tolerances asked for.
     """
     zeta = scene.family.get("zeta")
-    if scene.separation != "force" or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
+    if not scene.separation.on_force or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
         return options.rtol, options.atol
     scale = (4.0 * zeta * zeta) ** -power
     return max(options.rtol * scale, floor), max(options.atol * scale, ATOL_FLOOR)
@@ -175,7 +175,7 @@ def conditioned_step(scene: Scene) -> float:
     more evaluations there (1 / (2 zeta): 1.1e-9; measured at zeta 10-100, lam 75-150).
     """
     zeta = scene.family.get("zeta")
-    if scene.separation != "force" or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
+    if not scene.separation.on_force or zeta is None or not 1.0 < zeta <= CONDITIONED_ZETA_MAX:
         return math.inf
     return 1.0 / (4.0 * zeta)
 
@@ -263,7 +263,7 @@ class _Run:
                 f"no separation within {MAX_NFEV:.0e} right-hand-side evaluations (method {self.method}; "
                 f"{describe_family(scene)}criterion '{scene.separation}'): the contact is too stiff or too slow to "
                 "end" + (": an over-damped contact returns to delta = 0 slowly if ever, try --separation force"
-                         if scene.separation == "penetration" else "")) from None
+                         if scene.separation.pulls else "")) from None
         if sol.status == -1:
             raise ImpactError(f"solver {self.method} failed: {sol.message}")
         return sol
@@ -390,7 +390,7 @@ class IntegratedNormal(_DimensionlessNormal):
             steps = np.concatenate([sol.t[:-1], rest.t])
         tau_f = float(t_f[0])
         x_m = float(sol.y_events[0][0][0]) if len(sol.y_events[0]) else 1.0
-        on_delta = scene.separation == "penetration" or abs(float(dense(tau_f)[0])) <= LANDING_DELTA * x_m
+        on_delta = scene.separation.pulls or abs(float(dense(tau_f)[0])) <= LANDING_DELTA * x_m
         tail, tau_f, landing = _land(run, dense, tau_f, cap, on_delta)
         nfev += landing
         dense = _join(dense, fast_solution(tail.sol))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from ..contact.separation import Separation
 from ..impact.scene import STANDARD_GRAVITY, Scene, SolverOptions
 from ..impact.solve import simulate
 from .reference import output_scales
@@ -17,7 +18,7 @@ VARIANTS = {
     "thin shell": ("rotational inertia α = 2/3 instead of 2/5", {"inertia_factor": 2 / 3}, "reduced"),
     "light core": ("rotational inertia α = 0.2", {"inertia_factor": 0.2}, "reduced"),
     "no friction": ("drops friction (μ = 0)", {"mu": 0.0}, "reduced"),
-    "penetration": ("contact ends at δ = 0 instead of P = 0", {"separation": "penetration"}, "reduced"),
+    "penetration": ("contact ends at δ = 0 instead of P = 0", {"separation": Separation.PENETRATION}, "reduced"),
     "ramp 10": ("eq. 4.2 ramp constant 10 instead of 100", {"ramp": 10.0}, "reduced"),
     "ramp 1000": ("eq. 4.2 ramp constant 1000 instead of 100", {"ramp": 1000.0}, "reduced"),
     "previous law": ("eq. 4.1 instead of eq. 4.2", {"model": "kelvin-voigt"}, "reduced"),

@@ -14,6 +14,7 @@ import logging
 import numpy as np
 import pandas as pd
 
+from ..contact.separation import Separation
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
 from .handwritten import handwritten
@@ -57,7 +58,7 @@ def bench_scenes(chapter: dict[str, Scene], domain: bool = True, laws=tuple(LAW_
         scenes[f"45deg-20ms/{model}"] = base.with_(angle=45.0, speed=20.0, model=model)
     for model in laws:
         scenes[f"30deg-3ms/{model}"] = base.with_(angle=30.0, speed=3.0, model=model, **LAW_SCENES[model])
-    return {name: s.with_(separation="force", gravity=0.0) for name, s in scenes.items()}
+    return {name: s.with_(separation=Separation.FORCE, gravity=0.0) for name, s in scenes.items()}
 
 
 def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:

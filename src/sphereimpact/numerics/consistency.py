@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 
 from ..contact.laws import LAWS
+from ..contact.separation import Separation
 from ..errors import BeyondRadiusWarning, ImpactError
 from ..impact.outcome import SCALAR_OUTPUTS
 from ..impact.scene import SolverOptions
@@ -54,10 +55,11 @@ def _balls(rng, n: int) -> pd.DataFrame:
     models = np.array(sorted(LAWS))
     model = rng.choice(models, n)
     mass, diameter = _loguniform(rng, 0.005, 2.0, n), _loguniform(rng, 0.005, 0.3, n)
-    separation = np.where(rng.uniform(size=n) < 0.3, "penetration", "force")
+    pulls = rng.uniform(size=n) < 0.3
+    separation = np.where(pulls, Separation.PENETRATION.value, Separation.FORCE.value)
     spring = np.array([LAWS[m].spring for m in model])
     k_linear = _loguniform(rng, 1e3, 1e7, n)
-    zeta = np.where(separation == "penetration", _loguniform(rng, 1e-3, 0.9, n), _loguniform(rng, 1e-3, 3.0, n))
+    zeta = np.where(pulls, _loguniform(rng, 1e-3, 0.9, n), _loguniform(rng, 1e-3, 3.0, n))
     zeta[rng.uniform(size=n) < 0.05] = 0.0  # undamped
     modulus = _loguniform(rng, 1e6, 1e10, n)
     by_modulus = rng.uniform(size=n) < 0.5

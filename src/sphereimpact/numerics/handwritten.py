@@ -86,7 +86,7 @@ def handwritten(scene: Scene, rtol: float, atol: float | None = None, method: st
     def max_compression(tau, z):
         return z[1]
 
-    if scene.separation == "penetration":
+    if scene.separation.pulls:
         def separation(tau, z):
             return z[0]
     else:  # the first of P = 0 and delta = 0

@@ -111,7 +111,7 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
             # force: the (smooth) force law; near x = 0 it is x (1 + 2 zeta lam y), so where P stays
             # positive until x = 0 its root is x = 0, the first of P = 0 and delta = 0 either way
             x, y = sol(t)
-            return x if scene.separation == "penetration" else x + 2 * zeta * y * (1 - mpmath.exp(-lam * x))
+            return x if scene.separation.pulls else x + 2 * zeta * y * (1 - mpmath.exp(-lam * x))
 
         tau_f = mpmath.findroot(separation, bracket(guess.t_f), solver="anderson")
         x_m, y_f = sol(tau_m)[0], sol(tau_f)[1]

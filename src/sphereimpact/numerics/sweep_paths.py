@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from .timing import interleaved_seconds
-from ..impact.inputs import SEPARATION_CRITERIA
+from ..contact.separation import Separation
 from ..impact.scene import Scene, SolverOptions
 from ..sweep import batch, plane, series_lanes
 from ..sweep.outputs import NORMAL_OUTPUTS
@@ -39,7 +39,7 @@ LAM_RANGE = (2.0, 200.0)
 ZETA_RANGE = (0.01, 0.5)
 
 
-def scene_for(zeta: float, lam: float, separation: str) -> Scene:
+def scene_for(zeta: float, lam: float, separation: Separation) -> Scene:
     """The chapter's ball at normal incidence with eq. 4.2's damping ratio ``zeta`` and ramp number ``lam``
     (b = 2 zeta sqrt(k m), v = lam omega_n R / c)."""
     base = Scene(separation=separation)
@@ -48,7 +48,7 @@ def scene_for(zeta: float, lam: float, separation: str) -> Scene:
     return base.with_(b=b, speed=speed)
 
 
-def _contenders(zeta, lam, separation: str, target: float, one_zeta: bool) -> dict:
+def _contenders(zeta, lam, separation: Separation, target: float, one_zeta: bool) -> dict:
     """name -> call solving every scene (zeta, lam) on that path, interpolants built in the call."""
     lo, hi = float(lam.min()), float(lam.max())
     gamma, modified = np.zeros(zeta.size), np.ones(zeta.size, bool)
@@ -62,7 +62,7 @@ def _contenders(zeta, lam, separation: str, target: float, one_zeta: bool) -> di
     return calls
 
 
-def compare(comparison: str, scenes: int, separation: str, target: float, repeats: int, sample: int,
+def compare(comparison: str, scenes: int, separation: Separation, target: float, repeats: int, sample: int,
             seed: int) -> list[dict]:
     """One row per contender of ``comparison`` (``one ball`` or ``many balls``) on ``scenes`` scenes."""
     rng = np.random.default_rng(seed)
@@ -113,7 +113,7 @@ def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, rep
     rows = []
     for comparison in ("one ball", "many balls"):
         for scenes in sizes:
-            for i, separation in enumerate(SEPARATION_CRITERIA):
+            for i, separation in enumerate(Separation):
                 rows += compare(comparison, int(scenes), separation, target, repeats, sample, seed=int(scenes) + i)
     table = pd.DataFrame(rows)
     table["dominated"] = _dominated(table)

@@ -15,6 +15,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..contact.separation import Separation
 from ..impact.calibrate import calibrate, contact_time
 from ..parsing import parse_range
 from ..impact.scene import Scene
@@ -80,7 +81,7 @@ def speed_table(fitted: dict, speeds) -> pd.DataFrame:
             for speed in speeds:
                 scene = calibration.scene.with_(speed=float(speed))
                 out = simulate(scene)
-                whole = simulate(scene.with_(separation="penetration"))
+                whole = simulate(scene.with_(separation=Separation.PENETRATION))
                 rows.append({"law": name, "speed": float(speed), "cor": out.cor, "t_f": out.t_f,
                              "delta_m": out.delta_m, "force_max": out.force_max,
                              "force_at_touch": float(scene.stage_force(0.0, scene.v_normal)),
@@ -95,7 +96,7 @@ def force_curves(fitted: dict, samples: int) -> pd.DataFrame:
     pulls shows it before delta returns to 0)."""
     frames = []
     for name, calibration in fitted.items():
-        out = simulate(calibration.scene.with_(separation="penetration"))
+        out = simulate(calibration.scene.with_(separation=Separation.PENETRATION))
         history = out.history(samples)
         frames.append(pd.DataFrame({"law": name, "t": history["t"], "delta": history["delta"],
                                     "force": history["force"]}))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 
+from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
 from ..numerics.bench import bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages
@@ -60,7 +61,7 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
 
 def write_stability(config: dict, csv_path: str) -> None:
     """The failure-mode studies on the first configured case's ball (each study sets its own angle)."""
-    base = scene_for(config, next(iter(config["cases"])), "modified", "force")
+    base = scene_for(config, next(iter(config["cases"])), "modified", Separation.FORCE)
     numerics = config["numerics"]
     stability(base, numerics["stability"], numerics["methods"]).to_csv(csv_path, **CSV)
 

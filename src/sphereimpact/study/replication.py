@@ -20,6 +20,7 @@ import math
 import pandas as pd
 import yaml
 
+from ..contact.separation import Separation
 from ..ode.events import extremum
 from ..numerics.workprecision import TARGET
 from ..impact.scene import STANDARD_GRAVITY
@@ -30,13 +31,13 @@ from .tables import load_runs, markdown_table
 
 #: Hypotheses: name -> (description, scene changes from the primary, or a derived time).
 HYPOTHESES = {
-    "penetration": ("contact ends when δ returns to 0 (not P)", {"separation": "penetration"}),
+    "penetration": ("contact ends when δ returns to 0 (not P)", {"separation": Separation.PENETRATION}),
     "gravity": (f"gravity on (g = {STANDARD_GRAVITY} m/s²), force criterion", {"gravity": STANDARD_GRAVITY}),
     "gravity+penetration": ("gravity on, penetration criterion",
-                            {"gravity": STANDARD_GRAVITY, "separation": "penetration"}),
+                            {"gravity": STANDARD_GRAVITY, "separation": Separation.PENETRATION}),
     "kelvin-voigt": ("previous model (eq. 4.1), force criterion", {"model": "kelvin-voigt"}),
     "kelvin-voigt+penetration": ("previous model (eq. 4.1), penetration criterion",
-                                 {"model": "kelvin-voigt", "separation": "penetration"}),
+                                 {"model": "kelvin-voigt", "separation": Separation.PENETRATION}),
     "peak-force-time": ("t_m read as the time of peak force", "peak"),
     "half-contact": ("t_m read as t_f / 2 (symmetric compression and restitution)", "half"),
     "undamped": ("undamped oscillator: t_m = (π/2)√(m/k), t_f = π√(m/k)", "undamped"),
@@ -163,7 +164,7 @@ _SHOW = {"t_m": ("t_m", 1e3, "ms"), "delta_m": ("δ_m", 1e3, "mm"), "t_f": ("t_f
 
 
 def _tension(config: dict, case: str) -> str:
-    scene = scene_for(config, case, "modified", "penetration")
+    scene = scene_for(config, case, "modified", Separation.PENETRATION)
     res = simulate(scene, options_for(config, scene))
     limit = scene.k * scene.radius / (scene.ramp * scene.b)
     predicted = res.vc_n > limit  # near delta = 0, P ~ delta (k + c b delta_dot / R)

@@ -25,6 +25,7 @@ from scipy.special import wrightomega
 from ..errors import ImpactError
 from ..contact.laws import ramp_continued
 from ..contact.laws.linear import kelvin_voigt_scaled, modified_per_compression, modified_scaled
+from ..contact.separation import Separation
 from .outputs import NORMAL_OUTPUTS
 
 #: The dimensionless forces these lanes integrate (a law's ``ContactLaw.scaled``, by identity) -> whether
@@ -302,7 +303,7 @@ def step_size(zeta, lam, x, y, target: float):
     return np.minimum(base, ramp)
 
 
-def estimated_contact_time(zeta, lam, separation: str) -> np.ndarray:
+def estimated_contact_time(zeta, lam, separation: Separation) -> np.ndarray:
     """About how long each contact lasts, tau_f (for the engine's choice of path, never for accuracy).
 
     About pi when under-damped; over-damped (zeta > 1), about pi / sqrt(zeta) under the force criterion,
@@ -311,11 +312,11 @@ def estimated_contact_time(zeta, lam, separation: str) -> np.ndarray:
     """
     zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
     over = np.maximum(zeta, 1.0)
-    creep = np.pi + 1.9 * np.sqrt(over * lam) if separation == "penetration" else np.pi / np.sqrt(over)
+    creep = np.pi + 1.9 * np.sqrt(over * lam) if separation.pulls else np.pi / np.sqrt(over)
     return np.where(zeta > 1, creep, np.pi)
 
 
-def estimated_steps(zeta, lam, separation: str, target: float) -> np.ndarray:
+def estimated_steps(zeta, lam, separation: Separation, target: float) -> np.ndarray:
     """About how many steps each lane takes: :func:`step_size` bounds them by the damping,
     unit / max(1, 2 zeta), over :func:`estimated_contact_time`, plus the ramp band's (within a factor 2.6
     of the steps taken at zeta 0.01-100, lam 4-74, both criteria: 21 040 at zeta 64, lam 15, penetration,
@@ -325,7 +326,7 @@ def estimated_steps(zeta, lam, separation: str, target: float) -> np.ndarray:
     return tau_f * np.maximum(1.0, 2.0 * np.asarray(zeta, dtype=float)) / unit + 30.0
 
 
-def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8, levels=None,
+def integrate(zeta, lam, gamma, modified, separation: Separation, target: float = 1e-8, levels=None,
               extremes: bool = False) -> dict:
     """Integrate every lane to separation.
 
@@ -335,7 +336,8 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8,
         Damping ratio, ramp parameter c v_n / (omega_n R), gravity gamma (see module docstring).
     modified : ndarray of bool
         True for the modified law, False for kelvin-voigt.
-    separation : {'force', 'penetration'}
+    separation : Separation
+        When the lanes end.
     target : float
         Relative accuracy target of every output.
     levels : ndarray, optional
@@ -361,7 +363,7 @@ def integrate(zeta, lam, gamma, modified, separation: str, target: float = 1e-8,
     n = zeta.size
     params = _Lanes(np.asarray(zeta, float), np.asarray(lam, float), np.asarray(gamma, float),
                     np.asarray(modified, bool))
-    force_criterion = separation == "force"
+    force_criterion = separation.on_force
     lane = np.arange(n)
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
     past_max = np.zeros(n, bool)  # maximum compression passed

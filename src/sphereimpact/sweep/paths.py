@@ -19,9 +19,9 @@ from typing import Callable
 import numpy as np
 import pandas as pd
 
+from ..contact.separation import Separation
 from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
 from ..impact.outcome import SCALAR_OUTPUTS
-from ..impact.inputs import SEPARATION_CRITERIA
 from ..impact.scene import SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
@@ -189,7 +189,7 @@ def solved_alone(frame: pd.DataFrame, d: Numbers, target: float, limits: dict | 
     alone = _one_by_one(frame) | _beyond_lanes(d, series)
     lanes = d.batched & ~(d.closed & (d.gamma == 0)) & ~series & ~alone  # Runge-Kutta lanes
     computed = {}
-    for separation in SEPARATION_CRITERIA:
+    for separation in Separation:
         mine = np.flatnonzero(lanes & d.criterion(separation))
         if not mine.size:
             continue
@@ -256,7 +256,7 @@ def _family_groups(d: Numbers, mask: np.ndarray) -> dict:
     for i in np.flatnonzero(mask & ~d.batched & (d.gamma == 0)):
         family = d.family[i]
         if len(family) > 1 and family[-1] > 0:
-            groups.setdefault((*family[:-1], d.separation[i]), []).append(i)
+            groups.setdefault((*family[:-1], d.criterion_of(i)), []).append(i)
     return groups
 
 
@@ -312,23 +312,22 @@ class PerFamilyPath(SweepPath):
         return Take([task] if rows.size else [], span_todo & ~work.span.batched & work.span_needs.completes)
 
     @staticmethod
-    def _keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> list:
-        """The family key (model, numbers, gamma, criterion) of each of ``rows``."""
-        return [(*f, float(g), sep) for f, g, sep in zip(d.family[rows], d.gamma[rows],
-                                                         frame["separation"].to_numpy()[rows])]
+    def _keys(d: Numbers, rows: np.ndarray) -> list:
+        """The family key (model, numbers, gamma, force criterion) of each of ``rows``."""
+        return [(*f, float(g), bool(force)) for f, g, force in zip(d.family[rows], d.gamma[rows], d.force[rows])]
 
     @classmethod
     def _solve(cls, work: Work, rows: np.ndarray) -> dict:
         extremes, levels = work.needs.extremes, work.needs.levels[rows]
         options = work.options
-        keys = cls._keys(work.frame, work.numbers, rows)
+        keys = cls._keys(work.numbers, rows)
         members: dict = {}
         for i, key in enumerate(keys):
             members.setdefault(key, []).append(i)
         first = {}  # each family's first scene in the whole sweep: what a shard solves is the sweep's
         if work.sharded:
             span_rows = np.flatnonzero(~work.span.batched)
-            for i, key in zip(span_rows, cls._keys(work.span_frame, work.span, span_rows)):
+            for i, key in zip(span_rows, cls._keys(work.span, span_rows)):
                 if key in members:
                     first.setdefault(key, work.span_frame.iloc[i])
         names = [*NORMAL_OUTPUTS, *(EXTREMES if extremes else ())]
@@ -357,7 +356,7 @@ class _ByCriterion(SweepPath):
         """Mask of the scenes of ``d`` this path can solve, giving what ``needs`` asks."""
         raise NotImplementedError
 
-    def solve(self, d: Numbers, rows: np.ndarray, separation: str, target: float, needs: Needs) -> dict:
+    def solve(self, d: Numbers, rows: np.ndarray, separation: Separation, target: float, needs: Needs) -> dict:
         """:data:`NORMAL_OUTPUTS` of the scenes ``rows`` of ``d`` under ``separation``, and what ``needs``
         asks of them."""
         raise NotImplementedError
@@ -366,7 +365,7 @@ class _ByCriterion(SweepPath):
         d = work.numbers
         admitted = self.admits(d, work.needs) & work.needs.completes
         tasks = []
-        for separation in SEPARATION_CRITERIA:
+        for separation in Separation:
             rows = np.flatnonzero(todo & d.criterion(separation) & admitted)
             if rows.size:
                 tasks.append(Task(rows, lambda rows=rows, s=separation: _chunked(
@@ -426,7 +425,7 @@ class LambdaInterpolantPath(SweepPath):
         taken = np.zeros(len(span), bool)
         tasks = []
         similar = np.flatnonzero(span_todo & span.modified & (span.gamma == 0) & work.span_needs.completes)
-        for criterion in SEPARATION_CRITERIA:
+        for criterion in Separation:
             mine = similar[span.criterion(criterion)[similar]]
             zetas, group, counts = np.unique(span.zeta[mine], return_inverse=True, return_counts=True)
             for i in np.flatnonzero(counts >= SIMILARITY_MIN):
@@ -460,7 +459,7 @@ class PlanePath(SweepPath):
     summary = "eq. 4.2's interpolant on the (zeta, lam) plane"
 
     @staticmethod
-    def _inside(d: Numbers, mask: np.ndarray, separation: str) -> np.ndarray:
+    def _inside(d: Numbers, mask: np.ndarray, separation: Separation) -> np.ndarray:
         return np.flatnonzero(mask & d.modified & (d.gamma == 0) & d.criterion(separation) & (d.zeta > 0)
                               & (d.zeta <= plane.ZETA_MAX) & (d.lam >= plane.LAM_MIN) & (d.lam <= plane.LAM_MAX))
 
@@ -468,7 +467,7 @@ class PlanePath(SweepPath):
         span, d = work.span, work.numbers
         taken = np.zeros(len(span), bool)
         tasks = []
-        for separation in SEPARATION_CRITERIA:
+        for separation in Separation:
             members = self._inside(span, span_todo & work.span_needs.completes, separation)
             if members.size < PLANE_MIN:
                 continue

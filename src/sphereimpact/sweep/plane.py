@@ -29,10 +29,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from . import series_lanes
 from ..contact.laws.linear import modified_per_compression
+from ..contact.separation import Separation
 from ..errors import InterpolationError
 from .chebyshev import Tensor, lobatto
+from .series_lanes import End
 from .similarity import NODE_FACTOR, NODE_TARGET_MIN
 
 #: Largest zeta the plane takes: towards critical damping the penetration criterion's t_f steepens (x creeps
@@ -78,7 +81,8 @@ class PlaneInterpolant:
         Damping ratios to cover, in (0, ZETA_MAX].
     lam_min, lam_max : float
         lam to cover, in [LAM_MIN, LAM_MAX].
-    separation : {'force', 'penetration'}
+    separation : Separation
+        When the contact ends.
     target : float
         Accuracy the interpolant must meet (its Chebyshev tails below it, see the module docstring).
     extremes : bool
@@ -100,7 +104,7 @@ class PlaneInterpolant:
         than MAX_NODES nodes.
     """
 
-    def __init__(self, zeta_min: float, zeta_max: float, lam_min: float, lam_max: float, separation: str,
+    def __init__(self, zeta_min: float, zeta_max: float, lam_min: float, lam_max: float, separation: Separation,
                  target: float, extremes: bool = False):
         if not (0 < zeta_min <= zeta_max <= ZETA_MAX and LAM_MIN <= lam_min <= lam_max <= LAM_MAX):
             raise InterpolationError(f"the (zeta, lam) plane covers zeta in (0, {ZETA_MAX:g}] and lam in "
@@ -131,7 +135,7 @@ class PlaneInterpolant:
             zeta = np.concatenate([g[0].ravel() for g in grids.values()])
             lam = np.concatenate([g[1].ravel() for g in grids.values()])
             split = grids["calm"][0].size
-            ends = np.where(np.arange(zeta.size) < split, "penetration", "continued")
+            ends = np.where(np.arange(zeta.size) < split, End.PENETRATION, End.CONTINUED)
             solved = series_lanes.integrate(zeta, lam, ends, node_target)
             self.nodes += zeta.size
             self.calm = Tensor(*self.zeta, np.stack([solved[k][:split].reshape(sizes["calm"]) for k in CALM], -1),
@@ -188,13 +192,13 @@ class PlaneInterpolant:
                 for k, values in zip(TENSION, self.tension(z[inside], s[inside])):
                     rest[k][inside] = values
             if not inside.all():  # pulls below the piece's edge: integrated
-                alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], "force", self.node_target)
+                alone = series_lanes.integrate(z[~inside], lam[pulls][~inside], Separation.FORCE, self.node_target)
                 for k in TENSION:
                     rest[k][~inside] = alone[k]
             out["j_p"][pulls] = 1.0 - rest["y_f"]
-            if self.extremes and self.separation == "penetration":  # the tension's least force: integrated
-                out["p_min"][pulls] = series_lanes.integrate(z, lam[pulls], "penetration", self.node_target,
-                                                             extremes=True)["p_min"]
-            if self.separation == "force":
+            if self.extremes and self.separation.pulls:  # the tension's least force: integrated
+                out["p_min"][pulls] = series_lanes.integrate(z, lam[pulls], Separation.PENETRATION,
+                                                             self.node_target, extremes=True)["p_min"]
+            if self.separation.on_force:
                 out["tau_f"][pulls], out["y_f"][pulls] = rest["tau_f"], rest["y_f"]
         return out

@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.separation import Separation
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, scale_problem
 from ..impact.scene import Scene
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
@@ -136,7 +137,7 @@ class Numbers:
     (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
     (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
     as an index into :data:`CLOSED_FORMS` (``exact``, -1 without), the similarity ``family`` as a hashable key
-    (laws the lanes do not take; None otherwise) and the ``separation`` criterion."""
+    (laws the lanes do not take; None otherwise)."""
 
     w: np.ndarray
     v_n: np.ndarray
@@ -149,7 +150,6 @@ class Numbers:
     force: np.ndarray
     exact: np.ndarray
     family: np.ndarray
-    separation: np.ndarray
 
     def __getitem__(self, rows) -> "Numbers":
         """The numbers of some scenes (a mask or indices)."""
@@ -158,9 +158,13 @@ class Numbers:
     def __len__(self) -> int:
         return self.w.size
 
-    def criterion(self, separation: str) -> np.ndarray:
+    def criterion(self, separation: Separation) -> np.ndarray:
         """Mask of the scenes under the criterion ``separation``."""
-        return self.force if separation == "force" else ~self.force
+        return self.force if separation.on_force else ~self.force
+
+    def criterion_of(self, i: int) -> Separation:
+        """The separation criterion of scene ``i``."""
+        return Separation.FORCE if self.force[i] else Separation.PENETRATION
 
 
 #: The laws' closed forms met by :func:`numbers`, in order: :attr:`Numbers.exact` indexes it, so a path groups
@@ -216,7 +220,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
     gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
     return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=exact >= 0,
-                   batched=batched, force=separation == "force", exact=exact, family=family, separation=separation)
+                   batched=batched, force=separation == Separation.FORCE, exact=exact, family=family)
 
 
 def rows(**columns) -> pd.DataFrame:

@@ -18,7 +18,7 @@ begins; the force criterion's end).  Q is evaluated as 1 + 2 zeta lam y phi(lam 
 phi(u) = (1 - exp(-u)) / u, an entire function: it keeps full precision through x = 0, where it equals
 G = 1 + 2 zeta lam y.
 
-Besides the two criteria, a lane may end ``continued``: at the first root of Q after maximum compression
+Besides the two criteria, a lane may end ``CONTINUED`` (:class:`End`): at the first root of Q after maximum compression
 wherever it lies, past delta = 0 (on the law's analytic continuation) where the force does not pull before.
 Its outputs equal the force criterion's wherever the force pulls (G < 0 at delta = 0) and continue them
 analytically where it does not, so they are smooth across the tension onset: an interpolant of them needs
@@ -31,9 +31,12 @@ penetration criterion's tau_f is ill-conditioned (x creeps to 0), and without th
 
 from __future__ import annotations
 
+from enum import IntEnum
+
 import numpy as np
 
 from ..contact.laws.linear import modified_per_compression, modified_series_batched, ramp_per_x
+from ..contact.separation import Separation
 from ..errors import ImpactError
 from ..ode.roots import falling_root
 from ..ode.series import BAND_EDGE, MAX_STEPS, band_limit, order_for
@@ -104,7 +107,17 @@ def _polynomial_root(coefficients, b, tau):
     return falling_root(_polynomial(coefficients), zero, b, coefficients[0], _horner(coefficients, b), tau)
 
 
-SEPARATIONS = ("force", "penetration", "continued")
+class End(IntEnum):
+    """How a lane ends: under a separation criterion (:meth:`of`), or ``CONTINUED`` (module docstring)."""
+
+    FORCE = 0
+    PENETRATION = 1
+    CONTINUED = 2
+
+    @classmethod
+    def of(cls, separation: Separation) -> End:
+        """The end of a lane under the criterion ``separation``."""
+        return cls.FORCE if separation.on_force else cls.PENETRATION
 
 
 def _second_derivative(ys, s):
@@ -113,7 +126,7 @@ def _second_derivative(ys, s):
     return _horner(ys[2:] * (k * (k - 1)), s)
 
 
-def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes: bool = False,
+def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool = False,
               partial: bool = False) -> dict:
     """Integrate every lane to separation by the Taylor method.
 
@@ -121,8 +134,8 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     ----------
     zeta, lam : ndarray
         Damping ratio and ramp parameter c v_n / (omega_n R) (see :mod:`.batch`), finite and positive.
-    separation : {'force', 'penetration', 'continued'} or array of them
-        Each lane's end (one for all, or one per lane; see the module docstring for ``continued``).
+    end : Separation, End or int array of End
+        Each lane's end (one for all, or one per lane; see the module docstring for ``CONTINUED``).
     target : float
         Relative accuracy target of every output.
     levels : ndarray, optional
@@ -130,7 +143,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
         ``tau_g`` is wanted; where j never reaches it, the instant j is largest (P_hat first falls to 0).
     extremes : bool
         Also the extremes ``p_max`` and ``p_min`` of P_hat over the contact (its ends and its turning points;
-        ``continued`` lanes: its ends and maxima).
+        ``CONTINUED`` lanes: its ends and maxima).
     partial : bool
         Only ``tau_g`` (with ``levels``) and ``p_max`` (with ``extremes``): each lane stops once it has both,
         its level's instant and maximum compression (the force's largest value comes before it: there
@@ -141,7 +154,7 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     -------
     dict of ndarray
         :data:`~.outputs.NORMAL_OUTPUTS` as :func:`.batch.integrate` gives them, here without gravity: j_p =
-        1 - y_p (``continued``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g``;
+        1 - y_p (``CONTINUED``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g``;
         with ``extremes``, ``p_max`` and ``p_min``.  ``partial``: ``tau_g`` and ``p_max`` alone.
 
     Raises
@@ -152,9 +165,9 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     """
     zeta, lam = np.asarray(zeta, dtype=float), np.asarray(lam, dtype=float)
     n = zeta.size
-    kind = np.broadcast_to(np.asarray(separation), zeta.shape)
-    if not np.isin(kind, SEPARATIONS).all():
-        raise ValueError(f"separation must be one of {', '.join(SEPARATIONS)}")
+    kind = np.broadcast_to(np.asarray(End.of(end) if isinstance(end, Separation) else end), zeta.shape)
+    if not np.isin(kind, tuple(End)).all():
+        raise ValueError(f"end must be a Separation or one of {', '.join(e.name for e in End)}; got {end!r}")
     wanted = ([*(["tau_g"] if levels is not None else []), *(["p_max"] if extremes else [])] if partial else
               [*NORMAL_OUTPUTS, *(["tau_g"] if levels is not None else []), *(["p_max", "p_min"] if extremes else [])])
     if n == 0:
@@ -163,8 +176,8 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
     tol = np.maximum(TOLERANCE_FACTOR * target / np.maximum(1.0, 2.0 * zeta) ** 2, TOLERANCE_MIN)
     order = order_for(TOLERANCE_FACTOR * target)  # the target's, not the batch's: a lane's result is its own
     lane = np.arange(n)
-    two_zeta, lam_a, at_root, at_zero = 2.0 * zeta, lam.copy(), kind != "penetration", kind == "penetration"
-    continued = kind == "continued"
+    two_zeta, lam_a, at_root, at_zero = 2.0 * zeta, lam.copy(), kind != End.PENETRATION, kind == End.PENETRATION
+    continued = kind == End.CONTINUED
     edge = BAND_EDGE / lam
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
     past = np.zeros(n, bool)
@@ -236,12 +249,12 @@ def integrate(zeta, lam, separation, target: float = 1e-8, levels=None, extremes
         if levels is not None:
             out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, np.ones(n, bool), level_all(levels, n), None)
         if extremes:
-            out["p_max"] = _turns(records, 2.0 * zeta, lam, np.full(n, np.inf), kind == "continued")[0]
+            out["p_max"] = _turns(records, 2.0 * zeta, lam, np.full(n, np.inf), kind == End.CONTINUED)[0]
         return out
-    out = _events(records, 2.0 * zeta, lam, kind != "penetration", continued_all=kind == "continued",
+    out = _events(records, 2.0 * zeta, lam, kind != End.PENETRATION, continued_all=kind == End.CONTINUED,
                   extremes=extremes)
     if levels is not None:
-        out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, kind != "penetration", level_all(levels, n), out)
+        out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, kind != End.PENETRATION, level_all(levels, n), out)
     return out
 
 

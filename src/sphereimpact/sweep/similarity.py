@@ -51,6 +51,7 @@ from ..errors import InterpolationError
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import normal_motion
 from ..contact.laws.linear import modified_per_compression
+from ..contact.separation import Separation
 from ..contact.tangential import PositiveImpulse
 from . import batch, series_lanes
 from .chebyshev import Series, Tensor, lobatto
@@ -153,7 +154,7 @@ def _node_target(target: float) -> float:
     return max(NODE_FACTOR * target, NODE_TARGET_MIN)
 
 
-def _fit(solve, a: float, b: float, separation: str, target: float, keys, asked: Asked, what: str,
+def _fit(solve, a: float, b: float, separation: Separation, target: float, keys, asked: Asked, what: str,
          per_digit: float = NODES_PER_DIGIT) -> tuple[Series, int]:
     """Chebyshev series in u on [a, b] of ``keys``, checked to 0.1 target (see the module docstring; grip
     instants below S_NOISE are not checked), and the number of nodes solved.  ``solve(u, separation,
@@ -189,7 +190,7 @@ def _fit(solve, a: float, b: float, separation: str, target: float, keys, asked:
                              f"u = log of the family number in [{a:g}, {b:g}])")
 
 
-def _grip_resolution(solve, a: float, b: float, separation: str, target: float, reference: str, power: float,
+def _grip_resolution(solve, a: float, b: float, separation: Separation, target: float, reference: str, power: float,
                      what: str) -> tuple:
     """The grip table's stretches (:func:`stretches`) with their nodes on [a, b] in u: for each, the fewest
     Lobatto levels (from FIRST_GRIP_NODES, 2n - 1 at a time) whose interpolant meets 0.1 target at the
@@ -302,7 +303,7 @@ class _Pieces:
     (see :func:`_onset`); ``per_digit``: see :func:`_fit`.
     """
 
-    def __init__(self, solve, exit_ratio, q_min: float, q_max: float, separation: str, target: float, what: str,
+    def __init__(self, solve, exit_ratio, q_min: float, q_max: float, separation: Separation, target: float, what: str,
                  per_digit: float = NODES_PER_DIGIT, extremes: bool = False, grips: bool = False, power: float = 2.0):
         self.lo, self.hi = float(q_min), float(q_max)
         self.extremes, self.grips, self.separation, self.target = extremes, grips, separation, target
@@ -321,7 +322,7 @@ class _Pieces:
             self.nodes += nodes
             return _Piece(series, calm, grip, target)
 
-        whole = fit(u_lo, u_hi, "penetration", calm=True)
+        whole = fit(u_lo, u_hi, Separation.PENETRATION, calm=True)
         cut, tension_at_top = _onset(exit_ratio, whole.series, what)
         self.cuts = np.array([] if cut is None else [cut])
         if cut is None and not tension_at_top:
@@ -366,7 +367,8 @@ class LambdaInterpolant(_Pieces):
     zeta : float
     lam_min, lam_max : float
         The range to cover (> 0).
-    separation : {'force', 'penetration'}
+    separation : Separation
+        When the contact ends.
     target : float
         Accuracy the interpolant must meet (checked at a tenth of it).
     extremes, grips : bool
@@ -387,7 +389,7 @@ class LambdaInterpolant(_Pieces):
         If MAX_NODES nodes do not meet the target on a piece.
     """
 
-    def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: str, target: float,
+    def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: Separation, target: float,
                  extremes: bool = False, grips: bool = False):
         taylor = series_lanes.covers(zeta, lam_max)
 
@@ -481,14 +483,15 @@ class FamilyInterpolant(_Pieces):
         Any scene of the group, without gravity (its outputs depend on its family only).
     q_min, q_max : float
         The range to cover (> 0).
-    separation : {'force', 'penetration'}
+    separation : Separation
+        When the contact ends.
     target : float
         Accuracy the interpolant must meet (checked at a tenth of it).
     extremes, grips : bool
         Also tabulate the force's extremes, and the grip tables (see the module docstring).
     """
 
-    def __init__(self, scene: Scene, q_min: float, q_max: float, separation: str, target: float,
+    def __init__(self, scene: Scene, q_min: float, q_max: float, separation: Separation, target: float,
                  extremes: bool = False, grips: bool = False):
         names = list(scene.family)
         if not names or not 0 < q_min <= q_max or scene.gravity != 0:

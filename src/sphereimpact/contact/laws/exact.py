@@ -29,6 +29,7 @@ import numpy as np
 from ...errors import ImpactError
 from ...ode.dense import is_instant
 from ...ode.roots import falling_root
+from ..separation import Separation
 
 
 class SpringDamperMotion:
@@ -92,12 +93,12 @@ class SpringDamperMotion:
         if self._under and self._freq > 0.0:
             wd = self._freq
             t_m = math.atan2(wd, self._sigma) / wd
-            if s.separation == "penetration":
+            if s.separation.pulls:
                 return t_m, math.pi / wd
             return t_m, (math.pi - math.atan2(s.b, (s.k - s.b * self._sigma) / wd)) / wd
         root = math.sqrt((zeta - 1.0) * (zeta + 1.0))  # no cancellation as zeta -> 1
         t_m = 1.0 / w if root == 0.0 else math.acosh(zeta) / (w * root)
-        return t_m, None if s.separation == "penetration" else 2.0 * t_m
+        return t_m, None if s.separation.pulls else 2.0 * t_m
 
     def _basis(self, t):
         """(E, C, S, C - sigma S) at t: under-damped directly; over-damped with D = exp(-2 q t), C - sigma S =
@@ -152,7 +153,7 @@ def jet(numbers, tau):
     return x, y, p, dp, -p - 2.0 * zeta * dp
 
 
-def events(zeta, separation: str) -> dict:
+def events(zeta, separation: Separation) -> dict:
     """Dimensionless outputs ``tau_m``, ``x_m``, ``tau_f``, ``y_f`` and ``j_p`` (the impulse of P_hat while
     positive, 1 - y where P_hat first falls to 0) of the weightless motion, one per damping ratio in ``zeta``.
 
@@ -176,9 +177,9 @@ def events(zeta, separation: str) -> dict:
                          np.where(over, np.arctanh(w / zeta) / safe_w, 1.0))
         tau_force = np.where(under, (np.pi - np.arctan2(2 * zeta * w, 1 - 2 * zeta * zeta)) / safe_w,
                              np.where(over, np.arctanh(2 * zeta * w / (2 * zeta * zeta - 1)) / safe_w, 2.0))
-    if separation == "penetration":
+    if separation.pulls:
         if not under.all():
-            raise ImpactError(f"no separation: delta never returns to 0 under the 'penetration' criterion for "
+            raise ImpactError(f"no separation: delta never returns to 0 under the '{separation}' criterion for "
                               f"{int((~under).sum())} scene(s) with zeta >= 1 (first: zeta = {zeta[~under][0]:.3g})")
         tau_f = np.pi / w
     else:
