@@ -173,7 +173,7 @@ display(Markdown(
 #
 # The `microslip` tangential contact (method of dimensionality reduction) is not an ODE with a tolerance: it
 # resolves the contact area into a row of cells and the contact time into steps, and its accuracy is set by
-# those two numbers (`SolverOptions.elements`, `SolverOptions.time_steps`; `--elements`, `--time-steps`).
+# those two numbers (`SolverOptions(settings={"elements": ..., "time_steps": ...})`; `--elements`, `--time-steps`).
 # Each setting is run on the validation's ball at several incidences and tangential stiffnesses, against a
 # fine reference run of the same model; the error is the larger of the tangential COR's (absolute) and the
 # rebound spin's (relative). The default is the cheapest setting whose worst error meets the target.

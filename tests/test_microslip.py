@@ -157,12 +157,12 @@ def test_resolution_options_and_refusals():
     scene = Scene(angle=20.0, **ALUMINA)
     out = simulate(scene)
     assert (out.motion.tangential.elements, out.motion.tangential.time_steps) == (ELEMENTS, TIME_STEPS)
-    fine = simulate(scene, SolverOptions(elements=2 * ELEMENTS, time_steps=2 * TIME_STEPS))
+    fine = simulate(scene, SolverOptions(settings={"elements": 2 * ELEMENTS, "time_steps": 2 * TIME_STEPS}))
     assert fine.motion.tangential.time_steps == 2 * TIME_STEPS
     assert fine.vc_t == pytest.approx(out.vc_t, rel=1e-3)
     for bad in (dict(elements=4), dict(time_steps=10**8), dict(elements=2.5), dict(time_steps=True)):
         with pytest.raises(ValueError, match=f"{next(iter(bad))} must be an integer in"):
-            SolverOptions(**bad)
+            SolverOptions(settings=bad)
     with pytest.raises(ValueError, match="tangential 'microslip' .* needs a Hertz spring"):
         Scene(angle=20.0, tangential="microslip", kappa=1.0)
     with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only"):

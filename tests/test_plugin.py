@@ -6,9 +6,15 @@ the sweep must take its exact per-family path; before the laws became plug-ins t
 kelvin-voigt closed form for it (COR 0.6788 against 0.5864 from simulate, no error).
 """
 
+import importlib
 import json
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from sphereimpact import LAWS, ContactLaw, Scene, SolverOptions, simulate
@@ -311,3 +317,131 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
         assert list(chart["body"]) == ["closed", "reduced"] and chart["error"].iloc[0] == 0.0
     finally:
         del LAWS["kv-again"], LAWS["kv-events"]
+
+
+# --- a tangential model with a parameter and a setting of its own, from a plug-in module ------------------
+TESTS = Path(__file__).resolve().parent
+
+
+@pytest.fixture
+def share_slide(monkeypatch):
+    """tests/plugin_model.py imported as a plug-in (it registers ``share-slide`` on import), and removed after."""
+    from sphereimpact.contact.tangential import TANGENTIALS
+
+    monkeypatch.syspath_prepend(str(TESTS))
+    sys.modules.pop("plugin_model", None)
+    module = importlib.import_module("plugin_model")
+    yield module
+    del TANGENTIALS[module.NAME]
+    sys.modules.pop("plugin_model", None)
+
+
+def _exact_share_slide(scene, out):
+    """Centre velocity and spin after a contact that slides throughout under s mu P+: the kick of -s mu J+, J+
+    from the COR (the force never pulls at these scenes)."""
+    impulse = scene.mass * scene.v_normal * (1.0 + out.cor)
+    share = scene.slide_share * scene.mu * impulse
+    return scene.v_tangent - share / scene.mass, share * scene.radius / scene.inertia
+
+
+def test_an_own_parameter_and_setting_reach_the_model_through_the_api(share_slide):
+    scene = Scene(angle=30.0, tangential="share-slide", parameters={"slide_share": 0.5})
+    assert scene.slide_share == 0.5 and scene.parameters == {"slide_share": 0.5}
+    out = simulate(scene)
+    vc_t, omega = _exact_share_slide(scene, out)
+    assert out.vc_t == pytest.approx(vc_t, rel=1e-9) and out.omega_f == pytest.approx(omega, rel=1e-9)
+    assert scene.with_(slide_share=0.25).slide_share == 0.25
+    assert simulate(scene.with_(slide_share=0.25)).omega_f == pytest.approx(0.5 * out.omega_f, rel=1e-9)
+    assert scene.with_(tangential="rigid").parameters == {}  # the rigid contact has no own parameter
+    # the setting arrives: the trapezoid rule's spin error falls as the square of its steps
+    errors = [abs(simulate(scene, SolverOptions(settings={"trapezoid_steps": n})).omega_f / out.omega_f - 1)
+              for n in (16, 32, 64)]
+    assert 3.5 < errors[0] / errors[1] < 4.5 and 3.5 < errors[1] / errors[2] < 4.5
+    # a sweep reads the parameter as a column, row by row, and the setting as simulate does
+    table = sweep(grid(incidence=[20.0, 45.0], speed=[1.0, 3.0], slide_share=[0.2, 0.9]).assign(
+        tangential="share-slide"), settings={"trapezoid_steps": 16})
+    assert list(table.columns[:len(table.columns)]).count("slide_share") == 1
+    for row in table.to_dict("records"):
+        one = simulate(Scene(incidence=row["incidence"], speed=row["speed"], tangential="share-slide",
+                             parameters={"slide_share": row["slide_share"]}),
+                       SolverOptions(rtol=1e-12, atol=1e-12, settings={"trapezoid_steps": 16}))
+        assert row["omega_f"] == pytest.approx(one.omega_f, rel=1e-8) and row["vc_t"] == pytest.approx(one.vc_t, rel=1e-8)
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: Scene(tangential="share-slide"), r"slide_share is required by tangential 'share-slide': fraction of"),
+    (lambda: Scene(tangential="share-slide", parameters={"slide_share": 1.5}),
+     r"slide_share must be a finite number in \(0, 1\]; got 1.5"),
+    (lambda: Scene(parameters={"slide_share": 0.5}),
+     "slide_share is not a parameter of model 'modified' or tangential 'rigid'; their own parameters: none"),
+    (lambda: SolverOptions(settings={"trapezoid_steps": 1}), r"trapezoid_steps must be an integer in \[2, 1000000\]"),
+    (lambda: SolverOptions(settings={"cells": 4}), "cells is not a setting of any tangential model"),
+    (lambda: sweep(grid(angle=[30.0], slide_share=[0.5])),
+     r"slide_share is not a parameter of model 'modified' or tangential 'rigid' \(row 0\)"),
+    (lambda: sweep(grid(angle=[30.0]).assign(tangential="share-slide")),
+     r"slide_share is required by tangential 'share-slide': .* \(row 0\)"),
+])
+def test_an_own_parameter_or_setting_out_of_place_is_refused(share_slide, make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_an_own_parameter_and_setting_reach_the_model_through_the_command_line(share_slide, tmp_path, capsys):
+    """In the process (run) and as a user runs it (a new interpreter, ``--plugin`` importing the module)."""
+    flags = ["--tangential", "share-slide", "--slide-share", "0.5", "--trapezoid-steps", "16"]
+    api = simulate(Scene(angle=30.0, tangential="share-slide", parameters={"slide_share": 0.5}),
+                   SolverOptions(settings={"trapezoid_steps": 16}))
+    assert run(["simulate", "--plugin", "plugin_model", "--angle", "30", *flags, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["omega_f"] == api.omega_f
+    env = os.environ | {"PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")])}
+    cli = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--plugin", "plugin_model", "--angle",
+                          "30", *flags, "--json"], capture_output=True, text=True, env=env)
+    assert cli.returncode == 0, cli.stderr
+    assert json.loads(cli.stdout)["omega_f"] == api.omega_f
+    out = tmp_path / "share.csv"
+    swept = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--plugin", "plugin_model", "--angle",
+                            "20:40:20", "--tangential", "share-slide", "--slide-share", "0.25:0.5:0.25",
+                            "--trapezoid-steps", "16", "--out", str(out)], capture_output=True, text=True, env=env)
+    assert swept.returncode == 0, swept.stderr
+    table = pd.read_csv(out)
+    assert sorted(table["slide_share"]) == [0.25, 0.25, 0.5, 0.5]
+    row = table[(table["angle"] == 40.0) & (table["slide_share"] == 0.5)].iloc[0]
+    one = simulate(Scene(angle=40.0, tangential="share-slide", parameters={"slide_share": 0.5}),
+                   SolverOptions(settings={"trapezoid_steps": 16}))
+    assert row["omega_f"] == pytest.approx(one.omega_f, rel=1e-8)
+    helped = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--plugin", "plugin_model", "--help"],
+                            capture_output=True, text=True, env=env)
+    assert "--slide-share" in helped.stdout and "--trapezoid-steps" in helped.stdout
+    missing = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--plugin", "no_such_plugin"],
+                             capture_output=True, text=True, env=env)
+    assert missing.returncode == 2 and "plugin 'no_such_plugin' cannot be imported" in missing.stderr
+
+
+@pytest.mark.pipeline
+def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share_slide, tmp_path):
+    """A study of one's own ball whose config names the plug-in, the model's parameter and its setting: the
+    ball file records them, and its bounce and map jobs (other processes) give the API's numbers."""
+    from conftest import project_copy, snakemake
+
+    work = project_copy(tmp_path)
+    config = tmp_path / "plug.yaml"
+    config.write_text("study: plug\nplugins: [plugin_model]\n"
+                      "contact: {model: kelvin-voigt, k: 60000.0, b: 10.5, tangential: share-slide,\n"
+                      "          parameters: {slide_share: 0.5}, settings: {trapezoid_steps: 16}}\n"
+                      "bounces: {oblique: {speed: 3.0, incidence: 30.0}}\n"
+                      "ranges: {speeds: '1:3:1', map_speeds: '2:4:2', map_angles: '30:60:30'}\n")
+    folder = "results/studies/plug"
+    done = snakemake(work, f"{folder}/outcomes.csv", f"{folder}/maps.csv", configfiles=[str(config)], path=[TESTS])
+    assert done.returncode == 0, done.stderr[-3000:]
+    ball = json.loads((work / folder / "ball.json").read_text())
+    assert ball["plugins"] == ["plugin_model"] and ball["settings"] == {"trapezoid_steps": 16}
+    assert ball["scene"]["parameters"] == {"slide_share": 0.5}
+    options = SolverOptions(settings={"trapezoid_steps": 16})
+    scene = Scene(model="kelvin-voigt", b=10.5, gravity=9.80665, tangential="share-slide",
+                  parameters={"slide_share": 0.5})
+    bounce = pd.read_csv(work / folder / "outcomes.csv").iloc[0]
+    assert bounce["omega_f"] == pytest.approx(simulate(scene.with_(incidence=30.0), options).omega_f, rel=1e-9)
+    maps = pd.read_csv(work / folder / "maps.csv")
+    row = maps[(maps["angle_to_surface"] == 30.0) & (maps["speed"] == 4.0)].iloc[0]
+    assert row["omega_f"] == pytest.approx(simulate(scene.with_(angle_to_surface=30.0, speed=4.0), options).omega_f,
+                                           rel=1e-7)

@@ -8,12 +8,13 @@ Quick use::
 """
 
 from .errors import BeyondRadiusWarning, ImpactError
-from .contact.laws import LAWS, ContactLaw, Parameter
+from .contact.laws import LAWS, ContactLaw
+from .contact.parameters import Parameter, Setting
 from .contact.separation import Separation
 from .impact.outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .impact.scene import Scene, SolverOptions
 from .impact.solve import simulate
 
 __all__ = ["BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "OUTPUT_KEYS", "Outcome",
-           "Parameter", "Scene", "Separation", "SolverOptions", "simulate"]
+           "Parameter", "Scene", "Separation", "Setting", "SolverOptions", "simulate"]
 __version__ = "0.1.0"

@@ -15,7 +15,7 @@ import warnings
 
 import numpy as np
 
-from . import __version__
+from . import __version__, plugins
 from .impact.calibrate import RELATIONS, calibrate
 from .errors import BeyondRadiusWarning, ImpactError
 from .integrators import method_names
@@ -23,8 +23,9 @@ from .contact.laws import LAWS, PARAMETER_NAMES
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .parsing import parse_number, range_count
 from .impact.inputs import PATH_RULES, RULES, SEPARATION_CRITERIA, check_columns, magnitude_problem
-from .impact.scene import ATOL_RANGE, RESOLUTION, RTOL_RANGE, STANDARD_GRAVITY, Scene, SolverOptions
+from .impact.scene import ATOL_RANGE, RTOL_RANGE, STANDARD_GRAVITY, Scene, SolverOptions
 from .impact.solve import BODIES, simulate
+from .contact.declared import own_parameters, settings as declared_settings
 from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 
 _D = Scene()
@@ -47,10 +48,9 @@ def _tangential_help() -> dict:
 #: Sweep parameters that take ranges, with their units (the law's parameters too, see _law_flags).
 RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "m", "inertia_factor": "-",
           "gravity": "m/s^2", "spin": "rad/s"}
-#: Help for the resolution of a tangential model that resolves the contact (microslip).
-RESOLUTION_HELP = {name: f"microslip's {what}, an integer in [{low}, {high}] (default: the convergence study's)"
-                   for (name, (low, high)), what in zip(RESOLUTION.items(), ("cells of the element row",
-                                                                            "time steps over the contact"))}
+#: Help for --plugin.
+PLUGIN_HELP = ("import MODULE first (repeatable): a plug-in that registers laws, tangential models or integrators, "
+               "whose names and parameters the other options then take")
 #: Seconds after which a sweep on a terminal shows its progress.
 PROGRESS_AFTER = 2.0
 #: Help for the approach and the incoming spin, shared by simulate and sweep.
@@ -89,6 +89,29 @@ def _law_flags() -> dict:
                 f"{law.name} ({default})")
         texts[name] = "; ".join(f"{what}: {', '.join(laws)}" for what, laws in described.items())
     return texts
+
+
+def _setting_flags() -> dict:
+    """Setting -> help text, for every numerical setting a registered tangential model declares."""
+    return {name: f"{s.doc}, an integer in [{s.low}, {s.high}] (default: {s.default})"
+            for name, s in declared_settings().items()}
+
+
+def _own_flags() -> dict:
+    """Own parameter -> help text, for every parameter a registered law or tangential model declares beyond the
+    Scene's fields (:mod:`sphereimpact.contact.parameters`)."""
+    texts = {}
+    for name, p in own_parameters().items():
+        users = [law.name for law in LAWS.values() if p in law.own_parameters]
+        users += [model.name for model in TANGENTIALS.values() if p in model.own_parameters]
+        default = "required" if p.default is None else f"default {p.default:g}"
+        texts[name] = f"{p.doc} [{p.unit}], {p.allowed.removeprefix('a finite number ')}: {', '.join(users)} ({default})"
+    return texts
+
+
+def _settings(args) -> dict:
+    """The settings given on the command line."""
+    return {name: getattr(args, name) for name in declared_settings() if getattr(args, name) is not None}
 
 
 class UsageError(Exception):
@@ -133,6 +156,7 @@ def _parser() -> argparse.ArgumentParser:
         description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
                     "Numbers may be fractions (2/3).")
     add = sim.add_argument
+    add("--plugin", action="append", default=None, metavar="MODULE", help=PLUGIN_HELP)
     add("--angle", type=_number, default=_D.angle, metavar="DEG", help=APPROACH_HELP["angle"])
     add("--speed", type=_number, default=_D.speed, metavar="M_S", help=APPROACH_HELP["speed"])
     add("--incidence", type=_number, default=None, metavar="DEG", help=APPROACH_HELP["incidence"])
@@ -153,6 +177,8 @@ def _parser() -> argparse.ArgumentParser:
     add("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential, help=tangential_help["tangential"])
     for name in TANGENTIAL_PARAMETERS:
         add("--" + name.replace("_", "-"), type=_number, default=None, help=tangential_help[name])
+    for name, text in _own_flags().items():
+        add("--" + name.replace("_", "-"), type=_number, default=None, help=text)
     add("--mass", type=_number, default=_D.mass, help="ball mass [kg], > 0")
     add("--diameter", type=_number, default=_D.diameter, help="ball diameter [m], > 0")
     add("--inertia-factor", type=_number, default=_D.inertia_factor,
@@ -169,8 +195,8 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
-    for name in RESOLUTION:
-        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=RESOLUTION_HELP[name])
+    for name, text in _setting_flags().items():
+        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
     add("--body", choices=BODIES, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
@@ -191,6 +217,7 @@ def _parser() -> argparse.ArgumentParser:
                     "check) and write one row per scene: its parameters and the outputs of `simulate` (t_m, delta_m, "
                     "t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime, beyond_radius), SI units. The size and memory of the "
                     "sweep and the output file are checked before any work.")
+    swp.add_argument("--plugin", action="append", default=None, metavar="MODULE", help=PLUGIN_HELP)
     for name, unit in RANGED.items():
         default = getattr(_D, name)
         allowed = RULES[name][0].removeprefix("a finite number ")
@@ -211,6 +238,9 @@ def _parser() -> argparse.ArgumentParser:
     for name in TANGENTIAL_PARAMETERS:
         swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
                          help=tangential_help[name] + ": a value or START:STOP:STEP")
+    for name, text in _own_flags().items():
+        swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
+                         help=text + ": a value or START:STOP:STEP")
     swp.add_argument("--separation", default=_D.separation, help="force or penetration")
     swp.add_argument("--cor", type=_number, default=None, metavar="E",
                      help="set the law's damping so that a normal impact at --cor-speed has the COR E, in (0, 1): "
@@ -222,8 +252,8 @@ def _parser() -> argparse.ArgumentParser:
                      help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
                      help="with --cor: fit the stiffness k too, so that the contact time is S [s]")
-    for name in RESOLUTION:
-        swp.add_argument("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=RESOLUTION_HELP[name])
+    for name, text in _setting_flags().items():
+        swp.add_argument("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
     swp.add_argument("--outputs", default=None, metavar="LIST",
                      help="comma-separated outputs to write (default: all, every scalar output of simulate; "
                           "'fast': all but t_roll and the force extremes, which take one solve per family)")
@@ -284,7 +314,7 @@ def check_out(path: str, force: bool, extensions=None, what: str = "out") -> Non
 def _each_range(args, read) -> dict:
     """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
-    for name in [*RANGED, *PATH_RULES, *_law_flags(), *TANGENTIAL_PARAMETERS]:
+    for name in [*RANGED, *PATH_RULES, *_law_flags(), *TANGENTIAL_PARAMETERS, *own_parameters()]:
         if getattr(args, name) is None:  # a law or tangential parameter not given: the default
             continue
         try:
@@ -309,12 +339,12 @@ def _sweep(args) -> None:
     check_out(args.out, args.force)
     outputs = _outputs(args.outputs, FAST_OUTPUTS)
     outputs_wanted(outputs)  # checked before any work
-    SolverOptions(elements=args.elements, time_steps=args.time_steps)  # their ranges, before any work
+    SolverOptions(settings=_settings(args))  # their ranges, before any work
     check_size(_each_range(args, range_count),  # counted before any range is made
                "split it into shards (the pipeline's sweep.shards) or use coarser ranges (--chunk-size, "
                f"now {args.chunk_size}, bounds only the integration's working memory)")
     ranges = _each_range(args, parse_range)
-    laws = _law_flags()
+    laws = {*_law_flags(), *own_parameters()}  # checked per row, against each row's models
     # before any work: each range, then the names.  The ranges have different lengths: checks across columns
     # (magnitudes of m v^2, the law's parameters, one path description) run per row in sweep, on the grid
     for name, values in ranges.items():
@@ -344,7 +374,7 @@ def _sweep(args) -> None:
                                 args.cor_relation, args.contact_time)
     tty = sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
-                   progress=_Progress(start) if tty else None, elements=args.elements, time_steps=args.time_steps)
+                   progress=_Progress(start) if tty else None, settings=_settings(args))
     write_table(result, args.out)
     seconds = time.perf_counter() - start
     sys.stderr.write(f"{chr(13) if tty else ''}sphereimpact sweep: {len(result)} scenes in {seconds:.3g} s -> "
@@ -396,9 +426,9 @@ def _simulate(args) -> None:
     scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
                   spin=args.spin, incidence=args.incidence, angle_to_surface=args.angle_to_surface,
                   speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
-                  tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law)
-    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol, elements=args.elements,
-                            time_steps=args.time_steps)
+                  tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law,
+                  parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None})
+    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol, settings=_settings(args))
     fitted, units = {}, UNITS
     if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None):
         raise ValueError("--cor-relation and --contact-time need --cor")
@@ -446,18 +476,32 @@ def run(argv=None) -> int:
 
     Every error is one line on standard error: ``sphereimpact: error: ...``.
     """
-    parser = _parser()
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
+        plugins.load(_plugin_names(argv))  # before the parser, whose choices and flags the registries give
+        parser = _parser()
         args = parser.parse_args(_values_as_one_token(argv, parser))
         _sweep(args) if args.command == "sweep" else _simulate(args)
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
     except MemoryError:
         return _fail(1, "out of memory: use coarser ranges or split the sweep into shards")
+    except BrokenPipeError:  # the reader left (`| head`): main() ends quietly
+        raise
     except OSError as err:
         return _fail(1, f"{err.strerror or err}: {err.filename or ''}".rstrip(": "))
     return 0
+
+
+def _plugin_names(argv: list[str]) -> list[str]:
+    """The modules named by ``--plugin MODULE`` (or ``--plugin=MODULE``) anywhere in ``argv``."""
+    names = []
+    for i, token in enumerate(argv):
+        if token == "--plugin" and i + 1 < len(argv):
+            names.append(argv[i + 1])
+        elif token.startswith("--plugin="):
+            names.append(token.partition("=")[2])
+    return names
 
 
 def _fail(status: int, message) -> int:

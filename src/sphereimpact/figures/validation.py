@@ -16,7 +16,7 @@ _PANELS = (("e_t", "tangential COR e_t = v_t'/v_t [-]"), ("omega_rad_s", "reboun
 def _styles(models) -> dict:
     """Line style per tangential model: a contact without tangential stiffness (the rigid one) as a grey
     broken line, the compliant ones in colours in the order given."""
-    compliant = [m for m in models if TANGENTIALS.model(m).parameters]
+    compliant = [m for m in models if TANGENTIALS.model(m).stiffness_parameters]
     return {m: dict(color=f"C{compliant.index(m)}", ls="-") if m in compliant else dict(color="0.45", ls="--")
             for m in models}
 

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES, hertz_constant
 from ..contact.laws.base import MODULUS
+from ..contact.declared import own_parameters
 from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 
@@ -170,6 +171,8 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
         present["k"] = present["k"] | by_modulus
     for parameter in law.parameters:
         name = parameter.name
+        if name not in PARAMETER_NAMES:  # the law's own: checked with the scene's (Scene, own_parameter_columns)
+            continue
         missing = ~present[name]
         if missing.any():
             if parameter.default is None:
@@ -234,7 +237,7 @@ def check_columns(columns: dict) -> dict:
             unknown = sorted({str(v) for v in set(np.asarray(values, dtype=object).ravel().tolist())} - set(choices))
             if unknown:
                 raise ValueError(f"{name} must be one of {', '.join(choices)}; got {unknown[0]!r}")
-        elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS:
+        elif name in PARAMETER_NAMES or name in TANGENTIAL_PARAMETERS or name in own_parameters():
             raw = np.asarray(values)
             if raw.dtype == bool:
                 raise TypeError(f"{name} must be real numbers; got a boolean")
@@ -243,8 +246,8 @@ def check_columns(columns: dict) -> dict:
             except (TypeError, ValueError):
                 raise ValueError(f"{name} must be a number; got a non-numeric value") from None
         else:
-            raise ValueError(f"unknown scene parameter {name!r}; expected one of "
-                             f"{', '.join([*RULES, *PATH_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS])}")
+            known = [*RULES, *PATH_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, *own_parameters()]
+            raise ValueError(f"unknown scene parameter {name!r}; expected one of {', '.join(known)}")
     if all(name in columns for name in ("mass", "speed", "diameter")):
         problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])
         if problem:
@@ -261,4 +264,59 @@ def check_columns(columns: dict) -> dict:
         resolved = law_parameters(model, given, radius[rows], rows=rows)
         for name in PARAMETER_NAMES:
             out[name][rows] = resolved[name]
+    return out
+
+
+def own_parameter_columns(columns: dict, n: int) -> dict:
+    """The own parameters of each row's law and tangential model (:mod:`sphereimpact.contact.parameters`), as
+    :class:`~sphereimpact.impact.scene.Scene` checks one scene's: given in the rows whose models declare them,
+    defaults filled in, each value in its range.
+
+    Parameters
+    ----------
+    columns : dict of str -> array
+        The table's columns: ``model`` and ``tangential`` (names per row) and any own parameter's values
+        (NaN or a missing column: not given).
+    n : int
+        Rows.
+
+    Returns
+    -------
+    dict of str -> float array
+        Every own parameter the table's models declare: its values, NaN in the rows whose models do not.
+
+    Raises
+    ------
+    ValueError
+        A value given in a row whose models do not declare it, a required one missing, or one out of its
+        range, naming the parameter and the row.
+    """
+    models, tangentials = (np.asarray(columns[key], dtype=object).ravel() for key in ("model", "tangential"))
+    out = {}
+    for name, parameter in own_parameters().items():
+        owners = [("model", law.name, models) for law in LAWS.values() if parameter in law.own_parameters]
+        owners += [("tangential", model.name, tangentials) for model in TANGENTIALS.values()
+                   if parameter in model.own_parameters]
+        users = np.zeros(n, bool)
+        for _, owner, names in owners:
+            users |= names == owner
+        values = (np.broadcast_to(np.asarray(columns[name], dtype=float), (n,)).copy() if name in columns
+                  else np.full(n, np.nan))
+        present = ~np.isnan(values)
+        stray = np.flatnonzero(present & ~users)
+        if stray.size:
+            i = int(stray[0])
+            raise ValueError(f"{name} is not a parameter of model {models[i]!r} or tangential {tangentials[i]!r} "
+                             f"(row {i})")
+        missing = np.flatnonzero(users & ~present)
+        if missing.size:
+            if parameter.default is None:
+                i = int(missing[0])
+                owner = next(f"{kind} {who!r}" for kind, who, names in owners if names[i] == who)
+                raise ValueError(f"{name} is required by {owner}: {parameter.doc} [{parameter.unit}] (row {i})")
+            values[missing] = parameter.default
+        rows = np.flatnonzero(users)
+        if rows.size:
+            _check_array(parameter, values[rows], lambda i: f" (row {int(rows[i])})")
+            out[name] = values
     return out

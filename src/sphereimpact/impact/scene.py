@@ -9,12 +9,14 @@ parameter and its allowed range, so a bad input can never reach the solver.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, fields, replace
 from functools import cached_property
 
 import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.declared import settings as declared_settings
 from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
@@ -24,6 +26,31 @@ from .inputs import (PATH_RULES, RULES, _check, _check_choice, as_number, law_pa
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
+
+
+class FrozenMapping(Mapping):
+    """Names to values, read-only and hashable as the frozen Scene and SolverOptions that hold them (their own
+    model parameters, their models' settings)."""
+
+    __slots__ = ("_values",)
+
+    def __init__(self, values=()):
+        self._values = dict(values)
+
+    def __getitem__(self, name: str) -> float:
+        return self._values[name]
+
+    def __iter__(self):
+        return iter(self._values)
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def __hash__(self) -> int:
+        return hash(tuple(sorted(self._values.items())))
+
+    def __repr__(self) -> str:
+        return repr(self._values)
 
 
 @dataclass(frozen=True)
@@ -84,6 +111,10 @@ class Scene:
         [deg] in [0, 90) (Kharaz's and the DEM codes' convention), or its angle to the surface [deg] in
         (0, 90] (the sports convention, 90 - incidence), with ``speed`` along the path.  At most one of
         them, and then ``angle`` stays 0: exactly one description of the approach per scene.
+    parameters : mapping of str to float
+        The law's and the tangential model's own parameters (those that are not fields above, declared by a
+        registered model: :mod:`sphereimpact.contact.parameters`), each read as ``scene.name``; checked,
+        with their defaults filled in.  Empty for the built-in models.
     """
 
     mass: float = 0.145
@@ -108,6 +139,7 @@ class Scene:
     spin: float = 0.0
     incidence: float | None = None
     angle_to_surface: float | None = None
+    parameters: Mapping[str, float] = FrozenMapping()
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
@@ -118,6 +150,7 @@ class Scene:
         self._check_path()
         _check_choice("model", self.model, tuple(LAWS))
         object.__setattr__(self, "separation", Separation.parse(self.separation))
+        object.__setattr__(self, "parameters", self._own_parameters())
         given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
                  for name in PARAMETER_NAMES}
         values = law_parameters(self.model, given, self.radius)
@@ -132,6 +165,39 @@ class Scene:
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
         self._resolve_kappa()
+
+    def _own_parameters(self) -> FrozenMapping:
+        """The law's and the tangential model's own parameters: each given one declared, each checked, the
+        defaults filled in, a required one present."""
+        if not isinstance(self.parameters, Mapping):
+            raise TypeError(f"parameters must be a mapping of name to value; got {type(self.parameters).__name__}")
+        law, model = LAWS.law(self.model), TANGENTIALS.model(self.tangential)
+        declared = {p.name: (p, f"model {self.model!r}") for p in law.own_parameters}
+        declared |= {p.name: (p, f"tangential {self.tangential!r}") for p in model.own_parameters}
+        for name, (_, owner) in declared.items():
+            if name in FIELDS:
+                raise ValueError(f"{owner} declares a parameter {name!r}, the name of a Scene field: rename it")
+        for name in self.parameters:
+            if name not in declared:
+                owners = [f"{p.name} ({owner})" for p, owner in declared.values()]
+                raise ValueError(f"{name} is not a parameter of model {self.model!r} or tangential "
+                                 f"{self.tangential!r}; their own parameters: {', '.join(owners) or 'none'}")
+        values = {}
+        for name, (parameter, owner) in declared.items():
+            value = self.parameters.get(name)
+            if value is None:
+                if parameter.default is None:
+                    raise ValueError(f"{name} is required by {owner}: {parameter.doc} [{parameter.unit}]")
+                value = parameter.default
+            values[name] = _check(name, value, parameter.range_text, parameter.ok)
+        return FrozenMapping(values)
+
+    def __getattr__(self, name: str):
+        """An own parameter of the scene's law or tangential model, read like a field (``scene.name``)."""
+        own = self.__dict__.get("parameters") if not name.startswith("_") else None
+        if own is not None and name in own:
+            return own[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     def _check_path(self) -> None:
         """At most one path description, and then a level flat: one description of the approach."""
@@ -167,15 +233,15 @@ class Scene:
                                                parameter.ok)
                 object.__setattr__(self, parameter.name, given[parameter.name])
         unused = [name for name in given if name not in model.parameter_names]
-        if unused and not model.parameters:
+        if unused and not model.stiffness_parameters:
             raise ValueError(f"{unused[0]} is a parameter of the compliant tangential models "
                              f"({', '.join(TANGENTIALS.taking(unused[0]))}); this scene's tangential model is "
                              f"{self.tangential!r}")
-        if not model.parameters:
-            return
         refusal = model.refusal(self.law, self)
         if refusal:
             raise ValueError(refusal)
+        if not model.stiffness_parameters:
+            return
         if unused:
             name = unused[0]
             taking = " or ".join(f"'{other}'" for other in TANGENTIALS.taking(name))
@@ -308,11 +374,18 @@ class Scene:
         """The law continued smoothly past delta = 0 [N], for integrator stages only (see ContactLaw.continued)."""
         return self.law.continued(delta, delta_dot, self)
 
+    def as_dict(self) -> dict:
+        """The fields as plain values, for JSON and tables (``parameters`` as a dict, left out when empty):
+        ``Scene(**scene.as_dict())`` is the scene again."""
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "parameters"}
+        return out | ({"parameters": dict(self.parameters)} if self.parameters else {})
+
     def with_(self, **changes) -> "Scene":
         """A validated copy with some fields changed.
 
         Changing ``model`` drops the old law's parameters that the new law does not use (and ``modulus``
-        when ``k`` changes); the others carry over.  ``tangential='rigid'`` drops kappa, poisson and
+        when ``k`` changes); the others carry over.  An own parameter of the law or the tangential model is
+        changed by its name, like a field (``with_(name=value)``).  ``tangential='rigid'`` drops kappa, poisson and
         shear_modulus; kappa given as poisson or shear_modulus is recomputed.  Giving a path (``incidence`` or
         ``angle_to_surface``) levels the flat and drops the other path; giving a tilt ``angle`` drops the path.
         """
@@ -327,11 +400,22 @@ class Scene:
             changes = {name: None for name in PATH_RULES} | changes
         if "diameter" in changes and self.modulus is not None and "k" not in changes:
             changes["k"] = None  # k follows the modulus at the new radius
-        if not TANGENTIALS.model(changes.get("tangential", self.tangential)).parameters:
+        tangential = TANGENTIALS.model(changes.get("tangential", self.tangential))
+        if not tangential.stiffness_parameters:
             changes = {name: None for name in TANGENTIAL_PARAMETERS} | changes
         elif "kappa" not in changes and (self.poisson is not None or self.shear_modulus is not None):
             changes["kappa"] = None  # kappa follows poisson or shear_modulus (and k, R)
+        own = {name: changes.pop(name) for name in list(changes) if name not in FIELDS}
+        if own or "model" in changes or "tangential" in changes:
+            keep = {p.name for p in (*LAWS.law(changes.get("model", self.model)).own_parameters,
+                                     *tangential.own_parameters)}
+            kept = {name: value for name, value in changes.get("parameters", self.parameters).items() if name in keep}
+            changes["parameters"] = kept | own
         return replace(self, **changes)
+
+
+#: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.
+FIELDS = frozenset(f.name for f in fields(Scene))
 
 
 #: Allowed tolerances.  Looser than 1e-2 the outputs are meaningless (rtol 0.5 moves the COR by 2e-3 and
@@ -340,10 +424,6 @@ class Scene:
 RTOL_RANGE = "a finite number in [1e-13, 1e-2] (looser tolerances make the outputs meaningless)"
 ATOL_RANGE = ("a finite number in [1e-16, 1e-2] (on the O(1) dimensionless state: looser is meaningless, "
               "tighter is below double precision)")
-
-
-#: Allowed resolutions of a tangential model that resolves the contact area: (fewest, most).
-RESOLUTION = {"elements": (8, 100_000), "time_steps": (16, 10_000_000)}
 
 
 @dataclass(frozen=True)
@@ -368,18 +448,18 @@ class SolverOptions:
         plain floats, for laws with a scalar formula, and is scipy's DOP853 for any other law or body.
     max_step : float
         Largest step [s]; ``inf`` lets the method choose.
-    elements, time_steps : int or None
-        Resolution of a tangential model that resolves the contact area (``microslip``): cells of its
-        element row, in [8, 100000], and time steps over the contact, in [16, 10000000].  None: the
-        defaults of the convergence study (:mod:`sphereimpact.contact.tangential.microslip`).
+    settings : mapping of str to int
+        Numerical settings of the tangential models, each declared by a registered model with its range
+        (:class:`~sphereimpact.contact.parameters.Setting`), e.g. ``microslip``'s ``elements`` (cells of its
+        element row) and ``time_steps`` (steps over the contact).  A model reads its own with
+        :meth:`setting`; one not given takes the model's default.
     """
 
     method: str = "auto"
     rtol: float = 1e-10
     atol: float = 1e-10
     max_step: float = math.inf
-    elements: int | None = None
-    time_steps: int | None = None
+    settings: Mapping[str, int] = FrozenMapping()
 
     def __post_init__(self):
         _check_choice("method", self.method, method_names())
@@ -388,13 +468,18 @@ class SolverOptions:
         step = as_number("max_step", self.max_step)
         if not step > 0:  # also refuses nan
             raise ValueError(f"max_step must be a number > 0 s (inf allowed); got {self.max_step!r}")
-        for name, (low, high) in RESOLUTION.items():
-            value = getattr(self, name)
-            if value is None:
-                continue
-            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) \
-                    or not low <= value <= high:
-                raise ValueError(f"{name} must be an integer in [{low}, {high}]; got {value!r}")
-            object.__setattr__(self, name, int(value))
+        if not isinstance(self.settings, Mapping):
+            raise TypeError(f"settings must be a mapping of name to value; got {type(self.settings).__name__}")
+        declared = declared_settings()
+        for name in self.settings:
+            if name not in declared:
+                raise ValueError(f"{name} is not a setting of any tangential model; the settings: "
+                                 f"{', '.join(f'{s.name} ({s.doc})' for s in declared.values()) or 'none'}")
+        object.__setattr__(self, "settings", FrozenMapping(
+            {name: declared[name].check(value) for name, value in self.settings.items() if value is not None}))
         object.__setattr__(self, "max_step", step)
+
+    def setting(self, name: str) -> int | None:
+        """The setting ``name`` if given, else None (the model's default)."""
+        return self.settings.get(name)
 

@@ -111,7 +111,7 @@ def microslip_bench(scene: Scene, angles, reference: tuple[int, int], repeats: i
     rows = []
     default = SolverOptions()
     out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
-    ref = simulate(scene, SolverOptions(elements=reference[0], time_steps=reference[1]))
+    ref = simulate(scene, SolverOptions(settings={"elements": reference[0], "time_steps": reference[1]}))
     error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
     timed = per_call_seconds({"microslip": lambda: simulate(scene, default),
                               "rigid": lambda: simulate(scene.with_(tangential="rigid"), default)}, repeats)

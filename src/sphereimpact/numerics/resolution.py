@@ -27,7 +27,7 @@ TARGET = 1e-4
 
 
 def _outputs(scene: Scene, elements: int, time_steps: int) -> tuple[float, float]:
-    out = simulate(scene, SolverOptions(elements=elements, time_steps=time_steps))
+    out = simulate(scene, SolverOptions(settings={"elements": elements, "time_steps": time_steps}))
     return out.vc_t / scene.v_tangent, out.omega_f
 
 

@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
+from .. import plugins
 from ..impact.calibrate import calibrate
-from ..integrators import INTEGRATORS
+from ..integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from ..contact.laws import LAWS, PARAMETER_NAMES
-from ..integrators import DEFAULT_INTEGRATOR
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
 
@@ -105,6 +105,10 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
     if not lines:
         from .own import own_errors
 
+        try:  # the plug-ins first: the names below may be theirs
+            plugins.load(config.get("plugins", []))
+        except ValueError as err:
+            return [f"config key plugins: {err}"]
         lines += (_sweep_errors(config, schema) + _law_errors(config) + _tangential_errors(config)
                   + own_errors(with_defaults(schema, config)))
     return lines
@@ -168,7 +172,7 @@ def _tangential_errors(config: dict) -> list[str]:
             elif key.startswith("validation") and law is not None and model.spring not in (None, law.spring):
                 errors.append(f"config key {key}: {name!r} needs a {model.spring}-spring law; the validation's "
                               f"model {law.name!r} has a {law.spring} spring")
-            elif key.startswith("compliance") and not model.parameters:
+            elif key.startswith("compliance") and not model.stiffness_parameters:
                 errors.append(f"config key {key}: {name!r} has no tangential stiffness to map over kappa")
     return errors
 

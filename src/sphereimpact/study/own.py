@@ -13,11 +13,12 @@ from __future__ import annotations
 
 import math
 
+from .. import plugins
 from ..impact.calibrate import calibrate
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range
 from ..impact.inputs import PATH_RULES
-from ..impact.scene import Scene
+from ..impact.scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIAL_PARAMETERS
 
 #: The chapter's study: the replication.  Any other name is a study of one's own ball.
@@ -46,7 +47,9 @@ def _starting_k(law, mass: float, contact_time: float, speed: float) -> float:
 
 def ball_scene(config: dict) -> Scene:
     """The study's ball on its surface, with its contact law, approached normally at the COR's speed (or 1
-    m/s): its damping (and k) calibrated to the configured COR (and contact time) when one is given."""
+    m/s): its damping (and k) calibrated to the configured COR (and contact time) when one is given.  The
+    config's ``plugins`` are imported first, and ``contact.parameters`` are its models' own parameters."""
+    plugins.load(config.get("plugins", []))
     ball, surface, contact = config["ball"], config["surface"], config["contact"]
     law = LAWS.law(contact["model"])
     given = {name: contact[name] for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS) if name in contact}
@@ -55,10 +58,17 @@ def ball_scene(config: dict) -> Scene:
         given["k"] = _starting_k(law, ball["mass"], contact["contact_time"], speed)
     scene = Scene(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"],
                   mu=surface["mu"], gravity=surface["gravity"], model=contact["model"], speed=speed,
-                  separation=contact["separation"], tangential=contact["tangential"], **given)
+                  separation=contact["separation"], tangential=contact["tangential"], **given,
+                  parameters=contact.get("parameters", {}))
     if "cor" not in contact:
         return scene
     return calibrate(scene, contact["cor"], contact["cor_relation"], contact.get("contact_time")).scene
+
+
+def ball_options(config: dict) -> SolverOptions:
+    """The solver options of the study's impacts: its tangential model's settings (``contact.settings``)."""
+    plugins.load(config.get("plugins", []))
+    return SolverOptions(settings=config["contact"].get("settings", {}))
 
 
 def bounce_scene(ball: Scene, spec: dict) -> Scene:
@@ -98,8 +108,9 @@ def own_errors(config: dict) -> list[str]:
         probe["k"] = _starting_k(law, config["ball"]["mass"], contact["contact_time"], contact.get("cor_speed", 1.0))
     try:  # the ball and every bounce as Scene checks them, without the (slower) calibration
         ball = ball_scene(config | {"contact": probe})
+        ball_options(config)
     except (ValueError, TypeError) as err:
-        errors.append(f"config key contact (or ball, surface): {err}")
+        errors.append(f"config key contact (or ball, surface, plugins): {err}")
         return errors
     for name, spec in config.get("bounces", {}).items():
         try:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from dataclasses import fields
 
 import pandas as pd
 
@@ -38,7 +37,7 @@ def run_case(config: dict, case: str, model: str, csv_path: str, json_path: str)
         frame = outcome.history(config["samples"])
         frame.insert(0, "separation", separation)
         histories.append(frame)
-        scene_fields = {f.name: getattr(scene, f.name) for f in fields(scene) if f.name != "separation"}
+        scene_fields = {k: v for k, v in scene.as_dict().items() if k != "separation"}
     pd.concat(histories, ignore_index=True).to_csv(csv_path, index=False, float_format="%.12g")
     with open(json_path, "w") as handle:
         json.dump({"case": case, "model": model, "scene": scene_fields, "outcomes": outcomes}, handle, indent=2)

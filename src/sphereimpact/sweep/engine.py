@@ -42,7 +42,7 @@ FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
-          outputs=None, elements: int | None = None, time_steps: int | None = None, paths=None) -> pd.DataFrame:
+          outputs=None, settings=None, paths=None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -50,7 +50,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     scenes : DataFrame or dict
         Named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
-        ``separation``, ``tangential``, ``kappa``, ``spin``, ...); missing ones take the chapter's defaults.
+        ``separation``, ``tangential``, ``kappa``, ``spin``, ...) or a model's own parameters; missing ones take
+        the chapter's defaults.
         A DataFrame is one scene per row (:func:`rows` builds one from paired lists); a dict of values or
         lists is every combination of them (:func:`grid`), as on the command line.
     target : float
@@ -66,9 +67,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     outputs : sequence of str, optional
         The outputs wanted, some of :data:`SWEEP_OUTPUTS` (default: all, every scalar output of
         ``simulate``).  :data:`FAST_OUTPUTS` leaves out :data:`HISTORY_OUTPUTS`.
-    elements, time_steps : int, optional
-        The resolution of a tangential model that resolves the contact (``microslip``), as
-        :class:`sphereimpact.SolverOptions` takes it.
+    settings : mapping of str to int, optional
+        The tangential models' numerical settings (``microslip``'s ``elements`` and ``time_steps``), as
+        :class:`sphereimpact.SolverOptions` takes them.
     paths : sequence of str, optional
         Only these paths (names of :data:`PATHS`, in their precedence), for studies of a path alone: a row
         none of them takes is left empty (NaN outputs, ``path`` ''), where the default (every path) solves
@@ -99,7 +100,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     n = len(frame)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
     regime, path = _objects(n, "none"), _objects(n, "")
-    options = single_options(target, elements, time_steps)
+    options = single_options(target, settings)
     d = numbers(frame)
     needs = needs_of(frame, d, wanted)
     if span is None:

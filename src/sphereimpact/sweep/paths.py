@@ -50,12 +50,14 @@ LANES_LAM_MAX = 1e3
 #: path, never sets an accuracy.
 LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
 SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
-def single_options(target: float, elements=None, time_steps=None) -> SolverOptions:
+
+
+def single_options(target: float, settings=None) -> SolverOptions:
     """The single-impact model's options in a sweep of accuracy ``target``: tolerance target / 10^4 (at most
     1e-10; rtol 1e-10 left the instant a contact grips near its end, where the impulse levels off, 3e-8 of
     t_f off), and the tangential model's resolution."""
     tol = min(max(target * 1e-4, 1e-13), 1e-10)
-    return SolverOptions(rtol=tol, atol=tol, elements=elements, time_steps=time_steps)
+    return SolverOptions(rtol=tol, atol=tol, settings=settings or {})
 
 
 #: Scenes solved by the single-impact model per call of :func:`~sphereimpact.impact.solve.simulate_many` (a batched

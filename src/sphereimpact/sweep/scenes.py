@@ -16,14 +16,16 @@ import pandas as pd
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..contact.separation import Separation
-from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, scale_problem
+from ..contact.declared import own_parameters
+from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
 from ..impact.scene import Scene
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
 
-#: Scene parameters, with the single-impact defaults for missing columns.
-SCENE_COLUMNS = tuple(f.name for f in fields(Scene))
-DEFAULTS = {f.name: f.default for f in fields(Scene)}
+#: Scene parameters, with the single-impact defaults for missing columns.  A model's own parameters are
+#: columns too, after these (those of the models a table names: :func:`own_parameter_columns`).
+SCENE_COLUMNS = tuple(f.name for f in fields(Scene) if f.name != "parameters")
+DEFAULTS = {name: Scene.__dataclass_fields__[name].default for name in SCENE_COLUMNS}
 
 
 def scene_table(scenes) -> pd.DataFrame:
@@ -35,20 +37,22 @@ def scene_table(scenes) -> pd.DataFrame:
     one row's approach by incidence and another's by the flat's tilt, one Hertz law by k and another by
     modulus), as the sweep's own tables write them."""
     given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
-    unknown = [c for c in given.columns if c not in SCENE_COLUMNS]
+    own = own_parameters()
+    unknown = [c for c in given.columns if c not in SCENE_COLUMNS and c not in own]
     if unknown:
-        raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join(SCENE_COLUMNS)}")
+        raise ValueError(f"unknown scene parameter {unknown[0]!r}; expected some of {', '.join([*SCENE_COLUMNS, *own])}")
     n = len(given)
     columns = {name: _defaulted(given[name].to_numpy(), DEFAULTS[name]) if name in given
                else _objects(n, DEFAULTS[name]) if name in TEXT_FIELDS else np.full(n, DEFAULTS[name])
                for name in SCENE_COLUMNS if name in given or DEFAULTS[name] is not None}
-    laws = check_columns(columns)  # each row's law parameters: checked, defaults filled, modulus -> k
-    columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}
+    laws = check_columns(columns | {name: given[name].to_numpy() for name in own if name in given})
+    columns |= {name: laws[name] for name in PARAMETER_NAMES if name != "modulus"}  # checked, modulus -> k
+    own_columns = own_parameter_columns(columns | {name: given[name].to_numpy() for name in own if name in given}, n)
     for name in ("modulus", *TANGENTIAL_PARAMETERS, *PATH_RULES):
         columns.setdefault(name, np.full(n, np.nan))
     # text as object columns: pandas' string dtype costs as much to build as the rest of a sweep's overhead
     frame = pd.DataFrame({name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
-                          else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS})
+                          else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS} | own_columns)
     paths = ~np.isnan(frame[list(PATH_RULES)].to_numpy())
     for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"].to_numpy() != 0) | paths.all(axis=1))):
         try:  # one description of the approach per scene: checked as the Scene checks it
@@ -102,6 +106,8 @@ def _compliant(frame: pd.DataFrame) -> np.ndarray:
 def scene_of(row: dict) -> Scene:
     """The Scene of one row of a :func:`scene_table` (its NaN law parameters are the ones its law lacks)."""
     values = {name: (value if name in TEXT_FIELDS else float(value)) for name, value in row.items()}
+    own = {name: values.pop(name) for name in list(values) if name not in DEFAULTS}
+    values["parameters"] = {name: value for name, value in own.items() if not np.isnan(value)}
     for name in PARAMETER_NAMES:
         if name == "modulus" or np.isnan(values[name]):  # k is already resolved from the modulus
             values[name] = None
@@ -125,8 +131,9 @@ def incidence(frame: pd.DataFrame) -> np.ndarray:
 def law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
     """The columns of scenes of one law that its vectorised functions read: mass, radius, v_normal and its
     parameters (the ``p`` of :class:`~sphereimpact.contact.laws.ContactLaw`'s functions)."""
+    own = [name for name in own_parameters() if name in frame]  # the laws' own parameters (and the models')
     return SimpleNamespace(mass=frame["mass"].to_numpy(), radius=0.5 * frame["diameter"].to_numpy(), v_normal=v_n,
-                           **{name: frame[name].to_numpy() for name in PARAMETER_NAMES})
+                           **{name: frame[name].to_numpy() for name in (*PARAMETER_NAMES, *own)})
 
 
 @dataclass(frozen=True)

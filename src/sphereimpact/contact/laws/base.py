@@ -20,44 +20,13 @@ from typing import Callable, Mapping
 import numpy as np
 
 from ...ode.dense import is_instant
-from .exact import ClosedForm
 from ...registry import Registry as BaseRegistry
+from ..parameters import Parameter
+from .exact import ClosedForm
 
-#: Every law parameter a Scene can carry, in the order Scene declares them.  A law uses a subset.
+#: The law parameters that are Scene fields, in the order Scene declares them.  A law uses a subset, and may
+#: declare parameters of its own besides (carried in ``Scene.parameters``).
 PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One parameter of a contact law.
-
-    Attributes
-    ----------
-    name : str
-        Scene field (one of :data:`PARAMETER_NAMES`) and command-line flag ``--name``.
-    unit : str
-        SI unit, as printed in help texts.
-    doc : str
-        What it is, one phrase.
-    allowed : str
-        The allowed range, as messages state it ("a finite number > 0").
-    ok : callable
-        Vectorised test of the allowed range (finite values only reach it).
-    default : float or None
-        Used when the parameter is not given; None makes it required.
-    """
-
-    name: str
-    unit: str
-    doc: str
-    allowed: str
-    ok: Callable
-    default: float | None = None
-
-    @property
-    def range_text(self) -> str:
-        """The allowed range with its unit, as messages state it: ``a finite number > 0 N/m``."""
-        return self.allowed if self.unit == "-" else f"{self.allowed} {self.unit}"
 
 
 @dataclass(frozen=True)
@@ -71,7 +40,9 @@ class ContactLaw:
     doc : str
         One line for help texts and reports.
     parameters : tuple of Parameter
-        The law's parameters; a Scene refuses any other law parameter.
+        The law's parameters; a Scene refuses any other law parameter.  Those named in
+        :data:`PARAMETER_NAMES` are Scene fields; any other is the law's own (:attr:`own_parameters`), given
+        in ``Scene.parameters``, a table column or ``--name``, and read as ``p.name`` like the others.
     continued : callable
         ``continued(delta, delta_dot, p)``: the in-contact formula continued smoothly a little past
         delta = 0.  Integrators use it for their stages and the force during contact is evaluated with
@@ -155,10 +126,8 @@ class ContactLaw:
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]
-        unknown = [n for n in names if n not in PARAMETER_NAMES]
-        if unknown:
-            raise ValueError(f"law {self.name!r}: parameter {unknown[0]!r} is not a Scene parameter; "
-                             f"expected some of {', '.join(PARAMETER_NAMES)}")
+        if any(not isinstance(p, Parameter) for p in self.parameters) or len(set(names)) != len(names):
+            raise ValueError(f"law {self.name!r}: parameters must be distinct Parameter objects; got {names}")
         if self.spring not in ("linear", "hertz"):
             raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
         if self.damping is not None and self.damping not in names:
@@ -178,6 +147,11 @@ class ContactLaw:
         """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
         names = tuple(p.name for p in self.parameters)
         return (*names, "modulus") if self.spring == "hertz" else names
+
+    @property
+    def own_parameters(self) -> tuple:
+        """The parameters that are not Scene fields (carried in ``Scene.parameters``)."""
+        return tuple(p for p in self.parameters if p.name not in PARAMETER_NAMES)
 
     def parameter(self, name: str) -> Parameter:
         """The declared parameter ``name`` (``KeyError`` if the law has none)."""

@@ -14,7 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import LAWS, ContactLaw, Parameter
+from ..parameters import Parameter
+from .base import LAWS, ContactLaw
 from .linear import CHI, hunt_crossley_relations
 
 K = Parameter("k", "N/m^n", "constant of the spring term k delta^n (Hertz: (4/3) E* sqrt(R))",

@@ -18,7 +18,8 @@ from operator import mul
 
 import numpy as np
 
-from .base import LAWS, ContactLaw, Parameter
+from ..parameters import Parameter
+from .base import LAWS, ContactLaw
 from .exact import SPRING_DAMPER
 
 K = Parameter("k", "N/m", "contact stiffness", "a finite number > 0", lambda x: x > 0, 60000.0)

@@ -6,7 +6,8 @@ per model, chosen by name (``Scene.tangential``, ``--tangential``), every layer 
 Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register``.
 
 The tangential stiffness of a compliant model is one number, kappa = k_t / k_n, the ratio of the tangential
-to the normal contact stiffness; a model declares which ways to give it it accepts (:data:`STIFFNESS`).
+to the normal contact stiffness; a model declares which ways to give it it accepts (:data:`STIFFNESS`).  A
+model may also declare parameters of its own and numerical settings (:mod:`sphereimpact.contact.parameters`).
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ import math
 from dataclasses import dataclass
 from typing import Callable
 
-from ..laws.base import Parameter, spring_exponent
+from ..laws.base import spring_exponent
+from ..parameters import Parameter, Setting
 from ...registry import Registry as BaseRegistry
 
 #: The tangential stiffness, three ways: kappa directly, Poisson's ratio of like materials, or (for a Hertz
@@ -29,7 +31,7 @@ SHEAR_MODULUS = Parameter("shear_modulus", "Pa", "effective shear modulus G* of 
 STIFFNESS = (KAPPA, POISSON, SHEAR_MODULUS)
 #: How each other way of giving kappa sets it, for messages.
 KAPPA_FROM = {"poisson": "kappa = 2 (1 - nu) / (2 - nu)", "shear_modulus": "kappa = 4 G* / E*"}
-#: Every tangential parameter a Scene can carry.
+#: The tangential parameters that are Scene fields (a model's own parameters are carried in Scene.parameters).
 TANGENTIAL_PARAMETERS = tuple(p.name for p in STIFFNESS)
 
 
@@ -88,8 +90,9 @@ class TangentialModel:
     stiffness : str
         How its stiffness is formed, for messages (``k_t = kappa k, constant``); empty for a rigid contact.
     parameters : tuple of Parameter
-        The ways of giving kappa it accepts (some of :data:`STIFFNESS`); kappa itself is required, given
-        directly or through one of the others.  Empty: the model has no tangential stiffness.
+        The ways of giving kappa it accepts (some of :data:`STIFFNESS`; kappa itself is then required, given
+        directly or through one of the others; none: the model has no tangential stiffness), and the model's
+        own parameters (:attr:`own_parameters`, read as ``scene.name`` or ``rows.name``).
     spring : str or None
         The normal law's spring it needs: ``linear`` (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
     motion : callable
@@ -104,6 +107,8 @@ class TangentialModel:
     many : callable or None
         ``many(normals, options)``: the motions over several solved normal motions at once (a batched
         kernel, cheaper than one at a time), as a list in their order; None: one at a time.
+    settings : tuple of Setting
+        Its numerical settings (a resolution), read as ``options.setting(name)`` (None: not given).
     """
 
     name: str
@@ -114,13 +119,16 @@ class TangentialModel:
     motion: Callable
     swept: "SweptTangential | None" = None
     many: Callable | None = None
+    settings: tuple = ()
 
     def __post_init__(self):
-        unknown = [p.name for p in self.parameters if p.name not in TANGENTIAL_PARAMETERS]
-        if unknown:
-            raise ValueError(f"tangential model {self.name!r}: parameter {unknown[0]!r} is not one of "
-                             f"{', '.join(TANGENTIAL_PARAMETERS)}")
-        if self.parameters and "kappa" not in self.parameter_names:
+        names = [p.name for p in self.parameters]
+        if any(not isinstance(p, Parameter) for p in self.parameters) or len(set(names)) != len(names):
+            raise ValueError(f"tangential model {self.name!r}: parameters must be distinct Parameter objects; "
+                             f"got {names}")
+        if any(not isinstance(s, Setting) for s in self.settings):
+            raise ValueError(f"tangential model {self.name!r}: settings must be Setting objects")
+        if self.stiffness_parameters and "kappa" not in self.parameter_names:
             raise ValueError(f"tangential model {self.name!r}: a model with a stiffness takes kappa")
         if self.spring not in (None, "linear", "hertz"):
             raise ValueError(f"tangential model {self.name!r}: spring must be 'linear', 'hertz' or None; "
@@ -129,6 +137,16 @@ class TangentialModel:
     @property
     def parameter_names(self) -> tuple:
         return tuple(p.name for p in self.parameters)
+
+    @property
+    def stiffness_parameters(self) -> tuple:
+        """The ways of giving kappa it accepts (some of :data:`STIFFNESS`); empty: no tangential stiffness."""
+        return tuple(p for p in self.parameters if p.name in TANGENTIAL_PARAMETERS)
+
+    @property
+    def own_parameters(self) -> tuple:
+        """The parameters that are not Scene fields (carried in ``Scene.parameters``)."""
+        return tuple(p for p in self.parameters if p.name not in TANGENTIAL_PARAMETERS)
 
     def refusal(self, law, p) -> str | None:
         """Why this model cannot serve the normal law ``law`` with parameters ``p`` (a Scene), or None."""

@@ -21,8 +21,9 @@ against the normal 2 E* a).  With a damped normal law (Hunt-Crossley) each sprin
 mu P+, in proportion to w: the damping scales the pressure without changing its shape, and the limits add
 up to mu P+.  The normal motion does not depend on friction: it is solved first.
 
-Discretisation (numerical options ``elements`` and ``time_steps`` of :class:`sphereimpact.SolverOptions`,
-defaults from the measured convergence study, ``results/microslip_convergence.csv``):
+Discretisation (the model's settings ``elements`` and ``time_steps``, given in ``SolverOptions.settings``,
+``--elements`` and ``--time-steps``; defaults from the measured convergence study,
+``results/microslip_resolution.csv``):
 
 - N cells of equal width on [0, a_max] (the row is symmetric), each one spring weighted by the length of
   the cell in contact and limited by the cell's exact share of the normal load, so the row's stiffness is
@@ -39,6 +40,7 @@ import math
 
 import numpy as np
 
+from ..parameters import Setting
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import PositiveImpulse
 
@@ -48,6 +50,12 @@ TIME_STEPS = 384
 #: Fewest time steps per period of the tangential oscillation at full contact (a stiff tangential spring,
 #: large kappa, gets more steps than TIME_STEPS; velocity Verlet is stable below 2 / pi steps per period).
 STEPS_PER_PERIOD = 64
+#: The settings that override them (ranges: fewer cells or steps resolve nothing; more exhaust the memory
+#: and the patience of one impact).
+ELEMENTS_SETTING = Setting("elements", "microslip's cells of the element row", 8, 100_000,
+                           default="the convergence study's")
+TIME_STEPS_SETTING = Setting("time_steps", "microslip's time steps over the contact", 16, 10_000_000,
+                             default="the convergence study's")
 #: Time steps advanced per block of precomputed element weights (bounds the working memory).
 BLOCK = 64
 #: A contact counts as sticking in part while its tangential force is below mu P+ by more than this fraction
@@ -224,9 +232,9 @@ def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, held):
 def resolution(scene, normal, options) -> tuple[int, int]:
     """(elements, time steps) of one impact: the options' or the defaults, with at least
     :data:`STEPS_PER_PERIOD` steps per period of the tangential oscillation at maximum contact."""
-    elements = ELEMENTS if options.elements is None else options.elements
-    if options.time_steps is not None:
-        return elements, options.time_steps
+    elements = options.setting("elements") or ELEMENTS
+    if options.setting("time_steps") is not None:
+        return elements, options.setting("time_steps")
     e_star, g_star = hertz_moduli(scene)
     a_max = math.sqrt(scene.radius * max(normal.delta_m, 0.0))
     omega_t = math.sqrt(2.0 * g_star * a_max * slip_per_impulse(scene.mass, scene.inertia_factor))
@@ -275,7 +283,7 @@ class MicroslipTangential:
     normal : NormalMotion
         The solved normal motion of a Hertz-spring law (exponent 3/2); its scene has an angle > 0.
     options : SolverOptions
-        ``elements`` and ``time_steps`` (None: :func:`resolution`).
+        Its settings ``elements`` and ``time_steps`` (not given: :func:`resolution`).
 
     Attributes
     ----------
@@ -347,5 +355,6 @@ class MicroslipTangential:
 MICROSLIP_MODEL = TANGENTIALS.register(TangentialModel(
     "microslip", doc="exact elastic microslip of a Hertz contact (method of dimensionality reduction), Hertz laws",
     stiffness="k_t = 2 G* a, resolved across the contact", parameters=(KAPPA, POISSON, SHEAR_MODULUS),
-    spring="hertz", motion=MicroslipTangential, many=MicroslipTangential.many))
+    spring="hertz", motion=MicroslipTangential, many=MicroslipTangential.many,
+    settings=(ELEMENTS_SETTING, TIME_STEPS_SETTING)))
 
