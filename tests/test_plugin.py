@@ -88,6 +88,40 @@ def test_the_law_refuses_parameters_it_does_not_declare(law):
         simulate(Scene(model=NAME), SolverOptions(method="closed"))
 
 
+def test_a_law_with_a_parameter_of_its_own_is_served_by_every_door(law, capsys):
+    """P = k delta + g b delta_dot delta / R with its own growth factor g (default 1): the growing-damping law with
+    b scaled by g, so g = 2 at b = 400 must give what b = 800 gives, in simulate, sweep and the command line."""
+    from sphereimpact import Parameter
+
+    growth = Parameter("growth", "-", "damping growth factor", "a finite number > 0", lambda x: x > 0, default=1.0)
+
+    def continued(delta, delta_dot, p):
+        return _continued(delta, delta_dot, p) + (p.growth - 1.0) * (_continued(delta, delta_dot, p) - p.k * np.asarray(
+            delta, dtype=float))
+
+    grown = LAWS.register(ContactLaw(
+        "grown", "growing damping scaled by its own factor (test law)", (K, B, growth), continued, natural_frequency,
+        family=lambda p: {"zeta": damping_ratio(p) * p.growth, "depth": p.v_normal / (natural_frequency(p) * p.radius)},
+        horizon=GROWING.horizon, damping="b"))
+    try:
+        assert grown.own_parameters == (growth,)
+        scene = Scene(model="grown", b=400.0, angle=30.0, parameters={"growth": 2.0})
+        same = simulate(Scene(model=NAME, b=800.0, angle=30.0))
+        assert simulate(scene).cor == pytest.approx(same.cor, rel=1e-9)
+        assert Scene(model="grown", b=400.0).growth == 1.0  # its default
+        assert Scene(model="grown", b=400.0, parameters={"growth": 2.0}).with_(model=NAME).parameters == {}
+        table = sweep(grid(angle=[0.0, 30.0], growth=[1.0, 2.0]).assign(model="grown", b=400.0))
+        for row in table.to_dict("records"):
+            ref = simulate(Scene(model=NAME, b=400.0 * row["growth"], angle=row["angle"]))
+            assert row["cor"] == pytest.approx(ref.cor, rel=1e-8) and row["omega_f"] == pytest.approx(ref.omega_f, rel=1e-8)
+        assert run(["simulate", "--model", "grown", "--b", "400", "--growth", "2", "--angle", "30", "--json"]) == 0
+        assert json.loads(capsys.readouterr().out)["cor"] == simulate(scene).cor
+        with pytest.raises(ValueError, match=r"growth must be a finite number > 0; got -1.0"):
+            Scene(model="grown", b=400.0, parameters={"growth": -1.0})
+    finally:
+        del LAWS["grown"]
+
+
 def test_a_capability_the_sweep_lacks_is_refused_not_borrowed():
     """The batched lanes take a law by its own dimensionless force, never by a claim: a law whose force equals
     eq. 4.2 but is its own function is solved per family."""
