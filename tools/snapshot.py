@@ -26,10 +26,11 @@ from pathlib import Path
 
 import pandas as pd
 
-#: Columns that hold timings (wall-clock seconds, ratios of them, or a verdict drawn from them: the sweep-path
-#: study's ``dominated``, where two paths are near their crossover): dropped before comparing.
+#: Columns that hold timings (wall-clock seconds, ratios of them such as ``all_over_fast``, or a verdict drawn
+#: from them: the sweep-path study's ``dominated``, where two paths are near their crossover): dropped before
+#: comparing.
 TIMING = re.compile(r"(^|_)(time|times|seconds|wall_time|ms|us|speedup|speed_up|throughput|memory|per_second|"
-                    r"ratio|share|dominated)($|_)")
+                    r"ratio|share|over|dominated)($|_)")
 #: Files that are timings through and through (a profile names functions by file and line): not recorded.
 TIMED = ("readme/speed.md", "bench_profile.csv")
 #: `sphereimpact simulate` argument lists recorded with --json: the benchmark's scenes, then every law,
