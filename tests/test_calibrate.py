@@ -76,8 +76,10 @@ def test_cli_cor_sets_the_damping_and_reports_the_relations(capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--model", "hertz", "--b", "3"], "b is not a parameter of model 'hertz'"),
-    (["--cor", "0.8", "--b", "3"], "give --b or --cor, not both"),
-    (["--cor-relation", "flores"], "--cor-relation and --contact-time need --cor"),
+    (["--cor", "0.8", "--b", "3"], "give b or cor, not both (cor sets b)"),
+    (["--cor-relation", "flores"], "--cor-relation needs --cor"),
+    (["--contact-time", "1e-3"], "--contact-time needs --cor"),
+    (["--cor-speed", "3"], "--cor-speed needs --cor"),
     (["--model", "hertz", "--k", "1e6", "--cor", "0.9"], "model 'hertz' has no damping parameter"),
 ])
 def test_cli_refuses_flags_the_law_does_not_use(argv, message, capsys):

@@ -297,6 +297,7 @@ def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
 def test_the_command_line_calibrates_each_ball_once(tmp_path):
     """--cor sets the damping of each distinct ball from a normal impact at --cor-speed, then sweeps it; the
     API's calibrate_table does the same."""
+    from sphereimpact.impact.ball import Measurement
     from sphereimpact.impact.calibrate import calibrate
     from sphereimpact.sweep.calibrate import calibrate_table
 
@@ -309,7 +310,7 @@ def test_the_command_line_calibrates_each_ball_once(tmp_path):
         fitted = calibrate(Scene(model="hunt-crossley", modulus=1e7, mass=mass, speed=3.0), 0.8).scene
         assert rows["chi"].iloc[0] == pytest.approx(fitted.chi, rel=1e-12)
     api = calibrate_table(grid(angle=[0.0, 30.0], mass=[0.1, 0.2]).assign(model="hunt-crossley", modulus=1e7),
-                          0.8, speed=3.0)
+                          Measurement(0.8, 3.0))
     assert sorted(api["chi"].unique()) == pytest.approx(sorted(table["chi"].unique()), rel=1e-12)
     assert run(["sweep", "--speed", "1:3:1", "--model", "hunt-crossley", "--modulus", "1e7", "--cor", "0.8",
                 "--out", str(tmp_path / "x.csv")]) == 2  # several speeds: which one was measured?

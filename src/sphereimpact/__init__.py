@@ -11,10 +11,12 @@ from .errors import BeyondRadiusWarning, ImpactError
 from .contact.laws import LAWS, ContactLaw
 from .contact.parameters import Parameter, Setting
 from .contact.separation import Separation
+from .impact.ball import Ball, Measurement, ball_scene, calibrated_ball, load_ball, save_ball
 from .impact.outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .impact.scene import Scene, SolverOptions
 from .impact.solve import simulate
 
-__all__ = ["BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "OUTPUT_KEYS", "Outcome",
-           "Parameter", "Scene", "Separation", "Setting", "SolverOptions", "simulate"]
+__all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "Measurement",
+           "OUTPUT_KEYS", "Outcome", "Parameter", "Scene", "Separation", "Setting", "SolverOptions", "ball_scene",
+           "calibrated_ball", "load_ball", "save_ball", "simulate"]
 __version__ = "0.1.0"

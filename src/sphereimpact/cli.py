@@ -9,14 +9,17 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 import warnings
+from dataclasses import replace
 
 import numpy as np
 
 from . import __version__, plugins
-from .impact.calibrate import RELATIONS, calibrate
+from .impact.ball import FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball, save_ball
+from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, ImpactError
 from .integrators import method_names
 from .contact.laws import LAWS, PARAMETER_NAMES
@@ -171,8 +174,18 @@ def _parser() -> argparse.ArgumentParser:
         help="set the law's damping so that the normal COR is E, in (0, 1) (replaces its damping parameter)")
     add("--cor-relation", default="exact", metavar="|".join(RELATIONS),
         help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
+    add("--cor-speed", type=_number, default=None, metavar="M_S",
+        help="normal impact speed at which --cor (and --contact-time) was measured [m/s] (default: this scene's "
+             "normal speed); a scene far from it is an extrapolation, and a warning says so")
     add("--contact-time", type=_number, default=None, metavar="S",
-        help="with --cor: fit the stiffness k too, so that the contact time t_f is S [s]")
+        help="with --cor: fit the stiffness k too, so that the contact time t_f is S [s] (k and --modulus are then "
+             "not given)")
+    add("--ball", default=None, metavar="FILE",
+        help="the ball, its contact and surface from a ball file (--save-ball, a study's ball.json); give only "
+             "the approach, the surface (--mu, --gravity) and the solver's options")
+    add("--save-ball", default=None, metavar="FILE",
+        help="also write this ball (calibrated, with --cor) to FILE as JSON, for --ball, load_ball and a study's "
+             "ball_file")
     tangential_help = _tangential_help()
     add("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential, help=tangential_help["tangential"])
     for name in TANGENTIAL_PARAMETERS:
@@ -251,7 +264,11 @@ def _parser() -> argparse.ArgumentParser:
     swp.add_argument("--cor-relation", default="exact", metavar="|".join(RELATIONS),
                      help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
-                     help="with --cor: fit the stiffness k too, so that the contact time is S [s]")
+                     help="with --cor: fit the stiffness k too, so that the contact time is S [s] (k and --modulus "
+                          "are then not given)")
+    swp.add_argument("--ball", default=None, metavar="FILE",
+                     help="the ball, its contact and surface from a ball file (simulate --save-ball, a study's "
+                          "ball.json); give only the approach's ranges, the surface's (--mu, --gravity) and options")
     for name, text in _setting_flags().items():
         swp.add_argument("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
     swp.add_argument("--outputs", default=None, metavar="LIST",
@@ -355,30 +372,56 @@ def _sweep(args) -> None:
     if problem:
         raise ValueError(problem)
     check_columns({"model": [args.model], "separation": [args.separation]})
-    table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
-                                  tangential=args.tangential)
-    if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None
-                             or args.cor_speed is not None):
-        raise ValueError("--cor-relation, --cor-speed and --contact-time need --cor")
-    if args.cor is not None:
+    settings, measurement = _settings(args), None
+    if args.ball is not None:
+        ball = _ball(args)
+        measurement, settings = ball.measurement, dict(ball.options.settings) | settings
+        kept = {name: values for name, values in ranges.items()
+                if name in APPROACH or (name in SURFACE and name in args.given)}
+        table = grid(**kept).assign(**ball_columns(ball, exclude=kept))
+    else:
+        table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
+                                      tangential=args.tangential)
+    if args.ball is None and args.cor is None:
+        unused = [name for name in CALIBRATION[1:] if name in args.given]
+        if unused:
+            raise ValueError(f"--{unused[0].replace('_', '-')} needs --cor")
+    if args.ball is None and args.cor is not None:
         damping = LAWS.law(args.model).damping
         if damping is not None and ranges.get(damping) is not None:
             raise ValueError(f"give --{damping} or --cor, not both (--cor sets {damping})")
-        if args.contact_time is not None and ranges.get("k") is not None:
-            raise ValueError("give --k or --contact-time, not both (--contact-time fits k)")
+        for name in ("k", "modulus"):
+            if args.contact_time is not None and ranges.get(name) is not None:
+                raise ValueError(f"give --{name} or --contact-time, not both (--contact-time fits k)")
         speeds = np.unique(table["speed"])
         if args.cor_speed is None and speeds.size > 1:
             raise ValueError("cor_speed is required when the sweep has several speeds: the speed [m/s] of the normal "
                              "impact whose COR was measured")
-        table = calibrate_table(table, args.cor, speeds[0] if args.cor_speed is None else args.cor_speed,
-                                args.cor_relation, args.contact_time)
+        measurement = Measurement(args.cor, speeds[0] if args.cor_speed is None else args.cor_speed,
+                                  args.contact_time, args.cor_relation)
+        table = calibrate_table(table, measurement)
     tty = sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
-                   progress=_Progress(start) if tty else None, settings=_settings(args))
+                   progress=_Progress(start) if tty else None, settings=settings)
+    if measurement is not None:
+        factor = _normal_speeds(result) / measurement.speed
+        far = int(np.count_nonzero((factor > FAR) | (factor < 1.0 / FAR)))
+        if far:
+            sys.stderr.write(f"sphereimpact: warning: {far} of {len(result)} scenes have a normal speed more than "
+                             f"{FAR:g} times from the {measurement.speed:.3g} m/s at which the COR {measurement.cor:g} "
+                             f"was measured ({factor.min():.3g} to {factor.max():.3g} times): the calibrated law "
+                             "extrapolates there\n")
     write_table(result, args.out)
     seconds = time.perf_counter() - start
     sys.stderr.write(f"{chr(13) if tty else ''}sphereimpact sweep: {len(result)} scenes in {seconds:.3g} s -> "
                      f"{args.out}\n")
+
+
+def _normal_speeds(table) -> np.ndarray:
+    """Each row's normal approach speed v cos(incidence) [m/s]."""
+    from .sweep.engine import incidence
+
+    return table["speed"].to_numpy() * np.cos(np.radians(incidence(table)))
 
 
 def _outputs(text: str | None, fast) -> list | None:
@@ -415,6 +458,45 @@ def _readable(outputs: dict, units: dict) -> str:
     return "\n".join(lines)
 
 
+#: The approach of a scene (what a ball file leaves to the command line) and the surface (which may differ from
+#: the ball file's).
+APPROACH = ("angle", "speed", "spin", "incidence", "angle_to_surface")
+SURFACE = ("mu", "gravity")
+#: Options that describe the ball and its contact: a ball file gives them all.
+CALIBRATION = ("cor", "cor_speed", "contact_time", "cor_relation")
+
+
+def _ball_fields(args) -> dict:
+    """The Scene fields the command line gives besides the approach: ball, contact, surface."""
+    return dict(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, mu=args.mu,
+                model=args.model, gravity=args.gravity, separation=args.separation, tangential=args.tangential,
+                **{name: getattr(args, name) for name in (*TANGENTIAL_PARAMETERS, *_law_flags())},
+                parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None})
+
+
+def _ball(args) -> Ball | None:
+    """The ball of ``--ball FILE``, or the one ``--cor`` (``--cor-speed``, ``--contact-time``) calibrates from the
+    other flags; None when neither is given.  With a ball file, a flag that describes the ball is refused."""
+    if args.ball is not None:
+        describing = {"mass", "diameter", "inertia_factor", "model", "separation", "tangential", *TANGENTIAL_PARAMETERS,
+                      *_law_flags(), *own_parameters(), *CALIBRATION}
+        clash = sorted(name for name in args.given if name in describing)
+        if clash:
+            raise ValueError(f"--{clash[0].replace('_', '-')}: the ball file {args.ball!r} describes the ball and "
+                             "its contact; give the approach, the surface (--mu, --gravity) and the solver's options")
+        return load_ball(args.ball)
+    if args.cor is None:
+        unused = [name for name in CALIBRATION[1:] if name in args.given]
+        if unused:
+            raise ValueError(f"--{unused[0].replace('_', '-')} needs --cor")
+        return None
+    incidence = Scene(**{name: getattr(args, name) for name in APPROACH}).incidence_deg
+    speed = args.cor_speed if args.cor_speed is not None else args.speed * math.cos(math.radians(incidence))
+    measurement = Measurement(args.cor, speed, args.contact_time, args.cor_relation)
+    return calibrated_ball(measurement, SolverOptions(settings=_settings(args)), tuple(args.plugin or ()),
+                           **_ball_fields(args))
+
+
 def _simulate(args) -> None:
     if args.history is not None:
         check_out(args.history, args.force, what="history")
@@ -422,30 +504,32 @@ def _simulate(args) -> None:
         check_out(args.plot, args.force, FIGURE_EXTENSIONS, what="plot")
     if args.samples < 2:
         raise ValueError(f"samples must be an integer >= 2 (instants from 0 to t_f); got {args.samples}")
-    law = {name: getattr(args, name) for name in _law_flags()}
-    scene = Scene(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, angle=args.angle,
-                  spin=args.spin, incidence=args.incidence, angle_to_surface=args.angle_to_surface,
-                  speed=args.speed, mu=args.mu, model=args.model, gravity=args.gravity, separation=args.separation,
-                  tangential=args.tangential, **{name: getattr(args, name) for name in TANGENTIAL_PARAMETERS}, **law,
-                  parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None})
-    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol, settings=_settings(args))
+    ball, approach = _ball(args), {name: getattr(args, name) for name in APPROACH}
+    if ball is None:
+        scene = Scene(**_ball_fields(args), **approach)
+    else:
+        surface = {name: getattr(args, name) for name in SURFACE if name in args.given}
+        scene = ball_scene(ball, **{k: v for k, v in approach.items() if v is not None}).with_(**surface)
+        far = ball.far_from_measurement(scene)
+        if far:
+            sys.stderr.write(f"sphereimpact: warning: {far}\n")
+        if args.ball is None and args.cor_speed is None and scene.incidence_deg != 0:
+            sys.stderr.write(f"sphereimpact: note: --cor calibrated the law at this scene's normal speed "
+                             f"{scene.v_normal:.6g} m/s; give --cor-speed, the normal speed of the measurement\n")
+    options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol,
+                            settings=({} if ball is None else dict(ball.options.settings)) | _settings(args))
     fitted, units = {}, UNITS
-    if args.cor is None and (args.cor_relation != "exact" or args.contact_time is not None):
-        raise ValueError("--cor-relation and --contact-time need --cor")
-    if args.cor is not None:
+    if ball is not None and args.ball is None:  # calibrated here: what was fitted, and the published relations
         damping = scene.law.damping
-        if damping is not None and law.get(damping) is not None:
-            raise ValueError(f"give --{damping} or --cor, not both (--cor sets {damping})")
-        if args.contact_time is not None and law.get("k") is not None:
-            raise ValueError("give --k or --contact-time, not both (--contact-time fits k)")
-        calibration = calibrate(scene, args.cor, args.cor_relation, args.contact_time)
-        scene = calibration.scene
-        unit = scene.law.parameter(calibration.parameter).unit
-        units = UNITS | {f"fitted_{calibration.parameter}": unit, "fitted_k": scene.law.parameter("k").unit}
-        units |= {f"{damping}_{name}": unit for name in calibration.relations}
-        fitted = {f"fitted_{calibration.parameter}": calibration.value,
-                  **({"fitted_k": scene.k} if args.contact_time is not None else {}),
-                  **{f"{damping}_{name}": value for name, value in calibration.relations.items()}}
+        for name, value in ball.fitted.items():
+            fitted[f"fitted_{name}"] = value
+            units = units | {f"fitted_{name}": scene.law.parameter(name).unit}
+        fitted |= {f"{damping}_{name}": value for name, value in ball.relations.items()}
+        units = units | {f"{damping}_{name}": scene.law.parameter(damping).unit for name in ball.relations}
+    if args.save_ball is not None:
+        save_ball(replace(ball, options=SolverOptions(settings=options.settings)) if ball is not None
+                  else Ball(scene, options=SolverOptions(settings=options.settings), plugins=tuple(args.plugin or ())),
+                  args.save_ball)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BeyondRadiusWarning)
         outcome = simulate(scene, options, body=args.body, strict=args.strict)
@@ -481,6 +565,7 @@ def run(argv=None) -> int:
         plugins.load(_plugin_names(argv))  # before the parser, whose choices and flags the registries give
         parser = _parser()
         args = parser.parse_args(_values_as_one_token(argv, parser))
+        args.given = _given(argv, parser, args.command)
         _sweep(args) if args.command == "sweep" else _simulate(args)
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
@@ -491,6 +576,15 @@ def run(argv=None) -> int:
     except OSError as err:
         return _fail(1, f"{err.strerror or err}: {err.filename or ''}".rstrip(": "))
     return 0
+
+
+def _given(argv: list[str], parser: argparse.ArgumentParser, command: str) -> set:
+    """The options ``argv`` gives explicitly (their ``dest`` names), as opposed to defaults."""
+    flags = {}
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            flags = {option: a.dest for a in action.choices[command]._actions for option in a.option_strings}
+    return {flags[token.partition("=")[0]] for token in argv if token.partition("=")[0] in flags}
 
 
 def _plugin_names(argv: list[str]) -> list[str]:

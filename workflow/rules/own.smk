@@ -8,9 +8,11 @@ BOUNCES = list(config["bounces"])
 
 
 rule own_ball:
-    """The study's ball: its contact law's damping (and stiffness) fitted to the measured COR (and contact time)."""
+    """The study's ball: its contact law's damping (and stiffness) fitted to the measured COR (and contact time),
+    or read from the configured ball file."""
     input:
         code=code("workflow/scripts/own_ball.py"),
+        ball_file=[config["ball_file"]] if config.get("ball_file") else [],
     output:
         ball=f"{OWN}/ball.json",
     params:

@@ -11,10 +11,8 @@ writes the chapter's files.
 
 from __future__ import annotations
 
-import math
-
 from .. import plugins
-from ..impact.calibrate import calibrate
+from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..parsing import parse_range
 from ..impact.inputs import PATH_RULES
@@ -37,38 +35,38 @@ def folder(config: dict) -> str:
     return f"{ROOT}/{config['study']}"
 
 
-def _starting_k(law, mass: float, contact_time: float, speed: float) -> float:
-    """A stiffness whose contact lasts about ``contact_time`` [s] at ``speed`` [m/s], to start the fit from:
-    t = pi sqrt(m / k) for a linear spring, t = 2.94 (5 m / (4 k))^(2/5) v^(-1/5) for a Hertz one."""
-    if law.spring == "linear":
-        return mass * (math.pi / contact_time) ** 2
-    return 1.25 * mass / (contact_time * speed ** 0.2 / 2.94) ** 2.5
-
-
-def ball_scene(config: dict) -> Scene:
-    """The study's ball on its surface, with its contact law, approached normally at the COR's speed (or 1
-    m/s): its damping (and k) calibrated to the configured COR (and contact time) when one is given.  The
-    config's ``plugins`` are imported first, and ``contact.parameters`` are its models' own parameters."""
-    plugins.load(config.get("plugins", []))
+def _fields(config: dict) -> dict:
+    """The Scene fields of the study's ball, contact and surface sections (without the measurement)."""
     ball, surface, contact = config["ball"], config["surface"], config["contact"]
-    law = LAWS.law(contact["model"])
     given = {name: contact[name] for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS) if name in contact}
-    speed = contact.get("cor_speed", 1.0)
-    if "contact_time" in contact and "cor" in contact and "k" not in given and "modulus" not in given:
-        given["k"] = _starting_k(law, ball["mass"], contact["contact_time"], speed)
-    scene = Scene(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"],
-                  mu=surface["mu"], gravity=surface["gravity"], model=contact["model"], speed=speed,
-                  separation=contact["separation"], tangential=contact["tangential"], **given,
-                  parameters=contact.get("parameters", {}))
+    return dict(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"], mu=surface["mu"],
+                gravity=surface["gravity"], model=contact["model"], separation=contact["separation"],
+                tangential=contact["tangential"], **given, parameters=contact.get("parameters", {}))
+
+
+def measurement(config: dict) -> Measurement | None:
+    """What the study's ``contact`` section says was measured (COR at ``cor_speed``, contact time), if anything."""
+    contact = config["contact"]
     if "cor" not in contact:
-        return scene
-    return calibrate(scene, contact["cor"], contact["cor_relation"], contact.get("contact_time")).scene
+        return None
+    return Measurement(contact["cor"], contact.get("cor_speed", 1.0), contact.get("contact_time"),
+                       contact["cor_relation"])
 
 
-def ball_options(config: dict) -> SolverOptions:
-    """The solver options of the study's impacts: its tangential model's settings (``contact.settings``)."""
-    plugins.load(config.get("plugins", []))
-    return SolverOptions(settings=config["contact"].get("settings", {}))
+def study_ball(config: dict) -> Ball:
+    """The study's ball: from its ``ball_file``, or from its ball, surface and contact sections, its damping (and k)
+    calibrated to the configured COR (and contact time) at ``cor_speed`` (1 m/s if not given) when one is given.
+    The config's ``plugins`` are imported first; ``contact.parameters`` are its models' own parameters and
+    ``contact.settings`` their settings."""
+    names = tuple(plugins.load(config.get("plugins", [])))
+    if config.get("ball_file"):
+        return load_ball(config["ball_file"])
+    options = SolverOptions(settings=config["contact"].get("settings", {}))
+    source = config["ball"].get("source", "")
+    measured = measurement(config)
+    if measured is None:
+        return Ball(Scene(**_fields(config)), options=options, plugins=names, source=source)
+    return calibrated_ball(measured, options, names, source, **_fields(config))
 
 
 def bounce_scene(ball: Scene, spec: dict) -> Scene:
@@ -93,25 +91,27 @@ def own_errors(config: dict) -> list[str]:
                 errors.append("config key ranges.map_angles: angles to the surface must be in (0, 90] degrees")
         except ValueError as err:
             errors.append(f"config key ranges.{key}: {err}")
-    contact = config["contact"]
-    if contact.get("model") not in LAWS:
-        errors.append(f"config key contact.model: {contact.get('model')!r} is not a registered law ({', '.join(LAWS)})")
-        return errors
-    if ("contact_time" in contact or "cor_relation" in contact and contact["cor_relation"] != "exact") \
-            and "cor" not in contact:
-        errors.append("config key contact: contact_time and cor_relation need cor")
-    law = LAWS[contact["model"]]
-    probe = {k: v for k, v in contact.items() if k not in ("cor", "contact_time", "cor_relation")}
-    if "cor" in contact and law.damping is not None and law.damping not in contact:
-        probe[law.damping] = 0.0  # a stand-in where the calibration will set it
-    if "contact_time" in contact and "k" not in contact and "modulus" not in contact:
-        probe["k"] = _starting_k(law, config["ball"]["mass"], contact["contact_time"], contact.get("cor_speed", 1.0))
-    try:  # the ball and every bounce as Scene checks them, without the (slower) calibration
-        ball = ball_scene(config | {"contact": probe})
-        ball_options(config)
-    except (ValueError, TypeError) as err:
-        errors.append(f"config key contact (or ball, surface, plugins): {err}")
-        return errors
+    if config.get("ball_file"):
+        try:
+            ball = study_ball(config).scene
+        except ValueError as err:
+            return errors + [f"config key ball_file: {err}"]
+    else:
+        contact = config["contact"]
+        if contact.get("model") not in LAWS:
+            errors.append(f"config key contact.model: {contact.get('model')!r} is not a registered law "
+                          f"({', '.join(LAWS)})")
+            return errors
+        if ("contact_time" in contact or "cor_relation" in contact and contact["cor_relation"] != "exact"
+                or "cor_speed" in contact) and "cor" not in contact:
+            errors.append("config key contact: contact_time, cor_speed and cor_relation need cor")
+        try:  # the ball and every bounce as Scene checks them, without the (slower) calibration
+            measured = measurement(config)
+            ball = (Scene(**_fields(config)) if measured is None else uncalibrated(measured, **_fields(config)))
+            SolverOptions(settings=config["contact"].get("settings", {}))
+        except (ValueError, TypeError) as err:
+            errors.append(f"config key contact (or ball, surface, plugins): {err}")
+            return errors
     for name, spec in config.get("bounces", {}).items():
         try:
             bounce_scene(ball, spec)

@@ -8,42 +8,23 @@ from pathlib import Path
 
 import pandas as pd
 
-from .. import plugins
+from ..impact.ball import ball_columns, load_ball, save_ball
 from ..impact.outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
-from ..parsing import parse_range
-from ..impact.inputs import PATH_RULES
-from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
+from ..parsing import parse_range
 from ..sweep.engine import grid, sweep
 from ..sweep.io import write_table
-from .own import ball_options, ball_scene, bounce_scene
+from .own import bounce_scene, study_ball
 
 #: The outputs the speed curve and the maps keep.
 CURVE_OUTPUTS = ("cor", "t_f", "force_max", "delta_m")
 MAP_OUTPUTS = ("omega_f", "vc_t", "vc_n", "rebound_angle", "rebound_angle_contact", "regime", "cor")
 
 
-def load_ball(path: str) -> tuple[Scene, SolverOptions]:
-    """The calibrated ball written by :func:`write_ball` and the options its models' settings give (the
-    plug-ins it names imported first)."""
-    with open(path) as handle:
-        record = json.load(handle)
-    plugins.load(record.get("plugins", []))
-    return Scene(**record["scene"]), SolverOptions(settings=record.get("settings", {}))
-
-
 def write_ball(config: dict, json_path: str) -> None:
-    """The calibrated ball's scene and what was fitted, as JSON."""
-    scene = ball_scene(config)
-    contact = config["contact"]
-    settings = ball_options(config).settings
-    record = {"study": config["study"], "source": config["ball"].get("source", ""),
-              **({"plugins": list(config["plugins"])} if config.get("plugins") else {}),
-              **({"settings": dict(settings)} if settings else {}),
-              "scene": {k: v for k, v in scene.as_dict().items() if k != "modulus" or scene.modulus is not None},
-              "fitted": ({scene.law.damping: getattr(scene, scene.law.damping)} if "cor" in contact else {})
-              | ({"k": scene.k} if "contact_time" in contact else {})}
-    Path(json_path).write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+    """The study's ball (calibrated, with what was measured and fitted), as a ball file every door reads
+    (:func:`~sphereimpact.impact.ball.save_ball`)."""
+    save_ball(study_ball(config), json_path)
 
 
 def read_history(path: str) -> pd.DataFrame:
@@ -61,10 +42,10 @@ def read_history(path: str) -> pd.DataFrame:
 def write_bounces(config: dict, ball_json: str, outcomes_csv: str, histories: dict) -> None:
     """Each bounce's outputs (one row each: its approach and every scalar output) and its time history
     (``histories``: bounce -> CSV path, units in the header)."""
-    (ball, options), rows = load_ball(ball_json), []
+    ball, rows = load_ball(ball_json), []
     for name, spec in config["bounces"].items():
-        scene = bounce_scene(ball, spec)
-        out = simulate(scene, options)
+        scene = bounce_scene(ball.scene, spec)
+        out = simulate(scene, ball.options)
         rows.append({"bounce": name, "speed": scene.speed, "angle_to_surface": 90.0 - scene.incidence_deg,
                      "incidence": scene.incidence_deg, "spin": scene.spin,
                      **{key: getattr(out, key) for key in SCALAR_OUTPUTS},
@@ -76,27 +57,20 @@ def write_bounces(config: dict, ball_json: str, outcomes_csv: str, histories: di
 
 def write_speed_curve(config: dict, ball_json: str, csv_path: str) -> None:
     """COR, contact time, peak force and maximum compression of normal impacts across ``ranges.speeds``."""
-    ball, options = load_ball(ball_json)
+    ball = load_ball(ball_json)
     speeds = parse_range(config["ranges"]["speeds"])
-    table = sweep(_ball_rows(ball, grid(speed=speeds, angle_to_surface=[90.0])), outputs=CURVE_OUTPUTS,
-                  settings=options.settings)
+    table = sweep(grid(speed=speeds, angle_to_surface=[90.0]).assign(**ball_columns(ball)), outputs=CURVE_OUTPUTS,
+                  settings=ball.options.settings)
     table[["speed", *CURVE_OUTPUTS]].to_csv(csv_path, index=False, float_format="%.10g")
 
 
 def write_maps(config: dict, ball_json: str, csv_path: str) -> None:
     """Spin, rebound velocity and angles over angle to the surface x speed (``ranges``), at ``map_spin``."""
-    (ball, options), ranges = load_ball(ball_json), config["ranges"]
+    ball, ranges = load_ball(ball_json), config["ranges"]
     scenes = grid(angle_to_surface=parse_range(ranges["map_angles"]), speed=parse_range(ranges["map_speeds"]))
-    table = sweep(_ball_rows(ball, scenes.assign(spin=ranges["map_spin"])), outputs=MAP_OUTPUTS,
-                  settings=options.settings)
+    table = sweep(scenes.assign(spin=ranges["map_spin"], **ball_columns(ball)), outputs=MAP_OUTPUTS,
+                  settings=ball.options.settings)
     table[["angle_to_surface", "speed", "spin", *MAP_OUTPUTS]].to_csv(csv_path, index=False, float_format="%.10g")
-
-
-def _ball_rows(ball: Scene, approaches: pd.DataFrame) -> pd.DataFrame:
-    """The ball's fields beside each row of ``approaches`` (speed, approach, spin)."""
-    keep = {k: v for k, v in ball.as_dict().items()
-            if k not in ("speed", "angle", "spin", "parameters", *PATH_RULES) and v is not None and k != "modulus"}
-    return approaches.assign(**keep, **ball.parameters)  # its models' own parameters as columns too
 
 
 def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, maps_csv: str, figures: dict,

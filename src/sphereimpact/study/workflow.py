@@ -50,7 +50,7 @@ RULE_KEYS = {
     "validation": ("validation",),
     "compliance_map": (*_SCENE, "compliance", "primary"),
     "validation_figures": ("compliance",),
-    "own_ball": ("study", "plugins", "ball", "surface", "contact"),
+    "own_ball": ("study", "plugins", "ball_file", "ball", "surface", "contact"),
     "own_bounces": ("study", "bounces", "samples"),
     "own_speed": ("study", "ranges"),
     "own_maps": ("study", "ranges"),

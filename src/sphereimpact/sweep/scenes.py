@@ -121,6 +121,15 @@ def scene_of(row: dict) -> Scene:
     return Scene(**values)
 
 
+def given_fields(row: dict) -> dict:
+    """The Scene fields a raw table row gives (its empty cells, NaN or None, left out; a model's own parameters
+    under ``parameters``), for building a Scene from a row no :func:`scene_table` has filled in."""
+    given = {name: value for name, value in row.items()
+             if value is not None and not (isinstance(value, float) and value != value)}
+    own = {name: given.pop(name) for name in list(given) if name not in DEFAULTS}
+    return given | ({"parameters": own} if own else {})
+
+
 def incidence(frame: pd.DataFrame) -> np.ndarray:
     """Each scene's incidence from the flat's normal [deg]: its ``incidence``, 90 - ``angle_to_surface``, or
     the flat's tilt ``angle`` for a vertical approach (as :attr:`sphereimpact.Scene.incidence_deg`)."""

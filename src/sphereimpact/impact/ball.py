@@ -1,0 +1,231 @@
+"""A ball described once: its measured COR (and contact time) at a stated speed, calibrated, saved, reused.
+
+A user measures a ball's coefficient of restitution in a normal impact at some speed, perhaps its contact
+time too, not a damping coefficient or a stiffness.  :func:`calibrated_ball` sets the law's damping (and k)
+from a :class:`Measurement` in a normal impact at the measurement's speed, the same way wherever the ball is
+described: ``simulate`` and ``sweep`` on the command line (``--cor``, ``--cor-speed``, ``--contact-time``), the
+study config's ``contact`` section and this API.  A :class:`Ball` is the calibrated scene (its approach is the
+measurement's) with what was fitted; :func:`save_ball` writes it as JSON and :func:`load_ball` reads it back
+for every door (``--ball FILE``, the config's ``ball_file``), so a ball is calibrated once.
+
+A law calibrated at one speed extrapolates at others: :meth:`Ball.far_from_measurement` says so, with the
+factor, where a scene's normal speed differs from the measurement's by more than :data:`FAR`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .. import plugins
+from ..contact.laws import LAWS
+from .calibrate import RELATIONS, Calibration, calibrate
+from .inputs import as_number
+from .scene import Scene, SolverOptions
+
+#: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
+#: extrapolation of the calibrated law, and is said to be.
+FAR = 2.0
+#: The ball file's format, written into every file and checked on reading.
+FORMAT = "sphereimpact-ball/1"
+#: Scene fields that describe the approach (not the ball, its contact or the surface).
+APPROACH = ("angle", "speed", "spin", "incidence", "angle_to_surface")
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """What was measured of a ball: its COR in a normal impact at ``speed``, optionally the contact time.
+
+    Attributes
+    ----------
+    cor : float
+        Normal coefficient of restitution, in (0, 1) for a damped law (1 with a contact time for an elastic
+        one).
+    speed : float
+        The normal impact speed of the measurement [m/s], > 0.
+    contact_time : float or None
+        The contact time measured at that speed [s], > 0: then k is fitted too.
+    relation : str
+        ``exact`` (root find) or a published COR relation of the law (:data:`~.calibrate.RELATIONS`).
+    """
+
+    cor: float
+    speed: float
+    contact_time: float | None = None
+    relation: str = "exact"
+
+    def __post_init__(self):
+        object.__setattr__(self, "cor", as_number("cor", self.cor))
+        speed = as_number("cor_speed", self.speed)
+        if not (math.isfinite(speed) and speed > 0):
+            raise ValueError(f"cor_speed must be a finite number > 0 m/s (the normal speed of the COR's "
+                             f"measurement); got {self.speed!r}")
+        object.__setattr__(self, "speed", speed)
+        if self.contact_time is not None:
+            t = as_number("contact_time", self.contact_time)
+            if not (math.isfinite(t) and t > 0):
+                raise ValueError(f"contact_time must be a finite number > 0 s; got {self.contact_time!r}")
+            object.__setattr__(self, "contact_time", t)
+        if self.relation not in RELATIONS:
+            raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {self.relation!r}")
+
+
+@dataclass(frozen=True)
+class Ball:
+    """A ball, its contact and its surface, with what was measured and fitted.
+
+    Attributes
+    ----------
+    scene : Scene
+        The ball in a normal impact at the measurement's speed (any scene of the ball without a measurement):
+        ``ball.scene.with_(angle_to_surface=..., speed=..., spin=...)`` is the ball in another bounce.
+    measurement : Measurement or None
+        What its damping (and k) were calibrated to; None when the law's parameters were given.
+    fitted : dict
+        Parameter -> value set by the calibration (the damping, and ``k`` with a contact time).
+    relations : dict
+        The law's published COR relations -> the damping each gives for the measured COR (beside ``fitted``).
+    options : SolverOptions
+        The settings of its tangential model (``SolverOptions.settings``), the integrator's defaults.
+    plugins : tuple of str
+        The plug-in modules whose models it uses (imported again by :func:`load_ball`).
+    source : str
+        Where its numbers come from, for the reader.
+    """
+
+    scene: Scene
+    measurement: Measurement | None = None
+    fitted: dict = field(default_factory=dict)
+    relations: dict = field(default_factory=dict)
+    options: SolverOptions = SolverOptions()
+    plugins: tuple = ()
+    source: str = ""
+
+    def far_from_measurement(self, scene: Scene) -> str | None:
+        """One line when ``scene``'s normal speed is more than :data:`FAR` times the measurement's (or less
+        than 1 / FAR), else None: there the calibrated law extrapolates."""
+        if self.measurement is None:
+            return None
+        factor = scene.v_normal / self.measurement.speed
+        if 1.0 / FAR <= factor <= FAR:
+            return None
+        return (f"the normal speed {scene.v_normal:.3g} m/s is {factor:.3g} times the {self.measurement.speed:.3g} "
+                f"m/s at which the COR {self.measurement.cor:g} was measured: the {scene.model!r} law, calibrated "
+                "there, extrapolates")
+
+
+def starting_stiffness(model: str, mass: float, contact_time: float, speed: float) -> float:
+    """A stiffness k whose contact lasts about ``contact_time`` [s] at ``speed`` [m/s], to start a fit from:
+    t = pi sqrt(m / k) for a linear spring, t = 2.94 (5 m / (4 k))^(2/5) v^(-1/5) for a Hertz one."""
+    if LAWS.law(model).spring == "linear":
+        return mass * (math.pi / contact_time) ** 2
+    return 1.25 * mass / (contact_time * speed ** 0.2 / 2.94) ** 2.5
+
+
+def uncalibrated(measurement: Measurement, **fields) -> Scene:
+    """The scene :func:`calibrated_ball` calibrates: the ball of Scene ``fields`` in a normal impact at the
+    measurement's speed, with stand-ins for what the calibration sets (the damping, and k with a contact time).
+    Building it checks every input but whether the measurement can be reached, without solving anything.
+
+    Raises
+    ------
+    ValueError
+        The damping or k given besides the measurement that sets them, or a field Scene refuses.
+    """
+    law = LAWS.law(fields.get("model", Scene.__dataclass_fields__["model"].default))
+    if law.damping is not None and fields.get(law.damping) is not None:
+        raise ValueError(f"give {law.damping} or cor, not both (cor sets {law.damping})")
+    for name in ("k", "modulus"):
+        if measurement.contact_time is not None and fields.get(name) is not None:
+            raise ValueError(f"give {name} or contact_time, not both (contact_time fits k)")
+    base = {name: value for name, value in fields.items() if name not in APPROACH} | {"speed": measurement.speed}
+    if measurement.contact_time is not None:
+        base["k"] = starting_stiffness(law.name, base.get("mass", Scene.__dataclass_fields__["mass"].default),
+                                       measurement.contact_time, measurement.speed)
+    if law.damping is not None:
+        base[law.damping] = 0.0  # a stand-in: the calibration sets it
+    return Scene(**base)
+
+
+def calibrated_ball(measurement: Measurement, options: SolverOptions | None = None, plugin_names=(),
+                    source: str = "", **fields) -> Ball:
+    """The ball described by Scene ``fields`` (mass, diameter, model, its other parameters, tangential model,
+    surface) with the law's damping (and, with a contact time, k) set from ``measurement``, in a normal impact
+    at the measurement's speed whatever approach ``fields`` give (:func:`uncalibrated`)."""
+    calibration: Calibration = calibrate(uncalibrated(measurement, **fields), measurement.cor, measurement.relation,
+                                         measurement.contact_time)
+    damping = calibration.scene.law.damping
+    fitted = {} if damping is None else {damping: getattr(calibration.scene, damping)}
+    if measurement.contact_time is not None:
+        fitted["k"] = calibration.scene.k
+    return Ball(calibration.scene, measurement, fitted, dict(calibration.relations), options or SolverOptions(),
+                tuple(plugin_names), source)
+
+
+def ball_scene(ball: Ball, **approach) -> Scene:
+    """The ball in the bounce ``approach`` (some of angle, speed, spin, incidence, angle_to_surface; the rest of
+    the approach as the Scene's defaults: a vertical drop on a level flat, no spin)."""
+    unknown = [name for name in approach if name not in APPROACH]
+    if unknown:
+        raise ValueError(f"{unknown[0]} is not part of the approach ({', '.join(APPROACH)}); the ball file sets "
+                         "the rest")
+    defaults = {name: Scene.__dataclass_fields__[name].default for name in APPROACH}
+    return ball.scene.with_(**(defaults | approach))
+
+
+def ball_columns(ball: Ball, exclude=()) -> dict:
+    """The ball's fields as a sweep table's constant columns (its models' own parameters too), leaving out the
+    approach, the names in ``exclude`` and the parameters it does not give."""
+    fields = ball.scene.as_dict()
+    own = fields.pop("parameters", {})
+    kept = {name: value for name, value in fields.items()
+            if name not in (*APPROACH, *exclude) and value is not None and name != "modulus"}  # k holds it
+    return kept | own
+
+
+def save_ball(ball: Ball, path) -> None:
+    """Write ``ball`` as JSON (format :data:`FORMAT`): its scene, measurement, what was fitted, its settings,
+    plug-ins and source."""
+    scene = {k: v for k, v in ball.scene.as_dict().items() if k != "modulus" or ball.scene.modulus is not None}
+    record = {"format": FORMAT, "source": ball.source,
+              **({"plugins": list(ball.plugins)} if ball.plugins else {}),
+              **({"settings": dict(ball.options.settings)} if ball.options.settings else {}),
+              "scene": scene,
+              "measurement": None if ball.measurement is None else {
+                  "cor": ball.measurement.cor, "cor_speed": ball.measurement.speed,
+                  "contact_time": ball.measurement.contact_time, "relation": ball.measurement.relation},
+              "fitted": ball.fitted, **({"relations": ball.relations} if ball.relations else {})}
+    Path(path).write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+
+
+def load_ball(path) -> Ball:
+    """The ball :func:`save_ball` wrote (its plug-ins imported first).
+
+    Raises
+    ------
+    ValueError
+        A file that is not a ball file of this format, or whose scene the package refuses (naming the file).
+    """
+    try:
+        record = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as err:
+        raise ValueError(f"ball: cannot read {str(path)!r} ({err.strerror or err})") from None
+    except json.JSONDecodeError as err:
+        raise ValueError(f"ball: {str(path)!r} is not JSON ({err.msg}, line {err.lineno})") from None
+    if not isinstance(record, dict) or record.get("format") != FORMAT:
+        raise ValueError(f"ball: {str(path)!r} is not a ball file (format {FORMAT!r}: written by --save-ball, "
+                         "save_ball or a study's ball.json)")
+    try:
+        plugins.load(record.get("plugins", []))
+        scene = Scene(**record["scene"])
+        measured = record.get("measurement")
+        measurement = None if measured is None else Measurement(measured["cor"], measured["cor_speed"],
+                                                                measured.get("contact_time"),
+                                                                measured.get("relation", "exact"))
+        options = SolverOptions(settings=record.get("settings", {}))
+    except (KeyError, TypeError, ValueError) as err:
+        raise ValueError(f"ball: {str(path)!r}: {err}") from None
+    return Ball(scene, measurement, dict(record.get("fitted", {})), dict(record.get("relations", {})), options,
+                tuple(record.get("plugins", [])), record.get("source", ""))
