@@ -127,6 +127,8 @@ def test_the_pipeline_reuses_a_saved_ball(golf, tmp_path):
     done = snakemake(work, "results/studies/golf/outcomes.csv", configfiles=[str(config)])
     assert done.returncode == 0, done.stderr[-3000:]
     assert load_ball(work / "results/studies/golf/ball.json").scene == golf.scene
-    bounce = pd.read_csv(work / "results/studies/golf/outcomes.csv").iloc[0]
+    from sphereimpact.study.own_outputs import read_history
+
+    bounce = read_history(work / "results/studies/golf/outcomes.csv").iloc[0]
     assert bounce["omega_f"] == pytest.approx(simulate(ball_scene(golf, speed=30.0, angle_to_surface=45.0)).omega_f,
                                               rel=1e-9)  # written to 10 digits

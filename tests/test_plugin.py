@@ -473,7 +473,9 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     options = SolverOptions(settings={"trapezoid_steps": 16})
     scene = Scene(model="kelvin-voigt", b=10.5, gravity=9.80665, tangential="share-slide",
                   parameters={"slide_share": 0.5})
-    bounce = pd.read_csv(work / folder / "outcomes.csv").iloc[0]
+    from sphereimpact.study.own_outputs import read_history
+
+    bounce = read_history(work / folder / "outcomes.csv").iloc[0]
     assert bounce["omega_f"] == pytest.approx(simulate(scene.with_(incidence=30.0), options).omega_f, rel=1e-9)
     maps = pd.read_csv(work / folder / "maps.csv")
     row = maps[(maps["angle_to_surface"] == 30.0) & (maps["speed"] == 4.0)].iloc[0]

@@ -246,10 +246,13 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
 
     from sphereimpact import Scene, simulate
 
+    from sphereimpact.study.own_outputs import read_history
+
     ball = json.loads((study / "ball.json").read_text())["scene"]
-    drop = pd.read_csv(study / "outcomes.csv").set_index("bounce").loc["drop-test"]
+    outcomes = read_history(study / "outcomes.csv").set_index("bounce")  # units in its header
+    assert pd.read_csv(study / "outcomes.csv").columns[1] == "speed [m/s]"
+    drop = outcomes.loc["drop-test"]
     assert drop["cor"] == pytest.approx(0.745, abs=1e-8)  # the measured COR, recovered
     assert drop["t_f"] == pytest.approx(4.5e-3, rel=1e-8)  # and the contact time
     serve = simulate(Scene(**ball).with_(speed=30.0, angle_to_surface=12.0, spin=150.0))
-    assert pd.read_csv(study / "outcomes.csv").set_index("bounce").loc["flat-serve", "omega_f"] == pytest.approx(
-        serve.omega_f, rel=1e-9)
+    assert outcomes.loc["flat-serve", "omega_f"] == pytest.approx(serve.omega_f, rel=1e-9)

@@ -99,6 +99,7 @@ rule own_figures:
     input:
         speed=f"{OWN}/speed.csv",
         maps=f"{OWN}/maps.csv",
+        ball=f"{OWN}/ball.json",
         code=code("workflow/scripts/own_figures.py"),
     output:
         speed=f"{OWN}/figures/speed.png",

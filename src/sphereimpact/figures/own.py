@@ -7,6 +7,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from ..impact.ball import load_ball
 from .history import history_figure
 from .style import RC, save
 
@@ -16,15 +17,20 @@ def bounce_figure(history: pd.DataFrame, study: str, bounce: str, outputs) -> No
     history_figure(history, f"study {study}: bounce {bounce}", outputs)
 
 
-def speed_figure(csv_path: str, study: str, outputs) -> None:
-    """COR, contact time and peak force of normal impacts against speed."""
+def speed_figure(csv_path: str, study: str, outputs, measured_at: float | None = None) -> None:
+    """COR, contact time and peak force of normal impacts against speed, with a dotted line at ``measured_at``
+    [m/s], the speed of the COR's measurement (the law extrapolates away from it)."""
     table = pd.read_csv(csv_path)
     with plt.rc_context(RC | {"figure.figsize": (12.0, 3.8)}):
         fig, axes = plt.subplots(1, 3)
         for ax, (key, scale, label) in zip(axes, (("cor", 1.0, "COR [-]"), ("t_f", 1e3, "contact time [ms]"),
                                                    ("force_max", 1.0, "peak normal force [N]"))):
             ax.plot(table["speed"], table[key] * scale)
+            if measured_at is not None:
+                ax.axvline(measured_at, color="0.4", linestyle=":", linewidth=1.0, label="COR measured here")
             ax.set(xlabel="impact speed, normal [m/s]", ylabel=label)
+        if measured_at is not None:
+            axes[0].legend(loc="best", frameon=False)
         fig.suptitle(f"study {study}: normal impacts against speed", fontsize=9)
         fig.tight_layout()
         save(fig, outputs)
@@ -45,9 +51,10 @@ def map_figure(csv_path: str, study: str, key: str, label: str, outputs) -> None
         save(fig, outputs)
 
 
-def curves_and_maps(speed_csv: str, maps_csv: str, study: str, outputs: dict) -> None:
+def curves_and_maps(speed_csv: str, maps_csv: str, ball_json: str, study: str, outputs: dict) -> None:
     """The study's speed figure and its two maps (``outputs``: speed, spin_map, rebound_map -> path)."""
-    speed_figure(speed_csv, study, [outputs["speed"]])
+    measured = load_ball(ball_json).measurement
+    speed_figure(speed_csv, study, [outputs["speed"]], None if measured is None else measured.speed)
     map_figure(maps_csv, study, "omega_f", "rebound spin [rad/s]", [outputs["spin_map"]])
-    map_figure(maps_csv, study, "rebound_angle", "rebound angle of the centre from the normal [deg]",
+    map_figure(maps_csv, study, "rebound_angle_to_surface", "rebound angle of the centre to the surface [deg]",
                [outputs["rebound_map"]])

@@ -19,7 +19,7 @@ from .scene import Scene
 #: The outputs of one impact, in the order of the JSON object and tables.
 OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
                "regime", "t_roll", "force_min", "force_max", "beyond_radius",
-               "switches", "rebound_angle", "rebound_angle_contact", "work_t",
+               "switches", "rebound_angle", "rebound_angle_contact", "rebound_angle_to_surface", "work_t",
                "method", "rtol", "atol", "nfev", "wall_time")
 
 #: The solver's statistics among OUTPUT_KEYS; the others are the impact's scalar outputs.
@@ -31,7 +31,8 @@ SCALAR_OUTPUTS = tuple(key for key in OUTPUT_KEYS if key not in SOLVER_KEYS)
 OUTPUT_UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
                 "omega_f": "rad/s", "cor": "-", "regime": "", "t_roll": "s", "force_min": "N", "force_max": "N",
                 "beyond_radius": "", "switches": "-", "rebound_angle": "deg", "rebound_angle_contact": "deg",
-                "work_t": "J", "method": "", "rtol": "-", "atol": "-", "nfev": "-", "wall_time": "s"}
+                "rebound_angle_to_surface": "deg", "work_t": "J", "method": "", "rtol": "-", "atol": "-", "nfev": "-",
+                "wall_time": "s"}
 
 #: Columns of :meth:`Outcome.history`, with units.
 HISTORY_COLUMNS = {
@@ -104,7 +105,8 @@ def outputs(end: EndState) -> dict:
     solver computed, for one impact (floats) or many (arrays).
 
     ve_t = vc_t - omega_f R and ve_n = vc_n (the contact point), cor = vc_n / v_n, the rebound angles from the
-    normal atan2(vc_t, vc_n) and atan2(ve_t, vc_n) [deg], ``beyond_radius`` = delta_m > R, and work_t, the work
+    normal atan2(vc_t, vc_n) and atan2(ve_t, vc_n) [deg] and the centre's to the surface, 90 - atan2(vc_t, vc_n),
+    ``beyond_radius`` = delta_m > R, and work_t, the work
     of the tangential contact force [J]: the change of tangential and rotational kinetic energy less the work
     of gravity along the flat, m g_t u_t.
     """
@@ -112,12 +114,13 @@ def outputs(end: EndState) -> dict:
     ve_t = end.vc_t - end.omega_f * end.radius
     work = (0.5 * end.mass * (end.vc_t * end.vc_t - end.v_tangent ** 2) + 0.5 * inertia * end.omega_f * end.omega_f
             - end.mass * end.g_tangent * end.u_t - 0.5 * inertia * end.spin * end.spin)
+    rebound = _degrees_atan2(end.vc_t, end.vc_n)
     return {"t_m": end.t_m, "delta_m": end.delta_m, "t_f": end.t_f, "vc_t": end.vc_t, "vc_n": end.vc_n,
             "ve_t": ve_t, "ve_n": end.vc_n, "omega_f": end.omega_f, "cor": end.vc_n / end.v_normal,
             "regime": end.regime, "t_roll": end.t_roll, "force_min": end.force_min, "force_max": end.force_max,
             "beyond_radius": end.delta_m > end.radius, "switches": end.switches,
-            "rebound_angle": _degrees_atan2(end.vc_t, end.vc_n), "rebound_angle_contact": _degrees_atan2(ve_t, end.vc_n),
-            "work_t": work}
+            "rebound_angle": rebound, "rebound_angle_contact": _degrees_atan2(ve_t, end.vc_n),
+            "rebound_angle_to_surface": 90.0 - rebound, "work_t": work}
 
 
 def _degrees_atan2(y, x):
@@ -161,7 +164,11 @@ class Outcome:
         Number of changes of tangential mode during contact.
     rebound_angle, rebound_angle_contact : float
         Direction of the centre's and of the contact point's velocity after impact, from the normal [deg]:
-        atan2(vc_t, vc_n) and atan2(ve_t, vc_n); negative when the tangential velocity is reversed.
+        atan2(vc_t, vc_n) and atan2(ve_t, vc_n), in (-90, 90); negative when the tangential velocity is
+        reversed (the ball kicks back against its incoming tangential motion).
+    rebound_angle_to_surface : float
+        The centre's rebound direction as its angle to the surface [deg], 90 - rebound_angle, in (0, 180): the
+        convention of ``angle_to_surface`` (sports); above 90 the ball leaves backwards.
     work_t : float
         Work of the tangential contact force on the ball [J] (<= 0: friction and a compliant contact's
         hysteresis take energy): the change of translational-tangential and rotational kinetic energy
@@ -187,6 +194,7 @@ class Outcome:
     switches: int
     rebound_angle: float
     rebound_angle_contact: float
+    rebound_angle_to_surface: float
     work_t: float
     method: str
     rtol: float

@@ -36,6 +36,7 @@ def output_scales(scene: Scene, t_f: float, delta_m: float, force_max: float = 1
     return {"t_m": t_f, "t_f": t_f, "t_roll": t_f, "delta_m": delta_m, "vc_t": v, "vc_n": v, "ve_t": v,
             "ve_n": v, "cor": 1.0, "omega_f": v / scene.radius, "force_min": force_max, "force_max": force_max,
             "switches": 1.0, "rebound_angle": 90.0, "rebound_angle_contact": 90.0,
+            "rebound_angle_to_surface": 90.0,
             "work_t": 0.5 * scene.mass * v * v}
 
 

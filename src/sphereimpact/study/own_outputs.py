@@ -3,12 +3,14 @@ contact time and peak force against speed, spin and rebound maps, and one page (
 
 from __future__ import annotations
 
-import json
+from html import escape
 from pathlib import Path
 
 import pandas as pd
 
-from ..impact.ball import ball_columns, load_ball, save_ball
+from ..contact.laws import hertz_modulus, spring_exponent
+from ..contact.tangential import TANGENTIALS
+from ..impact.ball import FAR, ball_columns, load_ball, save_ball
 from ..impact.outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
 from ..impact.solve import simulate
 from ..parsing import parse_range
@@ -16,9 +18,13 @@ from ..sweep.engine import grid, sweep
 from ..sweep.io import write_table
 from .own import bounce_scene, study_ball
 
+#: Units of the columns of ``outcomes.csv`` (in its header, as the histories have them).
+BOUNCE_UNITS = {"speed": "m/s", "angle_to_surface": "deg", "incidence": "deg", "spin": "rad/s"} | {
+    key: unit for key, unit in OUTPUT_UNITS.items() if unit and unit != "-"}
 #: The outputs the speed curve and the maps keep.
 CURVE_OUTPUTS = ("cor", "t_f", "force_max", "delta_m")
-MAP_OUTPUTS = ("omega_f", "vc_t", "vc_n", "rebound_angle", "rebound_angle_contact", "regime", "cor")
+MAP_OUTPUTS = ("omega_f", "vc_t", "vc_n", "rebound_angle_to_surface", "rebound_angle", "rebound_angle_contact",
+               "regime", "cor")
 
 
 def write_ball(config: dict, json_path: str) -> None:
@@ -27,8 +33,9 @@ def write_ball(config: dict, json_path: str) -> None:
     save_ball(study_ball(config), json_path)
 
 
-def read_history(path: str) -> pd.DataFrame:
-    """A history table written with its units in the CSV header (``t [s]``): plain names, units in attrs."""
+def read_history(path) -> pd.DataFrame:
+    """A table written with its units in the CSV header (``t [s]``: a history, ``outcomes.csv``): plain names,
+    units in attrs."""
     frame = pd.read_csv(path)
     units = {}
     for column in frame.columns:
@@ -48,11 +55,10 @@ def write_bounces(config: dict, ball_json: str, outcomes_csv: str, histories: di
         out = simulate(scene, ball.options)
         rows.append({"bounce": name, "speed": scene.speed, "angle_to_surface": 90.0 - scene.incidence_deg,
                      "incidence": scene.incidence_deg, "spin": scene.spin,
-                     **{key: getattr(out, key) for key in SCALAR_OUTPUTS},
-                     "rebound_angle_to_surface": 90.0 - out.rebound_angle})
+                     **{key: getattr(out, key) for key in SCALAR_OUTPUTS}})
         history = out.history(config.get("samples", 401))
         write_table(history, histories[name], units=history.attrs["units"])
-    pd.DataFrame(rows).to_csv(outcomes_csv, index=False, float_format="%.10g")
+    write_table(pd.DataFrame(rows), outcomes_csv, units=BOUNCE_UNITS)
 
 
 def write_speed_curve(config: dict, ball_json: str, csv_path: str) -> None:
@@ -73,57 +79,124 @@ def write_maps(config: dict, ball_json: str, csv_path: str) -> None:
     table[["angle_to_surface", "speed", "spin", *MAP_OUTPUTS]].to_csv(csv_path, index=False, float_format="%.10g")
 
 
+def ball_parameters(ball) -> list[tuple[str, str]]:
+    """The ball's description for its page, each value with its unit: ball, surface, the normal law and every
+    parameter it uses (fitted ones marked; E* beside k for a Hertz spring), the tangential model and what the
+    user gave of its stiffness and own parameters, settings, plug-ins and what it was calibrated to."""
+    scene, law = ball.scene, ball.scene.law
+    rows = [("mass", f"{scene.mass:g} kg"), ("diameter", f"{scene.diameter:g} m"),
+            ("inertia factor α", f"{scene.inertia_factor:g}"), ("friction μ", f"{scene.mu:g}"),
+            ("gravity", f"{scene.gravity:g} m/s²"), ("normal law", f"{scene.model}: {law.doc}"),
+            ("separation", f"{scene.separation} (contact ends when {scene.separation.end_quantity} returns to 0)")]
+    exponent = f"^{spring_exponent(law, scene):g}"
+    for parameter in law.parameters:
+        unit = "" if parameter.unit == "-" else f" {parameter.unit.replace('^n', exponent)}"
+        rows.append((parameter.name, f"{getattr(scene, parameter.name):.6g}{unit}"
+                                     + (" (fitted)" if parameter.name in ball.fitted else "")))
+    if law.spring == "hertz":
+        rows.append(("E* (effective modulus)", f"{hertz_modulus(scene):.6g} Pa"
+                                               + (" (given)" if scene.modulus is not None else " (from k)")))
+    model = TANGENTIALS.model(scene.tangential)
+    rows.append(("tangential contact", f"{scene.tangential}: {model.doc}"))
+    for parameter in model.parameters:
+        value = getattr(scene, parameter.name)
+        if value is not None:
+            rows.append((parameter.name, f"{value:.6g}" + ("" if parameter.unit == "-" else f" {parameter.unit}")))
+    rows += [(name, str(value)) for name, value in ball.options.settings.items()]
+    if ball.plugins:
+        rows.append(("plug-ins", ", ".join(ball.plugins)))
+    measured = ball.measurement
+    if measured is not None:
+        rows.append(("calibrated to", f"COR {measured.cor:g}" + (
+            f" and contact time {1e3 * measured.contact_time:g} ms" if measured.contact_time is not None else "")
+            + f" at {measured.speed:g} m/s, normal impact ({measured.relation})"))
+    return rows
+
+
 def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, maps_csv: str, figures: dict,
                md_path: str, html_path: str) -> None:
     """One page, Markdown and HTML, that shows the study: the ball and what was fitted, each bounce's outputs
-    and figure, the speed curve and the maps (``figures``: name -> path relative to the page)."""
-    with open(ball_json) as handle:
-        ball = json.load(handle)
-    scene, outcomes = ball["scene"], pd.read_csv(outcomes_csv)
-    speed = pd.read_csv(speed_csv)
-    parameters = [("mass", f"{scene['mass']:g} kg"), ("diameter", f"{scene['diameter']:g} m"),
-                  ("inertia factor α", f"{scene['inertia_factor']:g}"), ("friction μ", f"{scene['mu']:g}"),
-                  ("gravity", f"{scene['gravity']:g} m/s²"), ("normal law", scene["model"]),
-                  ("tangential contact", scene["tangential"])]
-    parameters += [(name, f"{value:.6g}") for name, value in ball["fitted"].items()]
-    contact = config["contact"]
-    if "cor" in contact:
-        parameters.append(("calibrated to", f"COR {contact['cor']:g}"
-                           + (f" and contact time {1e3 * contact['contact_time']:g} ms" if "contact_time" in contact
-                              else "") + f" at {contact.get('cor_speed', 1.0):g} m/s, normal impact"))
+    and figure, the speed curve and the maps (``figures``: name -> path relative to the page), each figure with
+    its caption, and a line for every bounce far from the calibration's speed."""
+    ball, outcomes = load_ball(ball_json), read_history(outcomes_csv)
+    scene, speed, maps = ball.scene, pd.read_csv(speed_csv), pd.read_csv(maps_csv)
+    measured = ball.measurement
     shown = ["bounce", "speed", "angle_to_surface", "spin", "cor", "t_f", "force_max", "vc_t", "vc_n", "omega_f",
              "rebound_angle_to_surface", "regime"]
-    units = {"speed": "m/s", "angle_to_surface": "deg", "spin": "rad/s", "rebound_angle_to_surface": "deg"} | OUTPUT_UNITS
-    header = [f"{c} [{units[c]}]" if units.get(c) else c for c in shown]
-    table = outcomes[shown].copy()
-    at = speed.iloc[(speed["speed"] - contact.get("cor_speed", speed["speed"].median())).abs().argmin()]
-    text = {"title": f"Study `{config['study']}`: {scene['model']} contact, {len(outcomes)} bounces",
-            "source": ball.get("source") or "—",
-            "curve": f"COR {speed['cor'].min():.3f}–{speed['cor'].max():.3f}, contact time "
-                     f"{1e3 * speed['t_f'].min():.3g}–{1e3 * speed['t_f'].max():.3g} ms, peak force up to "
-                     f"{speed['force_max'].max():.4g} N over {speed['speed'].min():g}–{speed['speed'].max():g} m/s "
-                     f"(COR {at['cor']:.4f} at {at['speed']:g} m/s)."}
-    md = [f"# {text['title']}", "", f"Source of the ball's numbers: {text['source']}", "",
-          "| parameter | value |", "|---|---|", *[f"| {k} | {v} |" for k, v in parameters], "",
-          "## Bounces (`outcomes.csv`, histories in `histories/`)", "",
-          "| " + " | ".join(header) + " |", "|" + "---|" * len(header),
-          *["| " + " | ".join(_cell(v) for v in row) + " |" for row in table.itertuples(index=False)], ""]
-    md += [f"![{name}]({figures[name]})" for name in config["bounces"]]
-    md += ["", "## Against speed, normal impacts (`speed.csv`)", "", text["curve"], "", f"![speed]({figures['speed']})",
-           "", "## Maps (`maps.csv`)", "", f"![spin]({figures['spin_map']})", f"![rebound]({figures['rebound_map']})",
-           ""]
-    Path(md_path).write_text("\n".join(md), encoding="utf-8")
-    html = [f"<!doctype html><html><head><meta charset='utf-8'><title>{config['study']}</title></head><body>",
-            f"<h1>{text['title']}</h1><p>Source of the ball's numbers: {text['source']}</p>",
-            pd.DataFrame(parameters, columns=["parameter", "value"]).to_html(index=False),
-            "<h2>Bounces (outcomes.csv, histories in histories/)</h2>",
-            table.set_axis(header, axis=1).to_html(index=False, float_format=lambda v: f"{v:.5g}"),
-            *[f"<p><img src='{figures[name]}' width='900'></p>" for name in config["bounces"]],
-            f"<h2>Against speed, normal impacts (speed.csv)</h2><p>{text['curve']}</p>",
-            f"<p><img src='{figures['speed']}' width='900'></p><h2>Maps (maps.csv)</h2>",
-            f"<p><img src='{figures['spin_map']}' width='640'><img src='{figures['rebound_map']}' width='640'></p>",
-            "</body></html>"]
-    Path(html_path).write_text("\n".join(html), encoding="utf-8")
+    header = [f"{c} [{BOUNCE_UNITS[c]}]" if BOUNCE_UNITS.get(c) else c for c in shown]
+    at = speed.iloc[(speed["speed"] - (speed["speed"].median() if measured is None else measured.speed)).abs().argmin()]
+    curve = (f"COR {speed['cor'].min():.3f}–{speed['cor'].max():.3f}, contact time "
+             f"{1e3 * speed['t_f'].min():.3g}–{1e3 * speed['t_f'].max():.3g} ms, peak force up to "
+             f"{speed['force_max'].max():.4g} N over {speed['speed'].min():g}–{speed['speed'].max():g} m/s "
+             f"(COR {at['cor']:.4f} at {at['speed']:g} m/s).")
+    if measured is not None:
+        low, high = speed["speed"].min() / measured.speed, speed["speed"].max() / measured.speed
+        if low < 1 / FAR or high > FAR:
+            curve += (f" The curve spans {low:.2g}–{high:.2g} times the measurement's {measured.speed:g} m/s; beyond "
+                      f"{FAR:g} times either way the calibrated law extrapolates.")
+    far = [f"{name}: {line}" for name, spec in config["bounces"].items()
+           if (line := ball.far_from_measurement(bounce_scene(scene, spec)))]
+    blocks = [("h1", f"Study `{config['study']}`: {scene.model} contact, {len(outcomes)} bounces"),
+              ("p", f"Source of the ball's numbers: {ball.source or '—'}"),
+              ("table", (["parameter", "value"], ball_parameters(ball))),
+              ("h2", "Bounces (`outcomes.csv`, histories in `histories/`)"),
+              ("table", (header, [[_cell(v) for v in row] for row in outcomes[shown].itertuples(index=False)]))]
+    blocks += [("p", "Outside the calibration: " + line) for line in far]
+    blocks += [("figure", (figures[name], 900, _bounce_caption(name, row)))
+               for name, row in outcomes.set_index("bounce").iterrows()]
+    spin = maps["spin"].iloc[0]
+    blocks += [("h2", "Against speed, normal impacts (`speed.csv`)"), ("p", curve),
+               ("figure", (figures["speed"], 900, "Normal impacts of the ball against impact speed: COR, contact time "
+                           "and peak normal force" + ("" if measured is None else
+                                                      f"; the dotted line marks the measurement's {measured.speed:g} m/s")
+                           + ".")),
+               ("h2", "Maps (`maps.csv`)"),
+               ("figure", (figures["spin_map"], 640, f"Rebound spin ω_f [rad/s] over the angle to the surface and the "
+                           f"speed along the path, incoming spin {spin:g} rad/s (positive: topspin).")),
+               ("figure", (figures["rebound_map"], 640, "Rebound angle of the centre to the surface [deg] over the same "
+                           "grid: 90° less its angle from the normal; above 90° the ball leaves backwards."))]
+    Path(md_path).write_text(_markdown(blocks), encoding="utf-8")
+    Path(html_path).write_text(_html(config["study"], blocks), encoding="utf-8")
+
+
+def _bounce_caption(name: str, row) -> str:
+    return (f"Bounce {name}: {row['speed']:g} m/s at {row['angle_to_surface']:g}° to the surface, spin {row['spin']:g} "
+            "rad/s. Over the contact, from first touch to separation: compression and normal force, the centre's and "
+            "the contact point's velocities, the spin, and the force against compression.")
+
+
+def _markdown(blocks) -> str:
+    lines = []
+    for kind, value in blocks:
+        if kind in ("h1", "h2"):
+            lines += [f"{'#' if kind == 'h1' else '##'} {value}", ""]
+        elif kind == "p":
+            lines += [value, ""]
+        elif kind == "table":
+            head, rows = value
+            lines += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head),
+                      *["| " + " | ".join(row) + " |" for row in rows], ""]
+        else:
+            path, _, caption = value
+            lines += [f"![{Path(path).stem}]({path})", "", f"*{caption}*", ""]
+    return "\n".join(lines)
+
+
+def _html(title: str, blocks) -> str:
+    parts = [f"<!doctype html><html><head><meta charset='utf-8'><title>{escape(title)}</title></head><body>"]
+    for kind, value in blocks:
+        if kind in ("h1", "h2"):
+            parts.append(f"<{kind}>{escape(value.replace('`', ''))}</{kind}>")
+        elif kind == "p":
+            parts.append(f"<p>{escape(value)}</p>")
+        elif kind == "table":
+            head, rows = value
+            parts.append(pd.DataFrame(rows, columns=head).to_html(index=False))
+        else:
+            path, width, caption = value
+            parts.append(f"<figure><img src='{escape(path)}' width='{width}' alt='{escape(caption)}'>"
+                         f"<figcaption>{escape(caption)}</figcaption></figure>")
+    return "\n".join([*parts, "</body></html>"])
 
 
 def _cell(value) -> str:

@@ -8,6 +8,7 @@ bit-identical to the one written; pyarrow's CSV writer does that about ten times
 from __future__ import annotations
 
 import json
+import os
 
 import pandas as pd
 import pyarrow as pa
@@ -19,7 +20,8 @@ EXTENSIONS = (".csv", ".parquet")
 
 
 def write_table(table: pd.DataFrame, path: str, units: dict | None = None) -> None:
-    """Write ``table`` to ``path``: ``.csv`` (shortest round-trip floats, strings quoted) or ``.parquet``.
+    """Write ``table`` to ``path``: ``.csv`` (shortest round-trip floats, strings quoted) or ``.parquet``, through a
+    temporary file beside it renamed at the end (an interrupted run never leaves a truncated table).
 
     ``units`` (column -> unit) names each column's unit: in a CSV header as ``name [unit]``, in a Parquet
     file's schema metadata (key ``units``, JSON) with the names unchanged.
@@ -29,14 +31,22 @@ def write_table(table: pd.DataFrame, path: str, units: dict | None = None) -> No
     ValueError
         For another extension.
     """
-    if path.endswith(".csv"):
-        if units:
-            table = table.rename(columns={c: f"{c} [{units[c]}]" for c in table.columns if units.get(c)})
-        pa_csv.write_csv(pa.Table.from_pandas(table, preserve_index=False), path)
-    elif path.endswith(".parquet"):
-        arrow = pa.Table.from_pandas(table, preserve_index=False)
-        if units:
-            arrow = arrow.replace_schema_metadata({**(arrow.schema.metadata or {}), b"units": json.dumps(units)})
-        pq.write_table(arrow, path)
-    else:
+    if not path.endswith(EXTENSIONS):
         raise ValueError(f"out must end in {' or '.join(EXTENSIONS)}; got {path!r}")
+    folder, name = os.path.split(os.path.abspath(path))
+    partial = os.path.join(folder, f".{name}.{os.getpid()}.partial")
+    try:  # written beside it, then renamed over it: a run killed while writing leaves the old file whole
+        if path.endswith(".csv"):
+            if units:
+                table = table.rename(columns={c: f"{c} [{units[c]}]" for c in table.columns if units.get(c)})
+            pa_csv.write_csv(pa.Table.from_pandas(table, preserve_index=False), partial)
+        else:
+            arrow = pa.Table.from_pandas(table, preserve_index=False)
+            if units:
+                arrow = arrow.replace_schema_metadata({**(arrow.schema.metadata or {}), b"units": json.dumps(units)})
+            pq.write_table(arrow, partial)
+        os.replace(partial, path)
+    except BaseException:
+        if os.path.exists(partial):
+            os.unlink(partial)
+        raise

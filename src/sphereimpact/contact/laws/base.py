@@ -14,6 +14,7 @@ sweeps), and is numpy-vectorised.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
@@ -202,6 +203,11 @@ def force_rate(law: ContactLaw, delta, delta_dot, delta_ddot, p):
 def hertz_constant(modulus, radius):
     """k = (4/3) E* sqrt(R) [N/m^1.5] for an effective modulus E* [Pa] and radius R [m]."""
     return 4.0 / 3.0 * modulus * np.sqrt(radius)
+
+
+def hertz_modulus(p) -> float:
+    """E* = 3 k / (4 sqrt(R)) [Pa]: the effective modulus of a Hertz spring k delta^(3/2) (``p``: k, radius)."""
+    return 0.75 * p.k / math.sqrt(p.radius)
 
 
 MODULUS = Parameter("modulus", "Pa", "effective modulus E* of ball and flat (instead of k: k = (4/3) E* sqrt(R))",

@@ -40,6 +40,7 @@ import math
 
 import numpy as np
 
+from ..laws.base import hertz_modulus
 from ..parameters import Setting
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import PositiveImpulse
@@ -69,7 +70,7 @@ SLIDING, MICROSLIP = "sliding", "microslip"
 def hertz_moduli(scene) -> tuple[float, float]:
     """(E*, G*) [Pa] of the scene's Hertz spring k delta^(3/2), k = (4/3) E* sqrt(R), and G* = kappa E*
     (the MDR's tangential modulus, 4 G_eff)."""
-    e_star = 0.75 * scene.k / math.sqrt(scene.radius)
+    e_star = hertz_modulus(scene)
     return e_star, scene.kappa * e_star
 
 
