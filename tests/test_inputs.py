@@ -15,7 +15,7 @@ import pytest
 import yaml
 
 import sphereimpact.sweep.engine as engine
-from sphereimpact import BeyondRadiusWarning, ImpactError, Scene, Separation, SolverOptions, simulate
+from sphereimpact import BeyondRadiusWarning, EnergyGainWarning, ImpactError, Scene, Separation, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.impact.scene import STANDARD_GRAVITY
 from sphereimpact.study.config import config_errors
@@ -39,6 +39,13 @@ CLI = [
     (["simulate", "--speed", "1/0"], 2, "expected a number"),
     (["simulate", "--speed", "fast"], 2, "argument --speed: expected a number"),
     (["simulate", "--separation", "sometimes"], 2, "separation must be one of force, penetration"),
+    # issue 33's hostile inputs that are refused (F4, F6, F7, F17): one line, before any work
+    (["simulate", "--speed", "1e-30", "--body", "planar"], 2, "body 'planar': this scene compresses the ball by about"),
+    (["simulate", "--model", "hertz", "--modulus", "1e7", "--tangential", "microslip", "--kappa", "1", "--angle", "20",
+      "--elements", "100000", "--time-steps", "10000000"], 2, "1e+12 cell-steps, more than the 1e+10 one impact may take"),
+    (["simulate", "--model", "hertz", "--modulus", "1e7", "--tangential", "microslip", "--kappa", "1e300", "--angle",
+      "20"], 2, "microslip: kappa 1e+300 makes the tangential spring ring"),
+    (["sweep", "--angle", "0:80:1", "--out", "/sys/foo.parquet"], 2, "out: folder '/sys' is not writable"),
     (["simulate", "--speed", "1e4", "--strict"], 2, "maximum compression delta_m = 14.3 m exceeds the radius"),
     (["simulate", "--speed", "1e300", "--angle", "60"], 2,
      "speed must be below 1.341e+154 m/s (its square overflows double precision); got 1e+300"),
@@ -160,6 +167,11 @@ CONFIGS = [
     ({"sweep": {"angle": "0:89:1e-9"}}, "config key sweep.angle: sweep too large"),
     ({"sweep": {"angle": "0:89:0.001", "speed": "0.5:30:0.001"}}, "config key sweep: sweep too large"),
     ({"sweep": {"map_speed": 3.1}}, "config key sweep.map_speed: 3.1 is not on the speed grid '0.5:30:0.5'"),
+    # issue 33, F18 and F19: an own study without its name; its grids sized before any job; a name too long
+    ({"bounces": {"drop": {"speed": 5.0}}}, "config key study: the config describes a ball of one's own (bounces)"),
+    ({"study": "big", "bounces": {"drop": {"speed": 5.0}}, "ranges": {"map_speeds": "5:40:1e-7"}},
+     "config key ranges: sweep too large"),
+    ({"study": "x" * 300}, "config key study: 'xxxxxxxx"),
 ]
 
 
@@ -353,3 +365,98 @@ def test_the_separation_criterion_is_not_compared_as_a_string():
                     if isinstance(side, ast.Constant) and side.value in names:
                         found.append(f"{path}:{node.lineno}")
     assert not found, found
+
+
+# --- issue 33's hostile inputs answered with a result (each through the door the issue names) ------------------
+def _json(capsys, argv):
+    assert run(argv) == 0, capsys.readouterr().err
+    return json.loads(capsys.readouterr().out)
+
+
+def _swept(tmp_path, argv):
+    out = tmp_path / "swept.csv"
+    assert run(["sweep", *argv, "--out", str(out), "--force"]) == 0
+    return pd.read_csv(out)
+
+
+def test_f1_a_cor_near_zero_is_calibrated(tmp_path, capsys):
+    """A COR of 1e-6 drives Hunt-Crossley's chi to 3e5 s/m; the landing on t_f once stepped out of its step."""
+    law = ["--model", "hunt-crossley", "--modulus", "1e7", "--cor", "1e-6"]
+    assert _json(capsys, ["simulate", *law, "--json"])["cor"] == pytest.approx(1e-6, rel=1e-6)
+    table = _swept(tmp_path, [*law, "--angle", "0:10:10"])  # calibrated at 3 m/s, its speed's normal impact
+    assert table["cor"].iloc[0] == pytest.approx(1e-6, rel=1e-6)
+    tilted = Scene(model="hunt-crossley", modulus=1e7, chi=table["chi"].iloc[1], angle=10.0)
+    assert table["cor"].iloc[1] == pytest.approx(simulate(tilted).cor, rel=1e-6)  # ~1 / v_n: 1.5 % higher
+
+
+def test_f2_an_exponent_far_from_hertz_is_calibrated(tmp_path, capsys):
+    law = ["--model", "hunt-crossley", "--modulus", "1e7", "--exponent", "2.8", "--cor", "0.8"]
+    assert _json(capsys, ["simulate", *law, "--json"])["cor"] == pytest.approx(0.8, rel=1e-8)
+    assert _swept(tmp_path, [*law, "--angle", "0:10:10"])["cor"].iloc[0] == pytest.approx(0.8, rel=1e-8)
+
+
+@pytest.mark.parametrize("law", [["--exponent", "2.7"], ["--exponent", "1.92", "--chi", "0.49"], ["--exponent", "2.36"]])
+def test_f3_exponents_once_refused_are_solved_and_agree_with_the_planar_body(law, capsys):
+    argv = ["simulate", "--model", "hunt-crossley", "--modulus", "1e7", "--angle", "30", *law, "--json"]
+    reduced, planar = _json(capsys, argv), _json(capsys, [*argv, "--body", "planar"])
+    for key in ("cor", "t_f", "omega_f"):
+        assert reduced[key] == pytest.approx(planar[key], rel=1e-7), key
+
+
+@pytest.mark.parametrize("argv", [["--speed", "1e-30"], ["--k", "1e300"], ["--speed", "1e-4", "--body", "planar"]])
+def test_f4_a_near_elastic_contact_does_not_gain_energy_beyond_its_tolerance(argv, capsys):
+    out = _json(capsys, ["simulate", *argv, "--json"])
+    assert out["cor"] <= 1.0 + out["rtol"]
+
+
+def test_f4_a_sweep_at_a_tiny_speed_keeps_its_target(tmp_path):
+    assert _swept(tmp_path, ["--speed", "1e-300"])["cor"].iloc[0] <= 1.0 + 1e-8
+
+
+def test_f5_the_api_sizes_a_grid_before_making_it():
+    with pytest.raises(ValueError, match=r"sweep too large: 1e\+09 scenes \(100000 angle x 10000 speed\)"):
+        sweep({"angle": np.linspace(0.0, 80.0, 100_000), "speed": np.linspace(1.0, 2.0, 10_000)})
+
+
+def test_f7_a_huge_integer_and_a_decimal_range_are_read_cleanly(tmp_path):
+    with pytest.raises(ValueError, match="speed must be a finite number; got a 401-digit integer"):
+        Scene(speed=10**400)
+    assert _swept(tmp_path, ["--angle", "0:0.3:0.1"])["angle"].tolist() == [0.0, 0.1, 0.2, 0.3]
+
+
+def test_f14_a_tangential_model_that_makes_energy_is_flagged_and_warned(tmp_path, capsys):
+    argv = ["--model", "hertz", "--modulus", "1e7", "--tangential", "mindlin-displacement", "--kappa", "0.99",
+            "--incidence", "20", "--mu", "0.65", "--speed", "5"]
+    assert run(["simulate", *argv, "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["energy_gained"] and json.loads(out)["work_t"] > 0
+    assert err.count("\n") == 1 and "warning: tangential 'mindlin-displacement' made energy" in err
+    with pytest.warns(EnergyGainWarning):
+        simulate(Scene(model="hertz", modulus=1e7, tangential="mindlin-displacement", kappa=0.99, incidence=20.0,
+                       mu=0.65, speed=5.0))
+    assert not simulate(Scene(angle=30.0)).energy_gained  # the rigid contact never makes energy
+    assert _swept(tmp_path, argv)["energy_gained"].tolist() == [True]
+
+
+def test_f15_a_plot_is_the_same_bytes_twice(tmp_path):
+    first, second = tmp_path / "a.svg", tmp_path / "b.svg"
+    assert run(["simulate", "--plot", str(first)]) == 0 and run(["simulate", "--plot", str(second)]) == 0
+    assert first.read_bytes() == second.read_bytes()
+
+
+def test_f16_an_interrupted_write_leaves_the_old_table_whole(tmp_path, monkeypatch):
+    import pyarrow.csv as pa_csv
+
+    from sphereimpact.sweep.io import write_table
+
+    path = tmp_path / "table.csv"
+    path.write_text("a\n1\n")
+
+    def killed(table, where):
+        Path(where).write_text("a\n")  # part of it, then the run dies
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pa_csv, "write_csv", killed)
+    with pytest.raises(KeyboardInterrupt):
+        write_table(pd.DataFrame({"a": [2, 3]}), str(path))
+    assert path.read_text() == "a\n1\n" and [p.name for p in tmp_path.iterdir()] == ["table.csv"]

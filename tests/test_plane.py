@@ -7,13 +7,14 @@ import pytest
 
 from sphereimpact import SolverOptions, simulate
 from sphereimpact.contact.separation import Separation
+from sphereimpact.impact.outcome import NUMERIC_OUTPUTS
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch, chebyshev, engine, paths, plane, series_lanes, similarity
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.sweep.outputs import NORMAL_OUTPUTS as OUTPUTS
 from sphereimpact.sweep.similarity import InterpolationError, _errors
 
-KEYS = [k for k in engine.SWEEP_OUTPUTS if k not in ("regime", "beyond_radius")]
+KEYS = [k for k in engine.SWEEP_OUTPUTS if k in NUMERIC_OUTPUTS]
 #: The random-ball benchmark's rectangle (k 2e4-2e5 N/m, b 2-30 N s/m, m 0.05-0.5 kg, 0.5-30 m/s, 0-89 deg).
 BALLS = (0.00335, 0.3707, 0.0791, 383.3)
 

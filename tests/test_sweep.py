@@ -7,6 +7,7 @@ import pytest
 from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.contact.separation import Separation
+from sphereimpact.impact.outcome import NUMERIC_OUTPUTS
 from sphereimpact.numerics.reference import relative_errors
 from sphereimpact.sweep import batch
 from sphereimpact.sweep.paths import SIMILARITY_MIN
@@ -21,7 +22,7 @@ from sphereimpact.sweep.engine import (
     sweep,
 )
 
-KEYS = [k for k in SWEEP_OUTPUTS if k not in ("regime", "beyond_radius")]
+KEYS = [k for k in SWEEP_OUTPUTS if k in NUMERIC_OUTPUTS]
 #: The interpolant paths' own outputs: the large one-ball sweeps below check those (the per-family outputs
 #: are one single-impact solve per family, checked on every path by test_history_outputs_on_every_path).
 FAST = FAST_OUTPUTS

@@ -7,7 +7,7 @@ Quick use::
     out.cor, out.omega_f, out.history()    # outputs and time histories (SI units)
 """
 
-from .errors import BeyondRadiusWarning, ImpactError
+from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .contact.laws import LAWS, ContactLaw
 from .contact.parameters import Parameter, Setting
 from .contact.separation import Separation
@@ -16,7 +16,7 @@ from .impact.outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .impact.scene import Scene, SolverOptions
 from .impact.solve import simulate
 
-__all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "HISTORY_COLUMNS", "ImpactError", "LAWS", "Measurement",
-           "OUTPUT_KEYS", "Outcome", "Parameter", "Scene", "Separation", "Setting", "SolverOptions", "ball_scene",
-           "calibrated_ball", "load_ball", "save_ball", "simulate"]
+__all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "EnergyGainWarning", "HISTORY_COLUMNS", "ImpactError",
+           "LAWS", "Measurement", "OUTPUT_KEYS", "Outcome", "Parameter", "Scene", "Separation", "Setting",
+           "SolverOptions", "ball_scene", "calibrated_ball", "load_ball", "save_ball", "simulate"]
 __version__ = "0.1.0"

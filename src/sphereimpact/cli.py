@@ -20,7 +20,7 @@ import numpy as np
 from . import __version__, plugins
 from .impact.ball import FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball, save_ball
 from .impact.calibrate import RELATIONS
-from .errors import BeyondRadiusWarning, ImpactError
+from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .integrators import method_names
 from .contact.laws import LAWS, PARAMETER_NAMES
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
@@ -322,8 +322,13 @@ def check_out(path: str, force: bool, extensions=None, what: str = "out") -> Non
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise ValueError(f"{what}: folder {folder!r} does not exist")
-    if not os.access(folder, os.W_OK):
-        raise ValueError(f"{what}: folder {folder!r} is not writable")
+    probe = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.probe")
+    try:  # a file made and removed: os.access says yes to root in read-only places (/sys, a read-only mount)
+        with open(probe, "w"):
+            pass
+        os.unlink(probe)
+    except OSError as err:
+        raise ValueError(f"{what}: folder {folder!r} is not writable ({err.strerror or err})") from None
     if os.path.exists(path) and not force:
         raise ValueError(f"{what}: {path!r} exists; pass --force to overwrite it")
 
@@ -403,6 +408,11 @@ def _sweep(args) -> None:
     tty = sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
                    progress=_Progress(start) if tty else None, settings=settings)
+    if "energy_gained" in result and result["energy_gained"].any():
+        gained = result["energy_gained"].to_numpy()
+        sys.stderr.write(f"sphereimpact: warning: in {int(gained.sum())} of {len(result)} scenes the tangential model "
+                         f"made energy (column energy_gained; work_t up to +{result['work_t'].to_numpy()[gained].max():.3g} J): "
+                         "an artefact of the model, not of the ball\n")
     if measurement is not None:
         factor = _normal_speeds(result) / measurement.speed
         far = int(np.count_nonzero((factor > FAR) | (factor < 1.0 / FAR)))
@@ -532,10 +542,12 @@ def _simulate(args) -> None:
                   args.save_ball)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BeyondRadiusWarning)
+        warnings.simplefilter("always", EnergyGainWarning)
         outcome = simulate(scene, options, body=args.body, strict=args.strict)
         outputs = outcome.to_dict() | fitted
     for warning in caught:  # one line each, like the errors
-        sys.stderr.write(f"sphereimpact: warning: {warning.message} (--strict refuses it)\n")
+        refused = " (--strict refuses it)" if warning.category is BeyondRadiusWarning else ""
+        sys.stderr.write(f"sphereimpact: warning: {warning.message}{refused}\n")
     if args.history is not None or args.plot is not None:
         history = outcome.history(args.samples)
         if args.history is not None:

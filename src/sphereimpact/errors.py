@@ -16,6 +16,10 @@ class BeyondRadiusWarning(UserWarning):
     """The maximum compression exceeds the ball's radius: the result lies outside the model."""
 
 
+class EnergyGainWarning(UserWarning):
+    """The tangential contact model did positive work on the ball: it made energy, outside passive physics."""
+
+
 class StepBudgetError(RuntimeError):
     """The Taylor method needed more than its step budget (:data:`sphereimpact.ode.series.MAX_STEPS`)."""
 

@@ -77,4 +77,25 @@ def parse_range(text: str) -> np.ndarray:
     if count > MAX_RANGE:
         raise ValueError(f"range {text!r} holds {count:.3g} values, more than {MAX_RANGE:.0e}: use a larger STEP")
     start, _, step = bounds
-    return start + step * np.arange(count)
+    values = start + step * np.arange(count)
+    places = _decimal_places(str(text).split(":"))
+    if places is not None:  # 0:0.3:0.1 is 0, 0.1, 0.2, 0.3, not 0.30000000000000004: the decimals as written
+        values = np.round(values, places)
+    return values
+
+
+def _decimal_places(parts) -> int | None:
+    """The most decimal places a range's parts are written with (``0.25`` -> 2, ``1e-7`` -> 7), or None where a
+    part is a fraction or needs more places than double precision holds (then the values are left as computed)."""
+    from decimal import Decimal, InvalidOperation
+
+    places = 0
+    for part in parts:
+        try:
+            exponent = Decimal(part.strip()).as_tuple().exponent
+        except InvalidOperation:
+            return None
+        if not isinstance(exponent, int):
+            return None
+        places = max(places, -exponent)
+    return places if places <= 15 else None

@@ -1,4 +1,4 @@
-"""Deterministic figure output: the same data give byte-identical PNG and PDF files."""
+"""Deterministic figure output: the same data give byte-identical PNG, PDF and SVG files."""
 
 from __future__ import annotations
 
@@ -13,7 +13,8 @@ RC = {"figure.figsize": (6.4, 4.2), "figure.dpi": 100, "savefig.dpi": 150, "font
       "svg.hashsalt": "sphereimpact", "pdf.compression": 6}
 
 #: Metadata written as None drops the entries (software version, creation date) that change between runs.
-_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None}}
+_METADATA = {"png": {"Software": None}, "pdf": {"Creator": None, "Producer": None, "CreationDate": None},
+             "svg": {"Date": None, "Creator": None}}
 
 
 def save(fig, paths) -> None:

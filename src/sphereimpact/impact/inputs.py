@@ -54,7 +54,12 @@ def as_number(name: str, value) -> float:
         value = value[()]
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a real number; got {type(value).__name__} {value!r}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an integer beyond double precision (10**400)
+        digits = len(str(abs(int(value))))
+        raise ValueError(f"{name} must be a finite number; got a {digits}-digit integer, beyond double precision "
+                         "(about 1.8e308)") from None
 
 
 def _check(name: str, value, allowed: str, ok) -> float:

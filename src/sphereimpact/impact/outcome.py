@@ -19,7 +19,7 @@ from .scene import Scene
 #: The outputs of one impact, in the order of the JSON object and tables.
 OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
                "regime", "t_roll", "force_min", "force_max", "beyond_radius",
-               "switches", "rebound_angle", "rebound_angle_contact", "rebound_angle_to_surface", "work_t",
+               "switches", "rebound_angle", "rebound_angle_contact", "rebound_angle_to_surface", "work_t", "energy_gained",
                "method", "rtol", "atol", "nfev", "wall_time")
 
 #: The solver's statistics among OUTPUT_KEYS; the others are the impact's scalar outputs.
@@ -27,12 +27,18 @@ SOLVER_KEYS = ("method", "rtol", "atol", "nfev", "wall_time")
 #: The scalar outputs of one impact (OUTPUT_KEYS less the solver's statistics): the columns of a sweep's
 #: table too (:func:`sphereimpact.sweep.sweep`).
 SCALAR_OUTPUTS = tuple(key for key in OUTPUT_KEYS if key not in SOLVER_KEYS)
+#: The scalar outputs that are numbers (not the regime's name or a flag): what is compared to a tolerance.
+NUMERIC_OUTPUTS = tuple(key for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius", "energy_gained"))
 #: Units of the outputs (SI; angles in degrees).
 OUTPUT_UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
                 "omega_f": "rad/s", "cor": "-", "regime": "", "t_roll": "s", "force_min": "N", "force_max": "N",
                 "beyond_radius": "", "switches": "-", "rebound_angle": "deg", "rebound_angle_contact": "deg",
-                "rebound_angle_to_surface": "deg", "work_t": "J", "method": "", "rtol": "-", "atol": "-", "nfev": "-",
-                "wall_time": "s"}
+                "rebound_angle_to_surface": "deg", "work_t": "J", "energy_gained": "", "method": "", "rtol": "-",
+                "atol": "-", "nfev": "-", "wall_time": "s"}
+
+#: A tangential contact whose work exceeds this fraction of the incoming kinetic energy made energy (above the
+#: solvers' round-off and tolerances: the rigid contact's work is exact to about 1e-15 of it).
+ENERGY_GAIN = 1e-8
 
 #: Columns of :meth:`Outcome.history`, with units.
 HISTORY_COLUMNS = {
@@ -106,7 +112,8 @@ def outputs(end: EndState) -> dict:
 
     ve_t = vc_t - omega_f R and ve_n = vc_n (the contact point), cor = vc_n / v_n, the rebound angles from the
     normal atan2(vc_t, vc_n) and atan2(ve_t, vc_n) [deg] and the centre's to the surface, 90 - atan2(vc_t, vc_n),
-    ``beyond_radius`` = delta_m > R, and work_t, the work
+    ``beyond_radius`` = delta_m > R, ``energy_gained`` = work_t > ENERGY_GAIN x the incoming kinetic energy,
+    and work_t, the work
     of the tangential contact force [J]: the change of tangential and rotational kinetic energy less the work
     of gravity along the flat, m g_t u_t.
     """
@@ -120,7 +127,15 @@ def outputs(end: EndState) -> dict:
             "regime": end.regime, "t_roll": end.t_roll, "force_min": end.force_min, "force_max": end.force_max,
             "beyond_radius": end.delta_m > end.radius, "switches": end.switches,
             "rebound_angle": rebound, "rebound_angle_contact": _degrees_atan2(ve_t, end.vc_n),
-            "rebound_angle_to_surface": 90.0 - rebound, "work_t": work}
+            "rebound_angle_to_surface": 90.0 - rebound, "work_t": work,
+            "energy_gained": gains_energy(work, end.mass, (end.v_normal ** 2 + end.v_tangent ** 2) ** 0.5, inertia,
+                                          end.spin)}
+
+
+def gains_energy(work_t, mass, speed, inertia, spin):
+    """True where the tangential contact's work ``work_t`` [J] exceeds :data:`ENERGY_GAIN` of the incoming kinetic
+    energy (m v^2 + I omega_0^2) / 2: the model made energy (floats or arrays)."""
+    return work_t > ENERGY_GAIN * (0.5 * mass * speed * speed + 0.5 * inertia * spin * spin)
 
 
 def _degrees_atan2(y, x):
@@ -173,6 +188,10 @@ class Outcome:
         Work of the tangential contact force on the ball [J] (<= 0: friction and a compliant contact's
         hysteresis take energy): the change of translational-tangential and rotational kinetic energy
         less the work of gravity along the flat.
+    energy_gained : bool
+        True when work_t is positive beyond :data:`ENERGY_GAIN` of the incoming kinetic energy: the tangential
+        model made energy, which no passive contact does (a known artefact of some spring models;
+        :func:`sphereimpact.simulate` warns with an :class:`~sphereimpact.errors.EnergyGainWarning`).
     method, rtol, atol, nfev, wall_time
         Solver statistics; ``wall_time`` [s] covers the whole call.
     """
@@ -196,6 +215,7 @@ class Outcome:
     rebound_angle_contact: float
     rebound_angle_to_surface: float
     work_t: float
+    energy_gained: bool
     method: str
     rtol: float
     atol: float

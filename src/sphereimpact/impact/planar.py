@@ -29,6 +29,12 @@ from ..contact.tangential import MAX_PHASES, phase_index
 from ..contact.tangential.rigid import RIGID
 
 
+#: The least compression scale v_n T [radii] the planar body resolves: its delta = R - C.n is a difference of
+#: O(R) coordinates, so round-off of 2e-16 R in C errs delta by 2e-16 / depth relative (2e-10 here: about the
+#: default tolerance; a chapter ball at 1e-30 m/s, depth 1e-32, never found its separation).
+RESOLVED_DEPTH = 1e-6
+
+
 class PlanarMotion:
     """Integrate one impact with the full planar model (see module docstring).
 
@@ -41,6 +47,11 @@ class PlanarMotion:
 
     def __init__(self, scene: Scene, options: SolverOptions):
         self.scene = scene
+        depth = scene.v_normal / scene.frequency / scene.radius  # compression scale v_n T in radii
+        if depth < RESOLVED_DEPTH:
+            raise ValueError(f"body 'planar': this scene compresses the ball by about {depth:.3g} R, below the "
+                             f"{RESOLVED_DEPTH:g} R its absolute coordinates resolve (delta = R - C.n loses its digits); "
+                             "body 'reduced' solves it")
         tilt = scene.tilt  # the flat's inclination; the approach's incidence sets the initial velocity
         self._n = np.array([math.sin(tilt), math.cos(tilt)])
         self._t = np.array([math.cos(tilt), -math.sin(tilt)])

@@ -19,7 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import BeyondRadiusWarning, ImpactError
+from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
@@ -155,6 +155,11 @@ def _checked(outcome: Outcome, strict: bool) -> Outcome:
         if strict:
             raise ImpactError(message)
         warnings.warn(message, BeyondRadiusWarning, stacklevel=3)
+    if outcome.energy_gained:
+        energy = 0.5 * scene.mass * scene.speed ** 2 + 0.5 * scene.inertia * scene.spin ** 2
+        warnings.warn(f"tangential {scene.tangential!r} made energy: its work on the ball is +{outcome.work_t:.3g} J, "
+                      f"{outcome.work_t / energy:.2g} of the incoming kinetic energy (energy_gained): an artefact of "
+                      "the model, not of the ball", EnergyGainWarning, stacklevel=3)
     return outcome
 
 

@@ -341,7 +341,10 @@ def _land(run: _Run, dense, tau_f: float, cap: float, on_delta: bool):
         correction = -ending(tail.y[:, -1]) / slope if slope != 0 else 0.0
         if not abs(correction) > run.rtol * tau_f or attempt == LANDINGS - 1 or run.multistep:
             break
-        tau_f = min(max(tau_f + correction, tau_k), tau_end)
+        corrected = min(tau_f + correction, tau_end)
+        if not corrected > tau_k:  # the correction leaves the crossing step: keep the landing made
+            break
+        tau_f = corrected
     return tail, tau_f, nfev
 
 

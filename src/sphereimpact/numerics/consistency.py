@@ -24,8 +24,8 @@ import pandas as pd
 
 from ..contact.laws import LAWS
 from ..contact.separation import Separation
-from ..errors import BeyondRadiusWarning, ImpactError
-from ..impact.outcome import SCALAR_OUTPUTS
+from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
+from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS
 from ..impact.scene import SolverOptions
 from ..impact.solve import simulate
 from ..sweep.engine import SCENE_COLUMNS, scene_of, scene_table, sweep
@@ -35,7 +35,7 @@ from .reference import output_scales
 
 log = logging.getLogger(__name__)
 #: The outputs compared (every scalar output; regime and beyond_radius must be equal).
-COMPARED = tuple(key for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius"))
+COMPARED = NUMERIC_OUTPUTS
 #: The reference's options (see :func:`references`).
 REFERENCE = SolverOptions(rtol=1e-12, atol=1e-12)
 #: Largest dimensionless gravity g_n / (w v_n) drawn (see :func:`random_scenes`).
@@ -193,8 +193,9 @@ def references(table: pd.DataFrame) -> pd.DataFrame:
     accepted domain: not compared), else ''."""
     frame = scene_table(table)
     rows = []
-    with warnings.catch_warnings():  # compressions beyond the radius: flagged in both, not warned about
+    with warnings.catch_warnings():  # compressions beyond the radius, energy made: flagged in both, not warned
         warnings.simplefilter("ignore", BeyondRadiusWarning)
+        warnings.simplefilter("ignore", EnergyGainWarning)
         for i in range(len(frame)):
             try:
                 outcome = simulate(scene_of(frame.iloc[i].to_dict()), REFERENCE)
@@ -224,6 +225,7 @@ def compare(table: pd.DataFrame, reference: pd.DataFrame, swept: pd.DataFrame | 
     if alone != REFERENCE:  # the single path's rows: simulate at the sweep's own options
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", BeyondRadiusWarning)
+            warnings.simplefilter("ignore", EnergyGainWarning)
             for i in np.flatnonzero(got["path"].to_numpy() == "single"):
                 outcome = simulate(scene_of(got.loc[i, list(SCENE_COLUMNS)].to_dict()), alone)
                 for key in COMPARED:

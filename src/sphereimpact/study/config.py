@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from .. import plugins
+from .own import CHAPTER
 from ..impact.calibrate import calibrate
 from ..integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from ..contact.laws import LAWS, PARAMETER_NAMES
@@ -80,6 +81,10 @@ def options_for(config: dict, scene: Scene) -> SolverOptions:
     return options
 
 
+#: Sections only a study of one's own ball reads.
+OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges")
+
+
 def config_errors(config: dict, schema_path: str) -> list[str]:
     """Every problem of ``config``, one line each naming the config key first.
 
@@ -105,6 +110,10 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
     if not lines:
         from .own import own_errors
 
+        own_sections = [key for key in OWN_SECTIONS if key in config]
+        if config.get("study", CHAPTER) == CHAPTER and own_sections:
+            return [f"config key study: the config describes a ball of one's own ({', '.join(own_sections)}) but the "
+                    f"study is {CHAPTER!r}, the replication, which would ignore it: give study: NAME"]
         try:  # the plug-ins first: the names below may be theirs
             plugins.load(config.get("plugins", []))
         except ValueError as err:

@@ -14,7 +14,8 @@ from __future__ import annotations
 from .. import plugins
 from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated
 from ..contact.laws import LAWS, PARAMETER_NAMES
-from ..parsing import parse_range
+from ..memory import check_size
+from ..parsing import parse_range, range_count
 from ..impact.inputs import PATH_RULES
 from ..impact.scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIAL_PARAMETERS
@@ -82,6 +83,13 @@ def own_errors(config: dict) -> list[str]:
     errors = []
     if not config.get("bounces"):
         errors.append("config key bounces: a study of one's own ball needs at least one bounce")
+    try:  # sized before any range is made: a fine step would otherwise fail inside a job, out of memory
+        counts = {key: range_count(config["ranges"][key]) for key in ("speeds", "map_speeds", "map_angles")}
+        check_size({"speeds": counts["speeds"]}, "a coarser ranges.speeds")
+        check_size({"map_angles": counts["map_angles"], "map_speeds": counts["map_speeds"]},
+                   "coarser ranges.map_angles or ranges.map_speeds")
+    except ValueError as err:
+        return errors + [f"config key ranges: {err}"]
     for key in ("speeds", "map_speeds", "map_angles"):
         try:
             values = parse_range(config["ranges"][key])

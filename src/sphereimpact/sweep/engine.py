@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ImpactError
-from ..impact.outcome import SCALAR_OUTPUTS, EndState, outputs
+from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_energy, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..contact.tangential import TANGENTIALS
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
@@ -98,7 +98,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_table(scenes)
     n = len(frame)
-    result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key not in ("regime", "beyond_radius")}
+    result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key in NUMERIC_OUTPUTS}
     regime, path = _objects(n, "none"), _objects(n, "")
     options = single_options(target, settings)
     d = numbers(frame)
@@ -138,10 +138,15 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         scene = ", ".join(f"{k}={v}" for k, v in frame.iloc[i].to_dict().items())
         raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
                           "sweep resolves: try `sphereimpact simulate` on that scene")
-    beyond = result["delta_m"] > 0.5 * frame["diameter"].to_numpy()  # outside the model, as simulate flags it
+    radius = 0.5 * frame["diameter"].to_numpy()
+    beyond = result["delta_m"] > radius  # outside the model, as simulate flags it
+    mass = frame["mass"].to_numpy()
+    gained = gains_energy(result["work_t"], mass, frame["speed"].to_numpy(),
+                          frame["inertia_factor"].to_numpy() * mass * radius * radius, frame["spin"].to_numpy())
     if not todo.any():  # (rows no path took, with ``paths``, keep NaN)
         result["switches"] = result["switches"].astype(np.int64)
-    outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond})
+    outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond,
+                                     "energy_gained": gained})
     return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]],
                       pd.DataFrame({"path": pd.Series(path, dtype=object)})], axis=1)
 

@@ -20,8 +20,8 @@ import numpy as np
 import pandas as pd
 
 from ..contact.separation import Separation
-from ..errors import BeyondRadiusWarning, ImpactError, InterpolationError
-from ..impact.outcome import SCALAR_OUTPUTS
+from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
+from ..impact.outcome import NUMERIC_OUTPUTS
 from ..impact.scene import SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
@@ -222,13 +222,14 @@ class SinglePath(SweepPath):
     def _solve(rows: np.ndarray, work: Work) -> dict:
         """Every output of ``simulate`` on each row, :data:`SINGLES_CHUNK` scenes per call (a batched tangential
         kernel runs them together), progress after each; an ImpactError names the first failing row."""
-        out = {key: np.full(rows.size, np.nan) for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius")}
+        out = {key: np.full(rows.size, np.nan) for key in NUMERIC_OUTPUTS}
         regime = np.empty(rows.size, dtype=object)
         for start in range(0, rows.size, SINGLES_CHUNK):
             chunk = rows[start:start + SINGLES_CHUNK]
             scenes = [scene_of(work.frame.iloc[i].to_dict()) for i in chunk]
-            with warnings.catch_warnings():  # the table flags delta_m > R in its beyond_radius column
+            with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
+                warnings.simplefilter("ignore", EnergyGainWarning)
                 try:
                     outs = simulate_many(scenes, work.options)
                 except ImpactError:

@@ -19,6 +19,7 @@ from ..contact.separation import Separation
 from ..contact.declared import own_parameters
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
 from ..impact.scene import Scene
+from ..memory import check_size
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
 
@@ -36,6 +37,9 @@ def scene_table(scenes) -> pd.DataFrame:
     missing column is for every row: it takes the default, or its law's or model's (so one table may describe
     one row's approach by incidence and another's by the flat's tilt, one Hertz law by k and another by
     modulus), as the sweep's own tables write them."""
+    if isinstance(scenes, dict):  # sized before the grid is made, as the command line sizes its ranges
+        check_size({name: int(np.size(values)) for name, values in scenes.items()},
+                   "sweep shards of it (span= keeps them one sweep) or coarser values")
     given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
     own = own_parameters()
     unknown = [c for c in given.columns if c not in SCENE_COLUMNS and c not in own]

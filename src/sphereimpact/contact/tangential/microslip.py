@@ -57,6 +57,9 @@ ELEMENTS_SETTING = Setting("elements", "microslip's cells of the element row", 8
                            default="the convergence study's")
 TIME_STEPS_SETTING = Setting("time_steps", "microslip's time steps over the contact", 16, 10_000_000,
                              default="the convergence study's")
+#: Most cells x time steps one impact may take: the march costs about this many cell updates, so the bound
+#: keeps one impact to minutes where the settings' own maxima together would take days.
+MAX_CELL_STEPS = 10**10
 #: Time steps advanced per block of precomputed element weights (bounds the working memory).
 BLOCK = 64
 #: A contact counts as sticking in part while its tangential force is below mu P+ by more than this fraction
@@ -232,14 +235,33 @@ def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, held):
 
 def resolution(scene, normal, options) -> tuple[int, int]:
     """(elements, time steps) of one impact: the options' or the defaults, with at least
-    :data:`STEPS_PER_PERIOD` steps per period of the tangential oscillation at maximum contact."""
+    :data:`STEPS_PER_PERIOD` steps per period of the tangential oscillation at maximum contact.
+
+    Raises
+    ------
+    ValueError
+        When that needs more steps than the setting allows (a kappa far beyond a material's), or the cells
+        times the steps exceed :data:`MAX_CELL_STEPS` (naming the cost, before any of it is spent).
+    """
     elements = options.setting("elements") or ELEMENTS
-    if options.setting("time_steps") is not None:
-        return elements, options.setting("time_steps")
-    e_star, g_star = hertz_moduli(scene)
-    a_max = math.sqrt(scene.radius * max(normal.delta_m, 0.0))
-    omega_t = math.sqrt(2.0 * g_star * a_max * slip_per_impulse(scene.mass, scene.inertia_factor))
-    return elements, max(TIME_STEPS, math.ceil(STEPS_PER_PERIOD * normal.t_f * omega_t / (2.0 * math.pi)))
+    steps = options.setting("time_steps")
+    if steps is None:
+        e_star, g_star = hertz_moduli(scene)
+        a_max = math.sqrt(scene.radius * max(normal.delta_m, 0.0))
+        omega_t = math.sqrt(2.0 * g_star * a_max * slip_per_impulse(scene.mass, scene.inertia_factor))
+        needed = STEPS_PER_PERIOD * normal.t_f * omega_t / (2.0 * math.pi)
+        if not needed <= TIME_STEPS_SETTING.high:
+            raise ValueError(f"microslip: kappa {scene.kappa:g} makes the tangential spring ring {needed / STEPS_PER_PERIOD:.3g} "
+                             f"times per contact, which needs {needed:.3g} time steps ({STEPS_PER_PERIOD} a period), "
+                             f"more than the {TIME_STEPS_SETTING.high} allowed: kappa = k_t / k_n is "
+                             "2 (1 - nu) / (2 - nu), 2/3 to 1 for real materials")
+        steps = max(TIME_STEPS, math.ceil(needed))
+    if elements * steps > MAX_CELL_STEPS:
+        raise ValueError(f"microslip: {elements} cells x {steps} time steps = {elements * steps:.3g} cell-steps, more "
+                         f"than the {MAX_CELL_STEPS:.0e} one impact may take (the defaults take "
+                         f"{ELEMENTS * TIME_STEPS:.3g}, and results/microslip_resolution.csv shows how fine a "
+                         "resolution a target needs): lower elements or time_steps")
+    return elements, steps
 
 
 def _inputs(normal, time_steps: int):
