@@ -42,6 +42,7 @@ if config["study"] == "chapter4":
             "results/cor_relations.csv",
             expand("paper_figures/{fig}.png", fig=["laws_cor_speed", "laws_force"]),
             expand("paper_figures/{fig}.png", fig=["validation_kharaz", "validation_maw", "compliance_map"]),
+            "paper_figures/README.md",
             "results/readme/replication.md",
             "results/readme/speed.md",
             "results/readme/validation.md",

@@ -26,6 +26,7 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/consistency.csv",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
+           "paper_figures/README.md",
            "results/notebooks/validation.html",
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",

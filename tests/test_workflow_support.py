@@ -84,3 +84,19 @@ def test_conda_environment_mirrors_environment_txt():
     tool_names = ("snakemake", "pytest", "pytest-xdist", "ruff", "snakemake-executor-plugin-slurm")
     tools = {p for p in pins if p.split("==")[0] in tool_names}
     assert {p for p in pins if "==" in p} - tools == {p for p in pip if "==" in p}
+
+
+def test_every_figure_has_a_caption_and_the_committed_index_is_current():
+    """paper_figures/README.md (committed, rewritten by every run) is the folder's index a reader sees: it holds
+    every figure the pipeline draws, each with its caption."""
+    from sphereimpact.figures.captions import CAPTIONS, figure_index
+    from sphereimpact.figures.catalog import FIGURES
+    from sphereimpact.figures.numerics import CHARTS
+    from sphereimpact.figures.sweeps import MAPS
+
+    snakefile = (ROOT / "Snakefile").read_text()
+    drawn = {*FIGURES, *CHARTS, *MAPS, "laws_cor_speed", "laws_force", "validation_kharaz", "validation_maw",
+             "compliance_map"}
+    assert set(CAPTIONS) == drawn
+    assert all(f'"{name}"' in snakefile or name in FIGURES for name in drawn)  # each one the pipeline asks for
+    assert (ROOT / "paper_figures/README.md").read_text() == figure_index()

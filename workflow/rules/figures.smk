@@ -17,3 +17,17 @@ rule figure:
         ENV
     script:
         "../scripts/figure.py"
+
+
+rule figure_index:
+    """paper_figures/README.md: every figure with its caption (the folder's index a reader sees)."""
+    input:
+        code=code("workflow/scripts/figure_index.py"),
+    output:
+        md="paper_figures/README.md",
+    log:
+        "logs/figures/index.log",
+    conda:
+        ENV
+    script:
+        "../scripts/figure_index.py"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
 import numpy as np
 import pandas as pd
 
@@ -37,9 +38,14 @@ def work_precision_figure(csv_path: str, outputs, model: str = "modified", targe
                 ax = axes[row, col]
                 ax.axhline(target, color="gray", linewidth=0.8, linestyle=":")
                 ax.set(xlabel=x, ylabel="worst relative error", title=f"{case}, {model} law")
-        axes[0, -1].legend(fontsize=6, ncol=2, loc="upper right")
-        fig.suptitle("Work-precision: solid = reduced model, dashed = full planar model, dotted = 1e-9 target")
-        fig.tight_layout()
+        methods = list(dict.fromkeys(frame["method"]))
+        handles = [Line2D([], [], color=COLORS[m], marker="o", markersize=5, linestyle="-", label=m) for m in methods]
+        handles += [Line2D([], [], color="black", linestyle=BODY_STYLE[body], label=f"{body} body")
+                    for body in BODY_STYLE if body in set(frame["body"])]
+        handles.append(Line2D([], [], color="gray", linewidth=0.8, linestyle=":", label=f"target {target:g}"))
+        fig.suptitle("Work-precision: colour = method, line = body (solid: reduced, dashed: full planar)")
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=9, frameon=False)
         save(fig, outputs)
 
 
@@ -52,7 +58,7 @@ def stability_figure(csv_path: str, outputs) -> None:
     """Six panels, one picture per failure mode (see sphereimpact.numerics.stability)."""
     frame = pd.read_csv(csv_path)
     ok = frame[frame["status"] == "ok"]
-    with plt.rc_context(RC | {"figure.figsize": (15.0, 8.5), "legend.fontsize": 6}):
+    with plt.rc_context(RC | {"figure.figsize": (15.0, 9.0), "legend.fontsize": 7}):
         fig, ax = plt.subplots(2, 3)
         stiff = ok[ok["study"] == "stiffness"]
         for panel, name in ((ax[0, 0], "zeta"), (ax[0, 1], "k [N/m]")):
@@ -71,7 +77,8 @@ def stability_figure(csv_path: str, outputs) -> None:
         _lines(ax[1, 0], grip, "x", "nfev")
         exact = ok[(ok["study"] == "grip") & (ok["variant"].str.startswith("exact"))]
         for _, row in exact.iterrows():
-            ax[1, 0].axhline(row["nfev"], color=COLORS[row["method"]], linestyle=":", linewidth=1)
+            ax[1, 0].axhline(row["nfev"], color=COLORS[row["method"]], linestyle=":", linewidth=1,
+                             label=f"{row['method']}, exact switch (event)")
         failed = frame[(frame["study"] == "grip") & (frame["status"] != "ok")]
         ax[1, 0].set(xscale="log", yscale="log", xlabel="tanh width eps [m/s]", ylabel="nfev (rtol 1e-8)",
                      title=f"3. friction at grip: tanh(slip/eps); dotted = exact switch\n"
@@ -81,8 +88,11 @@ def stability_figure(csv_path: str, outputs) -> None:
         sep = ok[ok["study"] == "separation"]
         for variant, style in (("root on dense output (package)", "-o"), ("first step end past separation", "--x")):
             _lines(ax[1, 1], sep[sep["variant"] == variant], "x", "error", style=style)
-        ax[1, 1].set(xscale="log", yscale="log", xlabel="rtol", ylabel="relative error of t_f",
+        ax[1, 1].set(xscale="log", yscale="log", xlabel="rtol", ylabel="relative error of $t_f$",
                      title="4. separation: dense-output root (solid)\nvs first step end (dashed)")
+        handles = [Line2D([], [], color=COLORS.get(m), marker="o", markersize=3, label=m)
+                   for m in dict.fromkeys(sep["method"])]
+        ax[1, 1].legend(handles=handles, ncol=2)
         past = frame[frame["study"] == "past-separation"]
         methods = list(dict.fromkeys(past["method"]))
         xs = np.arange(len(methods))
@@ -90,8 +100,9 @@ def stability_figure(csv_path: str, outputs) -> None:
                                        (0.2, "guarded law, terminal event (package)", "seagreen")):
             part = past[past["variant"] == variant].set_index("method").reindex(methods)
             ax[1, 2].bar(xs + offset, part["nfev"], width=0.4, color=color, label=variant)
-        ax[1, 2].set(xticks=xs, xticklabels=methods, yscale="log", ylabel="nfev",
+        ax[1, 2].set(xticks=xs, yscale="log", ylabel="nfev",
                      title="5. modified law past separation:\nunguarded blows up (every method fails)")
+        ax[1, 2].set_xticklabels(methods, rotation=30, ha="right")
         ax[1, 2].legend()
         fig.tight_layout()
         save(fig, outputs)
@@ -104,7 +115,7 @@ def microslip_resolution_figure(csv_path: str, outputs) -> None:
     settings = frame.groupby(["elements", "time_steps"], as_index=False).agg(
         worst_error=("worst_error", "first"), time=("time", "median"), chosen=("chosen", "first"),
         package_default=("package_default", "first"))
-    with plt.rc_context(RC | {"figure.figsize": (11.0, 4.6)}):
+    with plt.rc_context(RC | {"figure.figsize": (13.0, 4.8)}):
         fig, (left, right) = plt.subplots(1, 2)
         colors = plt.cm.viridis(np.linspace(0.0, 0.9, settings["elements"].nunique()))
         for color, (cells, line) in zip(colors, settings.groupby("elements")):
@@ -115,15 +126,17 @@ def microslip_resolution_figure(csv_path: str, outputs) -> None:
             if mask.any():
                 left.loglog(settings["time"][mask] * 1e3, settings["worst_error"][mask], marker, color="C3",
                             markersize=11, markerfacecolor="none", label=label)
-        left.set(xlabel="median time of one impact [ms]", ylabel="worst error over the scenes",
-                 title="microslip: accuracy against cost (e_t absolute, spin relative)")
-        left.legend(fontsize=7)
+        left.set(xlabel="median time of one impact [ms]",
+                 ylabel="worst error over the scenes\n($e_t$ absolute, spin relative)",
+                 title="microslip: accuracy against cost")
+        left.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
         chosen = frame[frame["chosen"]]
         cells = int(chosen["elements"].iloc[0]) if len(chosen) else int(frame["elements"].max())
         for scene, line in frame[frame["elements"] == cells].groupby("scene", sort=False):
             right.loglog(line["time_steps"], line["error"], "-o", markersize=3, label=scene)
-        right.set(xlabel="time steps over the contact", ylabel="error", title=f"each scene, {cells} cells")
-        right.legend(fontsize=7)
+        right.set(xlabel="time steps over the contact",
+                  ylabel="error against the reference\n($e_t$ absolute, spin relative)", title=f"each scene, {cells} cells")
+        right.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
         fig.tight_layout()
         save(fig, outputs)
 
@@ -131,6 +144,11 @@ def microslip_resolution_figure(csv_path: str, outputs) -> None:
 PATH_COLORS = {"lambda-interpolant": "tab:blue", "plane": "tab:orange", "taylor-lanes": "tab:pink",
                "runge-kutta-lanes": "tab:green"}
 CRITERION_STYLE = {Separation.FORCE: "-", Separation.PENETRATION: "--"}
+#: What each path of the sweep-path study is (the figure's key).
+PATH_NOTES = {"lambda-interpolant": "a Chebyshev interpolant in lam for one zeta (one ball), from batched lanes",
+              "plane": "a Chebyshev interpolant over the (zeta, lam) plane (many balls), from batched lanes",
+              "taylor-lanes": "every scene integrated at once by the Taylor method (one lane each)",
+              "runge-kutta-lanes": "every scene integrated at once by DOP853 (one lane each)"}
 
 
 def sweep_paths_figure(csv_path: str, outputs) -> None:
@@ -148,11 +166,13 @@ def sweep_paths_figure(csv_path: str, outputs) -> None:
                 axes[0, col].loglog(line["scenes"], line["us_per_scene"], **style)
                 axes[1, col].loglog(line["scenes"], line["worst_error"], **style)
             axes[1, col].axhline(float(data["target"].iloc[0]), color="gray", linewidth=0.8, linestyle=":")
-            axes[0, col].set(ylabel="median time per scene [us]", title=comparison)
+            axes[0, col].set(ylabel="median time per scene [µs]", title=comparison)
             axes[1, col].set(xlabel="scenes in the sweep", ylabel="worst error (dotted: target)")
-        axes[0, 0].legend(fontsize=6)
+        axes[0, 0].legend(fontsize=7)
         fig.suptitle("Sweep paths where several apply: eq. 4.2 without gravity (builds included)")
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.1, 1, 1))
+        fig.text(0.01, 0.01, "\n".join(f"{name}: {PATH_NOTES[name]}" for name in PATH_COLORS), fontsize=8,
+                 va="bottom")
         save(fig, outputs)
 
 

@@ -15,6 +15,17 @@ from .catalog import FIGURES
 from .style import RC, save
 
 PUBLISHED_STYLE = dict(color="crimson", marker="x", markersize=9, mew=2, linestyle="none")
+#: Symbols of the printed values when a figure marks several: each its own, never two alike in one legend.
+PUBLISHED_MARKERS = ("x", "D", "s", "^")
+
+
+#: The chapter figures' size [in]: the axes of the chapter's proportions, the legend beside them (never on a curve).
+WIDE = (9.0, 4.2)
+
+
+def _legend(ax, fig) -> None:
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    fig.tight_layout()
 
 
 def _history(path: str, separation: str) -> pd.DataFrame:
@@ -40,17 +51,20 @@ def _time_history(run_csv, published, case, separation, title, curves, markers, 
     ``markers``: (published quantity, quantity giving its time, scale, label) for the printed values.
     """
     h, pub = _history(run_csv, separation), _published(published, case)
-    with plt.rc_context(RC):
+    with plt.rc_context(RC | {"figure.figsize": WIDE}):
         fig, ax = plt.subplots()
         for column, scale, style, label in curves:
             if style is None or h[column].abs().max() > 0:
                 ax.plot(h["t"] * 1e3, h[column] * scale, style or "-", label=label)
         _mark_times(ax, pub)
-        for key, at, scale, label in markers:
-            if key in pub:
-                ax.plot([pub.get(at, h["t"].iloc[-1]) * 1e3], [pub[key] * scale], label=label, **PUBLISHED_STYLE)
+        end = h["t"].iloc[-1] * 1e3  # the history ends where this model's contact does
+        ax.axvline(end, color="0.45", linestyle="-", linewidth=0.8, label=f"contact ends, this model: {end:.3f} ms")
+        for (key, at, scale, label), marker in zip([m for m in markers if m[0] in pub], PUBLISHED_MARKERS):
+            style = PUBLISHED_STYLE | ({"marker": marker} if marker == "x" else {"marker": marker, "mfc": "none",
+                                                                                   "markersize": 7, "mew": 1.6})
+            ax.plot([pub.get(at, h["t"].iloc[-1]) * 1e3], [pub[key] * scale], label=label, **style)
         ax.set(xlabel="time $t$ [ms]", ylabel=ylabel, title=title)
-        ax.legend(loc="best")
+        _legend(ax, fig)
     return fig
 
 
@@ -86,7 +100,7 @@ def force_deflection(previous_csv: str, modified_csv: str, published: list[dict]
                      title: str):
     """Figs 4.7 / 4.8: normal force against deflection, previous model dashed, modified solid."""
     pub = _published(published, case)
-    with plt.rc_context(RC):
+    with plt.rc_context(RC | {"figure.figsize": WIDE}):
         fig, ax = plt.subplots()
         for path, style, label in ((previous_csv, "--", "previous model, eq. 4.1"),
                                    (modified_csv, "-", "modified model, eq. 4.2")):
@@ -97,7 +111,7 @@ def force_deflection(previous_csv: str, modified_csv: str, published: list[dict]
             ax.axvline(-pub["delta_m"] * 1e3, color="crimson", linestyle=":", linewidth=1.2,
                        label="published $|\\delta_m|$")
         ax.set(xlabel="deflection $\\delta$ [mm]", ylabel="normal contact force $P$ [N]", title=title)
-        ax.legend(loc="best")
+        _legend(ax, fig)
     return fig
 
 

@@ -51,7 +51,7 @@ def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs, c
                          "would be empty")
     same_speed = math.isclose(speed, config["speed"])
     boundary = grip_boundary(table)
-    with plt.rc_context(RC | {"figure.figsize": (6.4, 6.4)}):
+    with plt.rc_context(RC | {"figure.figsize": (10.0, 6.4)}):
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True)
         top.plot(table["angle"], table["omega_f"], label="spin after impact $\\omega_f$ (rigid contact)")
         bottom.plot(table["angle"], table["ve_t"], color="tab:orange", label="contact-point slip $v_{E,t}$ (rigid contact)")
@@ -59,17 +59,17 @@ def spin_map(angle_speed_csv: str, published_path: str, config: dict, outputs, c
             compliant = pd.read_csv(compliance_csv)
             kappa = kappa_from_poisson(config["compliance"]["poisson"])
             compliant = compliant[np.isclose(compliant["kappa"], kappa)].sort_values("angle")
-            label = f"compliant contact, κ = {kappa:.3g}"
-            top.plot(compliant["angle"], compliant["omega_f"], color="tab:blue", ls=":", label=label)
-            bottom.plot(compliant["angle"], compliant["ve_t"], color="tab:orange", ls=":", label=label)
+            label = f"compliant contact, κ = {kappa:.3g} (points: its stick-slip switches change with the angle)"
+            for ax, key, color in ((top, "omega_f", "tab:blue"), (bottom, "ve_t", "tab:orange")):
+                ax.plot(compliant["angle"], compliant[key], color=color, ls="none", marker=".", ms=3, label=label)
         for ax, key in ((top, "omega_f"), (bottom, "ve_t")):
             if boundary is not None:
                 ax.axvline(boundary, color="gray", linestyle="--",
                            label=f"grip/slide boundary {boundary:.1f}°: tan β = (1 + 1/α) μ (1 + e)")
             for entry in printed(published_path, config, key) if same_speed else []:
-                ax.plot([entry["angle"]], [entry["value"]], label=f"chapter, {entry['angle']:g}°: {entry['printed']}",
+                ax.plot([entry["angle"]], [entry["value"]], label=f"chapter, {entry['angle']:g}°: {_math(entry['printed'])}",
                         **PUBLISHED_STYLE)
-            ax.legend(loc="best")
+            ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=False)
         top.set(ylabel="spin [rad/s]", title=f"Spin and slip against impact angle at {speed:g} m/s")
         bottom.set(xlabel="inclination of the flat β [deg]", ylabel="slip [m/s]")
         fig.tight_layout()
@@ -101,21 +101,37 @@ def contact_speed(speed_csv: str, outputs) -> None:
             style = "--" if model == "kelvin-voigt" else "-"
             top.plot(part["speed"], part["t_f"] * 1e3, style, label=model)
             bottom.plot(part["speed"], part["force_max"], style, label=model)
-        top.set(ylabel="contact time t_f [ms]", title="Contact time and peak force against speed (normal impact)")
-        bottom.set(xscale="log", yscale="log", xlabel="normal approach speed v_n [m/s]", ylabel="peak force [N]")
-        top.legend()
+            if "delta_f" in part and (part["delta_f"] > 0).any() and (part["delta_f"] == 0).any():
+                onset = float(part["speed"][part["delta_f"] > 0].min())  # the end switches from delta = 0 to P = 0
+                for ax in (top, bottom):
+                    ax.axvline(onset, color="0.5", linestyle=":", linewidth=1.0,
+                               label=f"{model}: from {onset:.3g} m/s the contact ends at P = 0 before δ = 0"
+                               if ax is top else None)
+        top.set(ylabel="contact time $t_f$ [ms]", title="Contact time and peak force against speed (normal impact)")
+        bottom.set(xscale="log", yscale="log", xlabel="normal approach speed $v_n$ [m/s]", ylabel="peak force [N]")
+        top.legend(fontsize=7)
         fig.tight_layout()
         save(fig, outputs)
 
 
+def _math(text: str) -> str:
+    """The chapter's printed quantities typeset as the figures' own labels (``ω_f`` -> $\\omega_f$)."""
+    for plain, math_text in (("ω_f", "$\\omega_f$"), ("v_E(t_f)", "$v_E(t_f)$")):
+        text = text.replace(plain, math_text)
+    return text
+
+
+#: Each sweep map: what it draws from (angle-speed table, speed table, published values, config, compliance).
+MAPS = {
+    "spin_map": lambda a, s, p, c, o, m: spin_map(a, p, c, o, m),
+    "cor_speed": lambda a, s, p, c, o, m: cor_speed(s, p, c, o),
+    "contact_speed": lambda a, s, p, c, o, m: contact_speed(s, o),
+}
+
+
 def draw_map(name: str, angle_speed_csv: str, speed_csv: str, published_path: str, config: dict, outputs,
              compliance_csv: str | None = None) -> None:
-    """Draw sweep map ``name`` (``spin_map``, ``cor_speed`` or ``contact_speed``) to ``outputs``."""
-    if name == "spin_map":
-        spin_map(angle_speed_csv, published_path, config, outputs, compliance_csv)
-    elif name == "cor_speed":
-        cor_speed(speed_csv, published_path, config, outputs)
-    elif name == "contact_speed":
-        contact_speed(speed_csv, outputs)
-    else:
-        raise ValueError(f"no sweep map named {name!r}")
+    """Draw sweep map ``name`` (a key of :data:`MAPS`) to ``outputs``."""
+    if name not in MAPS:
+        raise ValueError(f"no sweep map named {name!r}; the maps: {', '.join(MAPS)}")
+    MAPS[name](angle_speed_csv, speed_csv, published_path, config, outputs, compliance_csv)

@@ -9,7 +9,7 @@ import pandas as pd
 
 from ..contact.tangential import TANGENTIALS
 from .style import RC, save
-_PANELS = (("e_t", "tangential COR e_t = v_t'/v_t [-]"), ("omega_rad_s", "rebound spin |ω| [rad/s]"),
+_PANELS = (("e_t", "tangential COR $e_t = v_t'/v_t$ [-]"), ("omega_rad_s", "rebound spin |ω| [rad/s]"),
            ("rebound_angle_deg", "rebound angle of the centre [deg]"))
 
 
@@ -37,12 +37,12 @@ def kharaz(curves_csv: str, data_csv: str, summary_csv: str, outputs) -> None:
             ax.plot(points["incidence_deg"], points["value"], "o", color="C3", ms=5, label="Kharaz et al. (2001)")
             ax.axvspan(0, low, color="0.92", zorder=0)
             ax.set_ylabel(label)
-        axes[0].legend(loc="lower right", fontsize=8)
+        fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=3, fontsize=8, frameon=False)
         axes[-1].set_xlabel("incidence from the normal [deg]")
         axes[-1].set_xlim(0, max(62.0, float(data["incidence_deg"].max()) + 2))
         text = "targets met: " + ", ".join(f"{r.tangential} {r.targets_met}/{r.targets}" for r in summary.itertuples())
         axes[0].set_title(f"5 mm alumina on glass, 3.9 m/s (shaded: below {low:g}°)\n{text}", fontsize=8)
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.06, 1, 1))  # the legend below the panels, clear of every curve
         save(fig, outputs)
 
 

@@ -50,21 +50,30 @@ def merge(paths, csv_path: str) -> None:
                 out.write(handle.read())
 
 
+#: A compression left at separation below this fraction of the maximum is delta = 0 to round-off.
+END_DELTA = 1e-9
+
+
 def write_speed_table(config: dict, csv_path: str) -> None:
-    """Normal impact against speed, both force laws: COR and t_f (sweep), peak force (single impacts), and
-    whether the compression exceeds the radius (``beyond_radius``, outside the model)."""
+    """Normal impact against speed, both force laws: COR and t_f (sweep), peak force and the compression left
+    at separation ``delta_f`` [m] (single impacts: 0 where the contact ends at delta = 0, > 0 where it ends at
+    P = 0 first, the damping about to pull), and whether the compression exceeds the radius (``beyond_radius``,
+    outside the model)."""
     speeds = parse_range(config["sweep"]["cor_speed"])
     frames = []
     for model in config["models"]:
         scenes = pd.DataFrame(shared_fields(config, model) | {"speed": speeds}).assign(
             angle=0.0, model=model, separation=config["primary"]["separation"])
         table = sweep(scenes, target=config["sweep"]["target"])
-        peaks = []
+        peaks, left = [], []
         with warnings.catch_warnings():  # the table's beyond_radius column flags delta_m > R
             warnings.simplefilter("ignore", BeyondRadiusWarning)
             for speed in speeds:
                 scene = Scene(**(shared_fields(config, model) | {"speed": float(speed)}), angle=0.0, model=model,
                               separation=config["primary"]["separation"])
-                peaks.append(simulate(scene, options_for(config, scene)).force_max)
-        frames.append(table.assign(force_max=peaks))
+                out = simulate(scene, options_for(config, scene))
+                peaks.append(out.force_max)
+                at_end = float(out.motion.normal.state(out.t_f)[0])
+                left.append(at_end if at_end > END_DELTA * out.delta_m else 0.0)  # round-off of delta = 0: 0
+        frames.append(table.assign(force_max=peaks, delta_f=left))
     pd.concat(frames, ignore_index=True).to_csv(csv_path, index=False, float_format="%.12g")
