@@ -5,7 +5,7 @@ from snakemake.utils import validate
 
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.study.config import check_config
-from sphereimpact.study.workflow import config_subset, file_sources
+from sphereimpact.study.workflow import config_subset, file_sources, source_digest
 
 
 # Fail at once, naming every bad key; then let snakemake fill the schema's defaults.
@@ -23,16 +23,11 @@ def params_for(rule, case=None):
     return config_subset(config, rule, case)
 
 
-def in_project(paths):
-    """Paths inside the project (an editable install's src/) named relative to it, the others as they are."""
-    base = workflow.basedir + os.sep
-    return sorted({os.path.relpath(p, workflow.basedir) if p.startswith(base) else p for p in paths})
-
-
 def code(*files):
-    """The package sources that project files (scripts, notebooks) run, followed through the package's own
-    imports: editing any of them reruns the job (a rule's script itself is tracked by snakemake)."""
-    return in_project(p for f in files for p in file_sources(f"{workflow.basedir}/{f}"))
+    """A digest of the package sources that project files (scripts, notebooks) run, followed through the
+    package's own imports, as a rule's param: editing any of them reruns the job (snakemake's params trigger;
+    a rule's script itself is tracked by snakemake) without listing some 50 files as the job's inputs."""
+    return source_digest(p for f in files for p in file_sources(f"{workflow.basedir}/{f}"))
 
 
 def notebook_code(wildcards):

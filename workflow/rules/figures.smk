@@ -3,11 +3,11 @@ rule figure:
     input:
         runs=figure_runs,
         published=PUBLISHED,
-        code=code("workflow/scripts/figure.py"),
     output:
         png=report("paper_figures/{fig}.png", caption="../report/chapter_figure.rst", category="Chapter figures"),
         pdf="paper_figures/{fig}.pdf",
     params:
+        code=code("workflow/scripts/figure.py"),
         config=params_for("figure"),
     wildcard_constraints:
         fig="fig4_[2-8]",
@@ -21,10 +21,10 @@ rule figure:
 
 rule figure_index:
     """paper_figures/README.md: every figure with its caption (the folder's index a reader sees)."""
-    input:
-        code=code("workflow/scripts/figure_index.py"),
     output:
         md="paper_figures/README.md",
+    params:
+        code=code("workflow/scripts/figure_index.py"),
     log:
         "logs/figures/index.log",
     conda:

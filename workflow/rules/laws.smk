@@ -4,13 +4,12 @@
 
 rule laws:
     """Fit every law in laws.models, then COR, contact time and peak force against speed, and force curves."""
-    input:
-        code=code("workflow/scripts/laws.py"),
     output:
         fitted=report("results/laws_fitted.csv", caption="../report/laws.rst", category="Contact laws"),
         speed=report("results/laws.csv", caption="../report/laws.rst", category="Contact laws"),
         force="results/laws_force.csv",
     params:
+        code=code("workflow/scripts/laws.py"),
         config=params_for("laws"),
     log:
         "logs/laws/laws.log",
@@ -22,11 +21,10 @@ rule laws:
 
 rule cor_relations:
     """The COR each published relation gives against the COR it was asked for, beside exact calibration."""
-    input:
-        code=code("workflow/scripts/cor_relations.py"),
     output:
         csv=report("results/cor_relations.csv", caption="../report/laws.rst", category="Contact laws"),
     params:
+        code=code("workflow/scripts/cor_relations.py"),
         config=params_for("cor_relations"),
     log:
         "logs/laws/cor_relations.log",
@@ -42,10 +40,11 @@ rule laws_figures:
         fitted="results/laws_fitted.csv",
         speed="results/laws.csv",
         force="results/laws_force.csv",
-        code=code("workflow/scripts/laws_figures.py"),
     output:
         cor_speed=report("paper_figures/laws_cor_speed.png", caption="../report/laws.rst", category="Contact laws"),
         force=report("paper_figures/laws_force.png", caption="../report/laws.rst", category="Contact laws"),
+    params:
+        code=code("workflow/scripts/laws_figures.py"),
     log:
         "logs/laws/figures.log",
     conda:

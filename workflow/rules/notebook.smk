@@ -3,11 +3,12 @@ rule notebook:
     input:
         notebook="notebooks/{name}.py",
         results=notebook_inputs,
-        code=notebook_code,
     output:
         html=report("results/notebooks/{name}.html", caption="../report/notebook.rst", category="Notebooks"),
     wildcard_constraints:
         name="|".join(NOTEBOOKS),
+    params:
+        code=notebook_code,
     log:
         "logs/notebooks/{name}.log",
     conda:

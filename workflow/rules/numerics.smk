@@ -3,11 +3,10 @@
 
 rule work_precision:
     """Every solve_ivp method x body x tolerance (plus the closed form) against reference solutions."""
-    input:
-        code=code("workflow/scripts/numerics.py"),
     output:
         csv=report("results/work_precision.csv", caption="../report/work_precision.rst", category="Numerics"),
     params:
+        code=code("workflow/scripts/numerics.py"),
         config=params_for("work_precision"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
@@ -20,13 +19,12 @@ rule work_precision:
 
 rule bench:
     """simulate against a hand-written solve_ivp script, and the reduced model against the planar one."""
-    input:
-        code=code("workflow/scripts/bench.py"),
     output:
         csv=report("results/bench.csv", caption="../report/bench.rst", category="Numerics"),
         stages=report("results/bench_stages.csv", caption="../report/bench_stages.rst", category="Numerics"),
         profile=report("results/bench_profile.csv", caption="../report/bench_profile.rst", category="Numerics"),
     params:
+        code=code("workflow/scripts/bench.py"),
         config=params_for("bench"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
@@ -39,11 +37,10 @@ rule bench:
 
 rule stability:
     """Five failure modes measured for every method beside the package's default path."""
-    input:
-        code=code("workflow/scripts/numerics.py"),
     output:
         csv=report("results/stability.csv", caption="../report/stability.rst", category="Numerics"),
     params:
+        code=code("workflow/scripts/numerics.py"),
         config=params_for("stability", CASES[0]),
     log:
         "logs/stability.log",
@@ -57,10 +54,10 @@ rule ablation:
     """Change in every output when the model adds or drops one thing."""
     input:
         published=PUBLISHED,
-        code=code("workflow/scripts/numerics.py"),
     output:
         csv=report("results/ablation.csv", caption="../report/ablation.rst", category="Numerics"),
     params:
+        code=code("workflow/scripts/numerics.py"),
         config=params_for("ablation"),
     log:
         "logs/ablation.log",
@@ -72,12 +69,11 @@ rule ablation:
 
 rule microslip_resolution:
     """The microslip contact's accuracy against cost over cells x time steps; the default it supports."""
-    input:
-        code=code("workflow/scripts/numerics.py"),
     output:
         csv=report("results/microslip_resolution.csv", caption="../report/microslip_resolution.rst",
                    category="Numerics"),
     params:
+        code=code("workflow/scripts/numerics.py"),
         config=params_for("microslip_resolution"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
@@ -92,11 +88,12 @@ rule numerics_figure:
     """Work-precision and stability charts from their CSV files."""
     input:
         csv="results/{study}.csv",
-        code=code("workflow/scripts/numerics_figure.py"),
     output:
         png=report("paper_figures/{study}.png", caption="../report/numerics_figure.rst", category="Numerics"),
     wildcard_constraints:
         study="work_precision|stability|microslip_resolution|sweep_paths",
+    params:
+        code=code("workflow/scripts/numerics_figure.py"),
     log:
         "logs/figures/{study}.log",
     conda:

@@ -11,11 +11,11 @@ rule own_ball:
     """The study's ball: its contact law's damping (and stiffness) fitted to the measured COR (and contact time),
     or read from the configured ball file."""
     input:
-        code=code("workflow/scripts/own_ball.py"),
         ball_file=[config["ball_file"]] if config.get("ball_file") else [],
     output:
         ball=f"{OWN}/ball.json",
     params:
+        code=code("workflow/scripts/own_ball.py"),
         config=params_for("own_ball"),
     log:
         f"logs/studies/{config['study']}/ball.log",
@@ -29,11 +29,11 @@ rule own_bounces:
     """Each configured bounce: every scalar output, and its time history (units in the CSV header)."""
     input:
         ball=f"{OWN}/ball.json",
-        code=code("workflow/scripts/own_bounces.py"),
     output:
         outcomes=report(f"{OWN}/outcomes.csv", caption="../report/own.rst", category="Own study"),
         histories=expand(f"{OWN}/histories/{{bounce}}.csv", bounce=BOUNCES),
     params:
+        code=code("workflow/scripts/own_bounces.py"),
         config=params_for("own_bounces"),
     log:
         f"logs/studies/{config['study']}/bounces.log",
@@ -47,10 +47,10 @@ rule own_speed:
     """Normal impacts across the configured speeds: COR, contact time, peak force, maximum compression."""
     input:
         ball=f"{OWN}/ball.json",
-        code=code("workflow/scripts/own_sweep.py"),
     output:
         csv=f"{OWN}/speed.csv",
     params:
+        code=code("workflow/scripts/own_sweep.py"),
         config=params_for("own_speed"),
     log:
         f"logs/studies/{config['study']}/speed.log",
@@ -64,10 +64,10 @@ rule own_maps:
     """Angle to the surface x speed at the configured spin: rebound spin, velocities and angles."""
     input:
         ball=f"{OWN}/ball.json",
-        code=code("workflow/scripts/own_sweep.py"),
     output:
         csv=f"{OWN}/maps.csv",
     params:
+        code=code("workflow/scripts/own_sweep.py"),
         config=params_for("own_maps"),
     log:
         f"logs/studies/{config['study']}/maps.log",
@@ -81,10 +81,10 @@ rule own_bounce_figure:
     """One bounce's history: displacement, velocities, spin, force against compression."""
     input:
         history=f"{OWN}/histories/{{bounce}}.csv",
-        code=code("workflow/scripts/own_bounce_figure.py"),
     output:
         png=report(f"{OWN}/figures/{{bounce}}.png", caption="../report/own.rst", category="Own study"),
     params:
+        code=code("workflow/scripts/own_bounce_figure.py"),
         config=params_for("own_bounce_figure"),
     log:
         f"logs/studies/{config['study']}/figure_{{bounce}}.log",
@@ -100,12 +100,12 @@ rule own_figures:
         speed=f"{OWN}/speed.csv",
         maps=f"{OWN}/maps.csv",
         ball=f"{OWN}/ball.json",
-        code=code("workflow/scripts/own_figures.py"),
     output:
         speed=f"{OWN}/figures/speed.png",
         spin_map=f"{OWN}/figures/spin_map.png",
         rebound_map=f"{OWN}/figures/rebound_map.png",
     params:
+        code=code("workflow/scripts/own_figures.py"),
         config=params_for("own_figures"),
     log:
         f"logs/studies/{config['study']}/figures.log",
@@ -124,11 +124,11 @@ rule own_page:
         maps=f"{OWN}/maps.csv",
         figures=[*expand(f"{OWN}/figures/{{bounce}}.png", bounce=BOUNCES),
                  *(f"{OWN}/figures/{name}.png" for name in ("speed", "spin_map", "rebound_map"))],
-        code=code("workflow/scripts/own_page.py"),
     output:
         md=f"{OWN}/index.md",
         html=report(f"{OWN}/index.html", caption="../report/own.rst", category="Own study"),
     params:
+        code=code("workflow/scripts/own_page.py"),
         config=params_for("own_page"),
     log:
         f"logs/studies/{config['study']}/page.log",

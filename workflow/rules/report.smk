@@ -2,10 +2,11 @@ rule tabulate:
     """Summary table: one row per case x force model x separation criterion."""
     input:
         runs=run_files("json"),
-        code=code("workflow/scripts/tabulate.py"),
     output:
         csv=report("results/summary.csv", caption="../report/summary.rst", category="Replication"),
         md="results/summary.md",
+    params:
+        code=code("workflow/scripts/tabulate.py"),
     log:
         "logs/tabulate.log",
     conda:
@@ -19,12 +20,12 @@ rule replicate:
     input:
         runs=run_files("json"),
         published=PUBLISHED,
-        code=code("workflow/scripts/replicate.py"),
     output:
         csv=report("results/replication.csv", caption="../report/replication.rst", category="Replication"),
         md=report("results/replication.md", caption="../report/replication_md.rst", category="Replication"),
         findings="results/replication_findings.md",
     params:
+        code=code("workflow/scripts/replicate.py"),
         config=params_for("replicate"),
     log:
         "logs/replicate.log",
@@ -45,13 +46,13 @@ rule readme_snippets:
         validation_summary="results/validation_summary.csv",
         validation="results/validation.csv",
         consistency="results/consistency.csv",
-        code=code("workflow/scripts/readme_snippets.py"),
     output:
         replication="results/readme/replication.md",
         speed="results/readme/speed.md",
         validation="results/readme/validation.md",
         consistency="results/readme/consistency.md",
     params:
+        code=code("workflow/scripts/readme_snippets.py"),
         config=params_for("readme"),
     log:
         "logs/readme_snippets.log",
@@ -63,11 +64,10 @@ rule readme_snippets:
 
 rule used_config:
     """The configuration this run used (validated, defaults filled in), for the notebooks to read."""
-    input:
-        code=code("workflow/scripts/used_config.py"),
     output:
         yaml=report("results/config.yaml", caption="../report/used_config.rst", category="Replication"),
     params:
+        code=code("workflow/scripts/used_config.py"),
         config=config,
     log:
         "logs/used_config.log",

@@ -1,7 +1,5 @@
 rule simulate:
     """One impact per case x force model, under every configured separation criterion."""
-    input:
-        code=code("workflow/scripts/simulate.py"),
     output:
         csv=report(
             "results/runs/{case}_{model}.csv",
@@ -11,6 +9,7 @@ rule simulate:
         ),
         json="results/runs/{case}_{model}.json",
     params:
+        code=code("workflow/scripts/simulate.py"),
         config=lambda wildcards: params_for("simulate", wildcards.case),
     wildcard_constraints:
         case="[A-Za-z][A-Za-z0-9]*",

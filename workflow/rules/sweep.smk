@@ -5,11 +5,10 @@ SHARDS = list(range(config["sweep"]["shards"]))
 
 rule sweep_shard:
     """One contiguous block of the angle x speed sweep (interpolants span the whole sweep)."""
-    input:
-        code=code("workflow/scripts/sweep_shard.py"),
     output:
         csv=temp("results/sweep/shards/angle_speed_{shard}.csv"),
     params:
+        code=code("workflow/scripts/sweep_shard.py"),
         config=params_for("sweep_shard"),
         shard=lambda wildcards: int(wildcards.shard),
         shards=len(SHARDS),
@@ -30,9 +29,10 @@ rule sweep_merge:
     """The shards, concatenated in order: the same table as the sweep run in one piece."""
     input:
         shards=expand("results/sweep/shards/angle_speed_{shard}.csv", shard=SHARDS),
-        code=code("workflow/scripts/sweep_merge.py"),
     output:
         csv=report("results/sweep/angle_speed.csv", caption="../report/angle_speed.rst", category="Sweeps"),
+    params:
+        code=code("workflow/scripts/sweep_merge.py"),
     log:
         "logs/sweep/merge.log",
     conda:
@@ -43,11 +43,10 @@ rule sweep_merge:
 
 rule speed_table:
     """Normal impact against speed, both force laws: COR, contact time, peak force."""
-    input:
-        code=code("workflow/scripts/speed_table.py"),
     output:
         csv=report("results/sweep/speed.csv", caption="../report/speed.rst", category="Sweeps"),
     params:
+        code=code("workflow/scripts/speed_table.py"),
         config=params_for("speed_table"),
     log:
         "logs/sweep/speed.log",
@@ -64,10 +63,10 @@ rule sweep_map:
         speed="results/sweep/speed.csv",
         published=PUBLISHED,
         compliance="results/compliance_map.csv",
-        code=code("workflow/scripts/sweep_map.py"),
     output:
         png=report("paper_figures/{map}.png", caption="../report/sweep_map.rst", category="Sweeps"),
     params:
+        code=code("workflow/scripts/sweep_map.py"),
         config=params_for("sweep_map"),
     wildcard_constraints:
         map="spin_map|cor_speed|contact_speed",
@@ -81,11 +80,10 @@ rule sweep_map:
 
 rule sweep_paths:
     """The sweep paths that can solve the same scenes, timed against each other at equal target (a benchmark)."""
-    input:
-        code=code("workflow/scripts/sweep_paths.py"),
     output:
         csv=report("results/sweep_paths.csv", caption="../report/sweep_paths.rst", category="Sweeps"),
     params:
+        code=code("workflow/scripts/sweep_paths.py"),
         config=params_for("sweep_paths"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
@@ -98,11 +96,10 @@ rule sweep_paths:
 
 rule bench_sweep:
     """Throughput of the sweep engine against per-scene solving at equal accuracy (a benchmark)."""
-    input:
-        code=code("workflow/scripts/bench_sweep.py"),
     output:
         csv=report("results/bench_sweep.csv", caption="../report/bench_sweep.rst", category="Sweeps"),
     params:
+        code=code("workflow/scripts/bench_sweep.py"),
         config=params_for("bench_sweep"),
     threads: workflow.cores  # timed: no other job shares the machine
     log:
@@ -118,11 +115,10 @@ CONSISTENCY_SHARDS = list(range(config["consistency"]["shards"]))
 
 rule consistency_references:
     """simulate of one block of the differential test's random scenes: each row's reference."""
-    input:
-        code=code("workflow/scripts/consistency_references.py"),
     output:
         parquet=temp("results/consistency/references_{shard}.parquet"),
     params:
+        code=code("workflow/scripts/consistency_references.py"),
         config=params_for("consistency"),
         shard=lambda wildcards: int(wildcards.shard),
         shards=len(CONSISTENCY_SHARDS),
@@ -140,10 +136,10 @@ rule consistency:
     """The differential test: the random scenes in one table, swept, every row against its reference."""
     input:
         references=expand("results/consistency/references_{shard}.parquet", shard=CONSISTENCY_SHARDS),
-        code=code("workflow/scripts/consistency.py"),
     output:
         csv=report("results/consistency.csv", caption="../report/consistency.rst", category="Sweeps"),
     params:
+        code=code("workflow/scripts/consistency.py"),
         config=params_for("consistency"),
     log:
         "logs/consistency/consistency.log",

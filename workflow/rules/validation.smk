@@ -6,13 +6,13 @@ rule validation:
     """Each measured point against each tangential model; model curves; Maw's variables of the data."""
     input:
         data=config["validation"]["data"],
-        code=code("workflow/scripts/validation.py"),
     output:
         residuals=report("results/validation.csv", caption="../report/validation.rst", category="Validation"),
         summary=report("results/validation_summary.csv", caption="../report/validation.rst", category="Validation"),
         curves="results/validation_curves.csv",
         maw="results/validation_maw.csv",
     params:
+        code=code("workflow/scripts/validation.py"),
         config=params_for("validation"),
     log:
         "logs/validation/validation.log",
@@ -24,11 +24,10 @@ rule validation:
 
 rule compliance_map:
     """The chapter's ball over angle x kappa: where the rigid tangential contact is enough."""
-    input:
-        code=code("workflow/scripts/compliance_map.py"),
     output:
         csv=report("results/compliance_map.csv", caption="../report/validation.rst", category="Validation"),
     params:
+        code=code("workflow/scripts/compliance_map.py"),
         config=params_for("compliance_map"),
     log:
         "logs/validation/compliance_map.log",
@@ -46,12 +45,12 @@ rule validation_figures:
         summary="results/validation_summary.csv",
         maw="results/validation_maw.csv",
         map="results/compliance_map.csv",
-        code=code("workflow/scripts/validation_figures.py"),
     output:
         kharaz=report("paper_figures/validation_kharaz.png", caption="../report/validation.rst", category="Validation"),
         maw=report("paper_figures/validation_maw.png", caption="../report/validation.rst", category="Validation"),
         map=report("paper_figures/compliance_map.png", caption="../report/validation.rst", category="Validation"),
     params:
+        code=code("workflow/scripts/validation_figures.py"),
         config=params_for("validation_figures"),
     log:
         "logs/validation/figures.log",

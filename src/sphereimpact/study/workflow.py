@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import ast
 import contextlib
+import hashlib
 import logging
 import re
 import traceback
@@ -184,6 +185,22 @@ def file_sources(path: str) -> list[str]:
     """Package source files that the script or notebook at ``path`` runs: every package module it
     imports, directly or through other package modules (see :func:`package_sources`)."""
     return package_sources(*_imports(Path(path)))
+
+
+def source_digest(paths) -> str:
+    """The SHA-256 of the text of the source files ``paths`` (in sorted order, each with its name within the
+    package): it changes exactly when one of them does, so a rule that takes it as a param reruns then."""
+    digest = hashlib.sha256()
+    for path in sorted(set(paths)):
+        resolved = Path(path).resolve()
+        name = resolved.relative_to(_PACKAGE.parent) if resolved.is_relative_to(_PACKAGE.parent) else resolved.name
+        digest.update(str(name).encode() + b"\0" + _text(path) + b"\0")
+    return digest.hexdigest()
+
+
+@cache
+def _text(path: str) -> bytes:
+    return Path(path).read_bytes()
 
 
 def package_sources(*modules: str) -> list[str]:
