@@ -6,7 +6,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from sphereimpact.study.readme import TIMING_RANGE, blocks, check, differences, replication_block, update
+from sphereimpact.study.readme import (TIMING_RANGE, blocks, check, differences, replication_block, runtime_block,
+                                     update)
+from sphereimpact.study.workflow import job_seconds
 from sphereimpact.study.replication import write_report
 from sphereimpact.study.runs import run_case
 
@@ -66,12 +68,14 @@ def test_check_and_update_round_trip(tmp_path):
     readme.write_text("# T\n<!-- BEGIN GENERATED speed: x -->\nold\n<!-- END GENERATED speed -->\n"
                       "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n"
                       "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n"
-                      "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n")
+                      "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n"
+                      "<!-- BEGIN GENERATED runtime -->\nold\n<!-- END GENERATED runtime -->\n")
     snippets = tmp_path / "snippets"
     snippets.mkdir()
     (snippets / "speed.md").write_text(TABLE)
     (snippets / "validation.md").write_text("measured\n")
     (snippets / "consistency.md").write_text("compared\n")
+    (snippets / "runtime.md").write_text("took\n")
     (snippets / "replication.md").write_text("fresh\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))
@@ -93,3 +97,35 @@ def test_timed_cells_are_compared_in_their_units():
     block = "| sweep | time |\n|---|---|\n| big | 1.48 s |\n"
     assert differences(block, block.replace("1.48 s", "933 ms")) == []
     assert differences(block, block.replace("1.48 s", "93.3 ms"))  # 16x: beyond the range
+
+
+def _benchmark(path: Path, seconds: float) -> str:
+    """A benchmark file as Snakemake's ``benchmark:`` directive writes it (its first columns)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(f"s\th:m:s\tmax_rss\n{seconds}\t0:00:01\t50.0\n")
+    return str(path)
+
+
+def test_runtime_block_sums_each_part_and_the_whole(tmp_path):
+    """Jobs, rules and summed wall times per part of the pipeline, the parts in the pipeline's order, and a
+    fresh run whose times moved within the stated factor still agrees with the block."""
+    root = tmp_path / "benchmarks"
+    files = [_benchmark(root / "sweep/sweep_shard/0.tsv", 2.0), _benchmark(root / "sweep/sweep_shard/1.tsv", 3.5),
+             _benchmark(root / "simulate/simulate/normal_modified.tsv", 0.25),
+             _benchmark(root / "sweep/bench_sweep.tsv", 60.0)]
+    block = runtime_block(files, str(root))
+    rows = [line for line in block.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    assert rows == ["| the chapter's runs | `simulate` | 1 | 250 ms |",
+                    "| sweeps and their differential test | `bench_sweep`, `sweep_shard` | 3 | 65.5 s |",
+                    "| **all** | 3 rules | 4 | 65.8 s |"]
+    _benchmark(root / "sweep/bench_sweep.tsv", 150.0)  # the next run: the benchmark took 2.5 times as long
+    assert differences(block, runtime_block(files, str(root))) == []
+    with pytest.raises(ValueError, match="no benchmark files"):
+        runtime_block([], str(root))
+
+
+def test_job_seconds_refuses_a_file_that_is_not_a_benchmark(tmp_path):
+    bad = tmp_path / "x.tsv"
+    bad.write_text("time\n3\n")
+    with pytest.raises(ValueError, match="not a Snakemake benchmark file"):
+        job_seconds(str(bad))

@@ -23,6 +23,7 @@ FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
            "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
            "results/readme/speed.md", "results/readme/validation.md", "results/readme/consistency.md",
+           "results/readme/runtime.md",
            "results/consistency.csv",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
@@ -241,6 +242,8 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
                  "histories/topspin-drive.csv", "figures/topspin-drive.png", "figures/speed.png",
                  "figures/spin_map.png", "figures/rebound_map.png"):
         assert (study / name).stat().st_size > 0, name
+    took = sorted(p.name for p in (study / "benchmarks").iterdir())  # 5 jobs and a figure per bounce
+    assert len(took) == 5 + 5 and "jobs took" in (study / "index.md").read_text(), took
     import json
 
     import pandas as pd

@@ -11,6 +11,8 @@ rule figure:
         config=params_for("figure"),
     wildcard_constraints:
         fig="fig4_[2-8]",
+    benchmark:
+        "results/benchmarks/figures/figure/{fig}.tsv",
     log:
         "logs/figures/{fig}.log",
     conda:
@@ -25,6 +27,8 @@ rule figure_index:
         md="paper_figures/README.md",
     params:
         code=code("workflow/scripts/figure_index.py"),
+    benchmark:
+        "results/benchmarks/figures/figure_index.tsv",
     log:
         "logs/figures/index.log",
     conda:

@@ -11,6 +11,8 @@ rule laws:
     params:
         code=code("workflow/scripts/laws.py"),
         config=params_for("laws"),
+    benchmark:
+        "results/benchmarks/laws/laws.tsv",
     log:
         "logs/laws/laws.log",
     conda:
@@ -26,6 +28,8 @@ rule cor_relations:
     params:
         code=code("workflow/scripts/cor_relations.py"),
         config=params_for("cor_relations"),
+    benchmark:
+        "results/benchmarks/laws/cor_relations.tsv",
     log:
         "logs/laws/cor_relations.log",
     conda:
@@ -45,6 +49,8 @@ rule laws_figures:
         force=report("paper_figures/laws_force.png", caption="../report/laws.rst", category="Contact laws"),
     params:
         code=code("workflow/scripts/laws_figures.py"),
+    benchmark:
+        "results/benchmarks/laws/laws_figures.tsv",
     log:
         "logs/laws/figures.log",
     conda:

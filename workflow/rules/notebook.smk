@@ -9,6 +9,8 @@ rule notebook:
         name="|".join(NOTEBOOKS),
     params:
         code=notebook_code,
+    benchmark:
+        "results/benchmarks/notebook/notebook/{name}.tsv",
     log:
         "logs/notebooks/{name}.log",
     conda:

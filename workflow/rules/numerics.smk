@@ -9,6 +9,8 @@ rule work_precision:
         code=code("workflow/scripts/numerics.py"),
         config=params_for("work_precision"),
     threads: workflow.cores  # timed: no other job shares the machine
+    benchmark:
+        "results/benchmarks/numerics/work_precision.tsv",
     log:
         "logs/work_precision.log",
     conda:
@@ -27,6 +29,8 @@ rule bench:
         code=code("workflow/scripts/bench.py"),
         config=params_for("bench"),
     threads: workflow.cores  # timed: no other job shares the machine
+    benchmark:
+        "results/benchmarks/numerics/bench.tsv",
     log:
         "logs/bench.log",
     conda:
@@ -42,6 +46,8 @@ rule stability:
     params:
         code=code("workflow/scripts/numerics.py"),
         config=params_for("stability", CASES[0]),
+    benchmark:
+        "results/benchmarks/numerics/stability.tsv",
     log:
         "logs/stability.log",
     conda:
@@ -59,6 +65,8 @@ rule ablation:
     params:
         code=code("workflow/scripts/numerics.py"),
         config=params_for("ablation"),
+    benchmark:
+        "results/benchmarks/numerics/ablation.tsv",
     log:
         "logs/ablation.log",
     conda:
@@ -76,6 +84,8 @@ rule microslip_resolution:
         code=code("workflow/scripts/numerics.py"),
         config=params_for("microslip_resolution"),
     threads: workflow.cores  # timed: no other job shares the machine
+    benchmark:
+        "results/benchmarks/numerics/microslip_resolution.tsv",
     log:
         "logs/microslip_resolution.log",
     conda:
@@ -94,6 +104,8 @@ rule numerics_figure:
         study="work_precision|stability|microslip_resolution|sweep_paths",
     params:
         code=code("workflow/scripts/numerics_figure.py"),
+    benchmark:
+        "results/benchmarks/numerics/numerics_figure/{study}.tsv",
     log:
         "logs/figures/{study}.log",
     conda:

@@ -17,6 +17,8 @@ rule own_ball:
     params:
         code=code("workflow/scripts/own_ball.py"),
         config=params_for("own_ball"),
+    benchmark:
+        f"{OWN}/benchmarks/ball.tsv",
     log:
         f"logs/studies/{config['study']}/ball.log",
     conda:
@@ -35,6 +37,8 @@ rule own_bounces:
     params:
         code=code("workflow/scripts/own_bounces.py"),
         config=params_for("own_bounces"),
+    benchmark:
+        f"{OWN}/benchmarks/bounces.tsv",
     log:
         f"logs/studies/{config['study']}/bounces.log",
     conda:
@@ -52,6 +56,8 @@ rule own_speed:
     params:
         code=code("workflow/scripts/own_sweep.py"),
         config=params_for("own_speed"),
+    benchmark:
+        f"{OWN}/benchmarks/speed.tsv",
     log:
         f"logs/studies/{config['study']}/speed.log",
     conda:
@@ -69,6 +75,8 @@ rule own_maps:
     params:
         code=code("workflow/scripts/own_sweep.py"),
         config=params_for("own_maps"),
+    benchmark:
+        f"{OWN}/benchmarks/maps.tsv",
     log:
         f"logs/studies/{config['study']}/maps.log",
     conda:
@@ -86,6 +94,8 @@ rule own_bounce_figure:
     params:
         code=code("workflow/scripts/own_bounce_figure.py"),
         config=params_for("own_bounce_figure"),
+    benchmark:
+        f"{OWN}/benchmarks/figure_{{bounce}}.tsv",
     log:
         f"logs/studies/{config['study']}/figure_{{bounce}}.log",
     conda:
@@ -107,6 +117,8 @@ rule own_figures:
     params:
         code=code("workflow/scripts/own_figures.py"),
         config=params_for("own_figures"),
+    benchmark:
+        f"{OWN}/benchmarks/figures.tsv",
     log:
         f"logs/studies/{config['study']}/figures.log",
     conda:
@@ -124,6 +136,8 @@ rule own_page:
         maps=f"{OWN}/maps.csv",
         figures=[*expand(f"{OWN}/figures/{{bounce}}.png", bounce=BOUNCES),
                  *(f"{OWN}/figures/{name}.png" for name in ("speed", "spin_map", "rebound_map"))],
+        benchmarks=[*(f"{OWN}/benchmarks/{name}.tsv" for name in ("ball", "bounces", "speed", "maps", "figures")),
+                    *expand(f"{OWN}/benchmarks/figure_{{bounce}}.tsv", bounce=BOUNCES)],
     output:
         md=f"{OWN}/index.md",
         html=report(f"{OWN}/index.html", caption="../report/own.rst", category="Own study"),

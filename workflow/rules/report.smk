@@ -7,6 +7,8 @@ rule tabulate:
         md="results/summary.md",
     params:
         code=code("workflow/scripts/tabulate.py"),
+    benchmark:
+        "results/benchmarks/report/tabulate.tsv",
     log:
         "logs/tabulate.log",
     conda:
@@ -27,6 +29,8 @@ rule replicate:
     params:
         code=code("workflow/scripts/replicate.py"),
         config=params_for("replicate"),
+    benchmark:
+        "results/benchmarks/report/replicate.tsv",
     log:
         "logs/replicate.log",
     conda:
@@ -54,12 +58,32 @@ rule readme_snippets:
     params:
         code=code("workflow/scripts/readme_snippets.py"),
         config=params_for("readme"),
+    benchmark:
+        "results/benchmarks/report/readme_snippets.tsv",
     log:
         "logs/readme_snippets.log",
     conda:
         ENV
     script:
         "../scripts/readme_snippets.py"
+
+
+rule readme_runtime:
+    """The README's block of what the pipeline's jobs took, from their benchmark files: it runs after every
+    other job of the replication."""
+    input:
+        chapter_outputs(),
+    output:
+        md="results/readme/runtime.md",
+    params:
+        code=code("workflow/scripts/readme_runtime.py"),
+        root="results/benchmarks",
+    log:
+        "logs/readme_runtime.log",
+    conda:
+        ENV
+    script:
+        "../scripts/readme_runtime.py"
 
 
 rule used_config:
@@ -69,6 +93,8 @@ rule used_config:
     params:
         code=code("workflow/scripts/used_config.py"),
         config=config,
+    benchmark:
+        "results/benchmarks/report/used_config.tsv",
     log:
         "logs/used_config.log",
     conda:

@@ -14,6 +14,8 @@ rule simulate:
     wildcard_constraints:
         case="[A-Za-z][A-Za-z0-9]*",
         model="[a-z-]+",
+    benchmark:
+        "results/benchmarks/simulate/simulate/{case}_{model}.tsv",
     log:
         "logs/simulate/{case}_{model}.log",
     conda:

@@ -17,6 +17,8 @@ rule sweep_shard:
     resources:
         mem_mb=4000,
         runtime=30,
+    benchmark:
+        "results/benchmarks/sweep/sweep_shard/{shard}.tsv",
     log:
         "logs/sweep/shard_{shard}.log",
     conda:
@@ -33,6 +35,8 @@ rule sweep_merge:
         csv=report("results/sweep/angle_speed.csv", caption="../report/angle_speed.rst", category="Sweeps"),
     params:
         code=code("workflow/scripts/sweep_merge.py"),
+    benchmark:
+        "results/benchmarks/sweep/sweep_merge.tsv",
     log:
         "logs/sweep/merge.log",
     conda:
@@ -48,6 +52,8 @@ rule speed_table:
     params:
         code=code("workflow/scripts/speed_table.py"),
         config=params_for("speed_table"),
+    benchmark:
+        "results/benchmarks/sweep/speed_table.tsv",
     log:
         "logs/sweep/speed.log",
     conda:
@@ -70,6 +76,8 @@ rule sweep_map:
         config=params_for("sweep_map"),
     wildcard_constraints:
         map="spin_map|cor_speed|contact_speed",
+    benchmark:
+        "results/benchmarks/sweep/sweep_map/{map}.tsv",
     log:
         "logs/figures/{map}.log",
     conda:
@@ -86,6 +94,8 @@ rule sweep_paths:
         code=code("workflow/scripts/sweep_paths.py"),
         config=params_for("sweep_paths"),
     threads: workflow.cores  # timed: no other job shares the machine
+    benchmark:
+        "results/benchmarks/sweep/sweep_paths.tsv",
     log:
         "logs/sweep_paths.log",
     conda:
@@ -102,6 +112,8 @@ rule bench_sweep:
         code=code("workflow/scripts/bench_sweep.py"),
         config=params_for("bench_sweep"),
     threads: workflow.cores  # timed: no other job shares the machine
+    benchmark:
+        "results/benchmarks/sweep/bench_sweep.tsv",
     log:
         "logs/bench_sweep.log",
     conda:
@@ -124,6 +136,8 @@ rule consistency_references:
         shards=len(CONSISTENCY_SHARDS),
     wildcard_constraints:
         shard="[0-9]+",
+    benchmark:
+        "results/benchmarks/sweep/consistency_references/{shard}.tsv",
     log:
         "logs/consistency/references_{shard}.log",
     conda:
@@ -141,6 +155,8 @@ rule consistency:
     params:
         code=code("workflow/scripts/consistency.py"),
         config=params_for("consistency"),
+    benchmark:
+        "results/benchmarks/sweep/consistency.tsv",
     log:
         "logs/consistency/consistency.log",
     conda:

@@ -14,6 +14,8 @@ rule validation:
     params:
         code=code("workflow/scripts/validation.py"),
         config=params_for("validation"),
+    benchmark:
+        "results/benchmarks/validation/validation.tsv",
     log:
         "logs/validation/validation.log",
     conda:
@@ -29,6 +31,8 @@ rule compliance_map:
     params:
         code=code("workflow/scripts/compliance_map.py"),
         config=params_for("compliance_map"),
+    benchmark:
+        "results/benchmarks/validation/compliance_map.tsv",
     log:
         "logs/validation/compliance_map.log",
     conda:
@@ -52,6 +56,8 @@ rule validation_figures:
     params:
         code=code("workflow/scripts/validation_figures.py"),
         config=params_for("validation_figures"),
+    benchmark:
+        "results/benchmarks/validation/validation_figures.tsv",
     log:
         "logs/validation/figures.log",
     conda:

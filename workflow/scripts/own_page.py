@@ -8,4 +8,5 @@ with job_log(snakemake.log[0], "the study's page"):
     inp, out = snakemake.input, snakemake.output
     here = os.path.dirname(out.md)
     figures = {os.path.splitext(os.path.basename(p))[0]: os.path.relpath(p, here) for p in inp.figures}
-    write_page(snakemake.params.config, inp.ball, inp.outcomes, inp.speed, inp.maps, figures, out.md, out.html)
+    write_page(snakemake.params.config, inp.ball, inp.outcomes, inp.speed, inp.maps, figures, out.md, out.html,
+               list(inp.benchmarks))

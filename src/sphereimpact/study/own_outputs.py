@@ -17,6 +17,7 @@ from ..parsing import parse_range
 from ..sweep.engine import grid, sweep
 from ..sweep.io import write_table
 from .own import bounce_scene, study_ball
+from .workflow import job_seconds
 
 #: Units of the columns of ``outcomes.csv`` (in its header, as the histories have them).
 BOUNCE_UNITS = {"speed": "m/s", "angle_to_surface": "deg", "incidence": "deg", "spin": "rad/s"} | {
@@ -114,10 +115,11 @@ def ball_parameters(ball) -> list[tuple[str, str]]:
 
 
 def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, maps_csv: str, figures: dict,
-               md_path: str, html_path: str) -> None:
+               md_path: str, html_path: str, benchmarks=()) -> None:
     """One page, Markdown and HTML, that shows the study: the ball and what was fitted, each bounce's outputs
     and figure, the speed curve and the maps (``figures``: name -> path relative to the page), each figure with
-    its caption, and a line for every bounce far from the calibration's speed."""
+    its caption, a line for every bounce far from the calibration's speed, and what the study's jobs took
+    (``benchmarks``: Snakemake's benchmark files of its jobs, the page's own aside)."""
     ball, outcomes = load_ball(ball_json), read_history(outcomes_csv)
     scene, speed, maps = ball.scene, pd.read_csv(speed_csv), pd.read_csv(maps_csv)
     measured = ball.measurement
@@ -136,8 +138,11 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
                       f"{FAR:g} times either way the calibrated law extrapolates.")
     far = [f"{name}: {line}" for name, spec in config["bounces"].items()
            if (line := ball.far_from_measurement(bounce_scene(scene, spec)))]
+    took = [job_seconds(path) for path in benchmarks]
     blocks = [("h1", f"Study `{config['study']}`: {scene.model} contact, {len(outcomes)} bounces"),
               ("p", f"Source of the ball's numbers: {ball.source or '—'}"),
+              *([("p", f"The run that wrote this page: its {len(took)} jobs took {sum(took):.3g} s in all, the "
+                       f"longest {max(took):.3g} s (Snakemake's benchmarks, `benchmarks/`).")] if took else []),
               ("table", (["parameter", "value"], ball_parameters(ball))),
               ("h2", "Bounces (`outcomes.csv`, histories in `histories/`)"),
               ("table", (header, [[_cell(v) for v in row] for row in outcomes[shown].itertuples(index=False)]))]

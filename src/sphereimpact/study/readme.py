@@ -25,9 +25,10 @@ import pandas as pd
 
 from ..numerics.reference import FINE_DIGITS
 from .tables import markdown_table
+from .workflow import job_seconds
 
 #: Blocks of the README, in order.
-BLOCKS = ("replication", "speed", "validation", "consistency")
+BLOCKS = ("replication", "speed", "validation", "consistency", "runtime")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on
 #: this project's 2-core machines: one timing moved by up to 1.8x between two idle runs (garbage collector
 #: off), and a speed-up is the ratio of two timings.
@@ -189,6 +190,38 @@ def consistency_block(consistency_csv: str, target: float = 1e-8) -> str:
             f"{agreement}; {refused} scenes simulate refuses (outside the accepted domain) left out.\n")
 
 
+#: The pipeline's parts (``results/benchmarks/<part>/...``, one per rule file), as the runtime block names them.
+PARTS = {"simulate": "the chapter's runs", "report": "tables and README blocks", "figures": "the chapter's figures",
+         "numerics": "numerics: accuracy, stability, benchmarks", "sweep": "sweeps and their differential test",
+         "laws": "contact laws", "validation": "validation against measurements", "notebook": "notebooks"}
+
+
+def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
+    """What the pipeline's jobs took, per part of the pipeline, from Snakemake's benchmark files under
+    ``root`` (``<root>/<part>/<rule>[/<wildcards>].tsv``): rules, jobs and the sum of their wall times."""
+    rows = []
+    for path in benchmark_files:
+        part, rule = Path(path).relative_to(root).with_suffix("").parts[:2]
+        rows.append((part, rule, job_seconds(path)))
+    if not rows:
+        raise ValueError(f"no benchmark files under {root}: run the pipeline first")
+    table = pd.DataFrame(rows, columns=["part", "rule", "seconds"])
+    order = [p for p in PARTS if p in set(table["part"])] + sorted(set(table["part"]) - set(PARTS))
+    lines = []
+    for part in order:
+        jobs = table[table["part"] == part]
+        lines.append((PARTS.get(part, part), ", ".join(f"`{r}`" for r in sorted(set(jobs["rule"]))), str(len(jobs)),
+                      _seconds(float(jobs["seconds"].sum()))))
+    lines.append(("**all**", f"{table['rule'].nunique()} rules", str(len(table)), _seconds(float(table["seconds"].sum()))))
+    return "\n\n".join([
+        f"What the last `snakemake --cores 2` took (`{root}/`, Snakemake's `benchmark:` file of each job): the "
+        "sum of its jobs' wall times. Two jobs run at once but the timed ones (benchmarks, work-precision), "
+        "which run alone, so the run itself takes between half this sum and all of it, plus Snakemake's own "
+        "start-up.",
+        _table(("part of the pipeline", "rules", "jobs", "time"), lines),
+    ]) + "\n"
+
+
 def _seconds(value: float) -> str:
     return f"{value * 1e3:.3g} ms" if value < 1 else f"{value:.3g} s"
 
@@ -201,6 +234,11 @@ def write_snippets(config: dict, replication_csv: str, findings_md: str, bench_c
     Path(speed_out).write_text(speed_block(bench_csv, bench_sweep_csv), encoding="utf-8")
     Path(validation_out).write_text(validation_block(validation_summary_csv, validation_csv), encoding="utf-8")
     Path(consistency_out).write_text(consistency_block(consistency_csv), encoding="utf-8")
+
+
+def write_runtime(root: str, out: str) -> None:
+    """Write the runtime block from every benchmark file under ``root`` (each job's latest run)."""
+    Path(out).write_text(runtime_block(sorted(str(p) for p in Path(root).rglob("*.tsv")), root), encoding="utf-8")
 
 
 def blocks(text: str) -> dict[str, tuple[int, int]]:

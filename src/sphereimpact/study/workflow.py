@@ -236,3 +236,14 @@ def job_log(path: str, what: str):
         logging.error("failed: %s\n%s", what, traceback.format_exc())
         raise
     logging.info("done: %s", what)
+
+
+def job_seconds(path: str) -> float:
+    """The wall time [s] of one job, from the benchmark file Snakemake's ``benchmark:`` directive wrote
+    (tab-separated, its ``s`` column)."""
+    with open(path, encoding="utf-8") as handle:
+        header, values = handle.readline().rstrip("\n").split("\t"), handle.readline().rstrip("\n").split("\t")
+    try:
+        return float(values[header.index("s")])
+    except (ValueError, IndexError) as err:
+        raise ValueError(f"{path}: not a Snakemake benchmark file (no wall time in its 's' column)") from err
