@@ -99,6 +99,10 @@ def test_help_documents_every_option_with_units():
     sweep = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--help"], capture_output=True, text=True)
     assert "in [0, 90) degrees" in sweep.stdout and "> 0 kg" in sweep.stdout
     assert "default: None" not in sweep.stdout
+    for text in (out.stdout, sweep.stdout):  # the rebound direction in both conventions, with their signs
+        flat = " ".join(text.split())
+        assert "from the surface normal [deg], in (-90, 90), negative when the ball kicks back" in flat
+        assert "rebound_angle_to_surface = 90 - rebound_angle" in flat and "above 90 when the ball kicks back" in flat
 
 
 def test_history_and_plot_from_the_command_line(tmp_path, capsys):

@@ -10,7 +10,9 @@ import yaml
 
 from sphereimpact import simulate
 from sphereimpact.contact.tangential import kappa_from_poisson
-from sphereimpact.study.validation import effective_moduli, experiment, load_data, residuals, summary
+from sphereimpact import effective_moduli
+from sphereimpact.contact.materials import dundurs_beta
+from sphereimpact.study.validation import experiment, load_data, residuals, summary
 
 ROOT = Path(__file__).resolve().parents[1]
 SECTION = yaml.safe_load((ROOT / "config/config.yaml").read_text())["validation"]
@@ -24,6 +26,17 @@ def exp():
 @pytest.fixture(scope="module")
 def data():
     return load_data(str(ROOT / SECTION["data"]))
+
+
+def test_effective_moduli_of_a_rigid_flat_and_of_a_pair_that_swaps():
+    """A rigid flat (E2 infinite) leaves the ball's E / (1 - nu^2) and G / (2 - nu); the pair is symmetric and
+    Dundurs' beta changes sign when the bodies swap, and vanishes for like materials."""
+    e_star, g_star = effective_moduli(1e7, 0.49, math.inf, 0.3)
+    assert e_star == pytest.approx(1e7 / (1 - 0.49 ** 2), rel=1e-15)
+    assert g_star == pytest.approx(1e7 / (2 * 1.49) / (2 - 0.49), rel=1e-15)
+    assert effective_moduli(70e9, 0.33, 380e9, 0.23) == pytest.approx(effective_moduli(380e9, 0.23, 70e9, 0.33), rel=1e-15)
+    assert dundurs_beta(70e9, 0.33, 380e9, 0.23) == pytest.approx(-dundurs_beta(380e9, 0.23, 70e9, 0.33), rel=1e-14)
+    assert dundurs_beta(70e9, 0.33, 70e9, 0.33) == 0.0
 
 
 def test_effective_moduli_of_like_materials_give_mindlins_ratio():

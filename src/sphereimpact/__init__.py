@@ -9,6 +9,7 @@ Quick use::
 
 from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .contact.laws import LAWS, ContactLaw
+from .contact.materials import effective_moduli
 from .contact.parameters import Parameter, Setting
 from .contact.separation import Separation
 from .impact.ball import Ball, Measurement, ball_scene, calibrated_ball, load_ball, save_ball
@@ -18,5 +19,6 @@ from .impact.solve import simulate
 
 __all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "EnergyGainWarning", "HISTORY_COLUMNS", "ImpactError",
            "LAWS", "Measurement", "OUTPUT_KEYS", "Outcome", "Parameter", "Scene", "Separation", "Setting",
-           "SolverOptions", "ball_scene", "calibrated_ball", "load_ball", "save_ball", "simulate"]
+           "SolverOptions", "ball_scene", "calibrated_ball", "effective_moduli", "load_ball", "save_ball",
+           "simulate"]
 __version__ = "0.1.0"

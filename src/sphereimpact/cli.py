@@ -54,6 +54,12 @@ RANGED = {"angle": "deg", "speed": "m/s", "mu": "-", "mass": "kg", "diameter": "
 #: Help for --plugin.
 PLUGIN_HELP = ("import MODULE first (repeatable): a plug-in that registers laws, tangential models or integrators, "
                "whose names and parameters the other options then take")
+#: How the outputs give a direction, in both conventions the inputs accept (the help's last paragraph).
+OUTPUT_ANGLES = ("Rebound directions: rebound_angle is the centre's, from the surface normal [deg], in (-90, 90), "
+                 "negative when the ball kicks back against its incoming tangential motion (rebound_angle_contact: "
+                 "the contact point's); rebound_angle_to_surface = 90 - rebound_angle is the same direction as its "
+                 "angle to the surface, the convention of --angle-to-surface, in (0, 180), above 90 when the ball "
+                 "kicks back. energy_gained flags a tangential model that made energy (work_t > 0).")
 #: Seconds after which a sweep on a terminal shows its progress.
 PROGRESS_AFTER = 2.0
 #: Help for the approach and the incoming spin, shared by simulate and sweep.
@@ -157,7 +163,7 @@ def _parser() -> argparse.ArgumentParser:
     sim = sub.add_parser(
         "simulate", help="simulate one impact and print its outputs", formatter_class=_Help,
         description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
-                    "Numbers may be fractions (2/3).")
+                    "Numbers may be fractions (2/3).", epilog=OUTPUT_ANGLES)
     add = sim.add_argument
     add("--plugin", action="append", default=None, metavar="MODULE", help=PLUGIN_HELP)
     add("--angle", type=_number, default=_D.angle, metavar="DEG", help=APPROACH_HELP["angle"])
@@ -227,9 +233,9 @@ def _parser() -> argparse.ArgumentParser:
         "sweep", help="simulate a grid of impacts and write one row per scene", formatter_class=_Help,
         description="Simulate every combination of the given values (START:STOP:STEP ranges, stop included, or "
                     "single numbers; a negative value is read as a value, so --angle -10:10:1 reaches the range "
-                    "check) and write one row per scene: its parameters and the outputs of `simulate` (t_m, delta_m, "
-                    "t_f, vc_t, vc_n, ve_t, ve_n, omega_f, cor, regime, beyond_radius), SI units. The size and memory of the "
-                    "sweep and the output file are checked before any work.")
+                    "check) and write one row per scene: its parameters and the outputs of `simulate` (every scalar "
+                    "output by default; --outputs chooses), SI units. The size and memory of the sweep and the "
+                    "output file are checked before any work.", epilog=OUTPUT_ANGLES)
     swp.add_argument("--plugin", action="append", default=None, metavar="MODULE", help=PLUGIN_HELP)
     for name, unit in RANGED.items():
         default = getattr(_D, name)
