@@ -17,6 +17,7 @@ LAYERS = (
     {"integrators"},  # the normal motion of one impact
     {"impact"},  # one impact: Scene, simulate, the outputs of an end state, calibration
     {"sweep"},  # many impacts
+    {"fit"},  # parameters from measured bounces, through the sweep
     {"numerics"},  # the numerical studies
     {"study", "figures"},  # the pipeline's studies and their drawings
     {"cli", "__main__", "__init__"},  # the command line and the public API

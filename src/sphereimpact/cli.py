@@ -30,6 +30,7 @@ from .impact.scene import ATOL_RANGE, RTOL_RANGE, STANDARD_GRAVITY, Scene, Solve
 from .impact.solve import BODIES, simulate
 from .contact.declared import own_parameters, settings as declared_settings
 from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
+from .fit import FIT_FILES, FREE, MEASURABLE
 
 _D = Scene()
 _O = SolverOptions()
@@ -154,17 +155,10 @@ def _number(text: str) -> float:
         raise argparse.ArgumentTypeError(str(err)) from None
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="sphereimpact",
-                     description="Impact of a rigid-body sphere on a rigid inclined flat (spring-damper contact, "
-                                 "Coulomb friction).")
-    parser.add_argument("--version", action="version", version=f"sphereimpact {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    sim = sub.add_parser(
-        "simulate", help="simulate one impact and print its outputs", formatter_class=_Help,
-        description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
-                    "Numbers may be fractions (2/3).", epilog=OUTPUT_ANGLES)
-    add = sim.add_argument
+def _scene_options(parser: argparse.ArgumentParser) -> None:
+    """The options that describe a scene (the approach, the ball, its contact and surface, a ball file, the
+    calibration from a measured COR): ``simulate``'s and ``fit``'s."""
+    add = parser.add_argument
     add("--plugin", action="append", default=None, metavar="MODULE", help=PLUGIN_HELP)
     add("--angle", type=_number, default=_D.angle, metavar="DEG", help=APPROACH_HELP["angle"])
     add("--speed", type=_number, default=_D.speed, metavar="M_S", help=APPROACH_HELP["speed"])
@@ -189,9 +183,6 @@ def _parser() -> argparse.ArgumentParser:
     add("--ball", default=None, metavar="FILE",
         help="the ball, its contact and surface from a ball file (--save-ball, a study's ball.json); give only "
              "the approach, the surface (--mu, --gravity) and the solver's options")
-    add("--save-ball", default=None, metavar="FILE",
-        help="also write this ball (calibrated, with --cor) to FILE as JSON, for --ball, load_ball and a study's "
-             "ball_file")
     tangential_help = _tangential_help()
     add("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential, help=tangential_help["tangential"])
     for name in TANGENTIAL_PARAMETERS:
@@ -207,6 +198,25 @@ def _parser() -> argparse.ArgumentParser:
     add("--gravity", type=_number, nargs="?", const=STANDARD_GRAVITY, default=_D.gravity, metavar="G",
         help=f"gravitational acceleration [m/s^2], >= 0; the bare flag means {STANDARD_GRAVITY} "
              f"(default: {_D.gravity})")
+    for name, text in _setting_flags().items():
+        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="sphereimpact",
+                     description="Impact of a rigid-body sphere on a rigid inclined flat (spring-damper contact, "
+                                 "Coulomb friction).")
+    parser.add_argument("--version", action="version", version=f"sphereimpact {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    sim = sub.add_parser(
+        "simulate", help="simulate one impact and print its outputs", formatter_class=_Help,
+        description="Simulate one impact and print its outputs (SI units). Defaults are the chapter's. "
+                    "Numbers may be fractions (2/3).", epilog=OUTPUT_ANGLES)
+    _scene_options(sim)
+    add = sim.add_argument
+    add("--save-ball", default=None, metavar="FILE",
+        help="also write this ball (calibrated, with --cor) to FILE as JSON, for --ball, load_ball and a study's "
+             "ball_file")
     add("--method", default=_O.method, metavar="NAME",
         help="integrator: " + ", ".join(method_names()) + " (default auto: the law's closed form where it has one, "
              "else the Taylor method where it has a series (eq. 4.2, linear-hunt-crossley), else DOP853-scalar; "
@@ -214,8 +224,6 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
-    for name, text in _setting_flags().items():
-        add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
     add("--body", choices=BODIES, default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
@@ -252,6 +260,7 @@ def _parser() -> argparse.ArgumentParser:
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
     swp.add_argument("--model", default=_D.model, help="force law: " + ", ".join(LAWS))
+    tangential_help = _tangential_help()
     swp.add_argument("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential,
                      help=tangential_help["tangential"] + " (compliant scenes are solved one by one)")
     for name in TANGENTIAL_PARAMETERS:
@@ -286,6 +295,33 @@ def _parser() -> argparse.ArgumentParser:
     swp.add_argument("--out", required=True, metavar="FILE",
                      help="output table, .csv or .parquet (its folder must exist)")
     swp.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
+
+    fit = sub.add_parser(
+        "fit", help="fit a ball's parameters to measured bounces", formatter_class=_Help,
+        description="Fit the --free parameters of the ball (described as for simulate, or --ball FILE) to measured "
+                    "bounces by weighted least squares, and print each with its standard error. MEASURED is a CSV: "
+                    "one bounce per row, its approach (speed, incidence or angle_to_surface or angle, spin; a "
+                    "column left out takes the value of the options) and measured outputs named like simulate's "
+                    f"({', '.join(MEASURABLE)}; SI, contact frame), any subset, each with an optional "
+                    "sigma_<output> column (standard uncertainty); or the long layout of the shipped Kharaz data "
+                    "(quantity, incidence_deg, value).", epilog=OUTPUT_ANGLES)
+    fit.add_argument("measured", metavar="MEASURED", help="the measured bounces, a CSV file")
+    fit.add_argument("--free", required=True, metavar="NAMES",
+                     help=f"comma-separated parameters to fit, of {', '.join(FREE)} (cor: the measured COR the "
+                          "damping is calibrated to, with --cor)")
+    _scene_options(fit)
+    fit.add_argument("--bootstrap", type=int, default=0, metavar="N",
+                     help="also refit N resamplings of the bounces, an integer in [0, 10000]: their spread is a "
+                          "second standard error")
+    fit.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed, an integer >= 0")
+    fit.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every model value, in "
+                     "[1e-12, 1e-3]")
+    fit.add_argument("--json", action="store_true", help="print one JSON object (per parameter value, stderr, "
+                     "identifiable; the correlation; the residual statistics) instead of the readable table")
+    fit.add_argument("--out", default=None, metavar="DIR",
+                     help=f"also write {', '.join(FIT_FILES)} into DIR (made if missing): the fitted ball for "
+                          "--ball, load_ball and a study's ball_file, the residuals and data against model")
+    fit.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
     return parser
 
 
@@ -573,6 +609,53 @@ def _simulate(args) -> None:
         sys.stdout.write(_readable(outputs, units) + "\n")
 
 
+def _fit(args) -> None:
+    """``sphereimpact fit``: the ball from the options, the bounces from MEASURED, the fit printed (and
+    written with --out)."""
+    from .fit import fit, read_measured
+    from .study.fitting import finite, write_fit
+
+    if not 0 <= args.bootstrap <= 10_000:
+        raise ValueError(f"bootstrap must be an integer in [0, 10000]; got {args.bootstrap}")
+    if args.seed < 0:
+        raise ValueError(f"seed must be an integer >= 0; got {args.seed}")
+    if not (math.isfinite(args.target) and 1e-12 <= args.target <= 1e-3):
+        raise ValueError(f"target must be a finite number in [1e-12, 1e-3]; got {args.target!r}")
+    if args.out is not None:
+        if os.path.exists(args.out) and not os.path.isdir(args.out):
+            raise ValueError(f"out is a file, not a folder: {args.out!r}")
+        if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
+            raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
+        os.makedirs(args.out, exist_ok=True)
+        for name in FIT_FILES:
+            check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
+    ball = _ball(args)
+    approach = {name: getattr(args, name) for name in APPROACH if name in args.given}
+    if ball is None:
+        ball = Ball(Scene(**_ball_fields(args), **{name: getattr(args, name) for name in APPROACH}),
+                    options=SolverOptions(settings=_settings(args)), plugins=tuple(args.plugin or ()))
+    elif approach:
+        ball = replace(ball, scene=ball_scene(ball, **approach))
+    free = [name.strip() for name in args.free.split(",") if name.strip()]
+    result = fit(read_measured(args.measured), ball, free, args.bootstrap, args.seed, args.target)
+    if args.out is not None:
+        write_fit(result, args.out)
+    if args.json:
+        json.dump(finite(result.as_dict()), sys.stdout, indent=2)
+        sys.stdout.write("\n")
+        return
+    stats = result.statistics
+    lines = [f"fitted to {stats['values']} measured values of {stats['bounces']} bounces ({args.measured})"]
+    for name, p in result.parameters.items():
+        boot = "" if math.isnan(p.bootstrap_stderr) else f"  (bootstrap {p.bootstrap_stderr:.3g})"
+        flag = "" if p.identifiable else "  not identifiable"
+        lines.append(f"{name:<16}{p.value:>16.8g} ± {p.stderr:<12.3g}{boot}{flag}")
+    lines.append(f"chi2 / dof       {stats['reduced_chi2']:.4g} ({stats['dof']} degrees of freedom)")
+    lines += [f"rms {q:<12}{v:>16.6g} {MEASURABLE[q]}" for q, v in stats["rms"].items()]
+    lines += [f"note: {note}" for note in result.notes]
+    sys.stdout.write("\n".join(lines) + "\n")
+
+
 def run(argv=None) -> int:
     """Parse ``argv`` and run the command; return the exit status (0 done, 1 failed, 2 bad input).
 
@@ -584,7 +667,7 @@ def run(argv=None) -> int:
         parser = _parser()
         args = parser.parse_args(_values_as_one_token(argv, parser))
         args.given = _given(argv, parser, args.command)
-        _sweep(args) if args.command == "sweep" else _simulate(args)
+        {"sweep": _sweep, "simulate": _simulate, "fit": _fit}[args.command](args)
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
     except MemoryError:

@@ -1,0 +1,53 @@
+"""A fit's data against its model: one panel per measured quantity, the model's uncertainty as a band."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from ..impact.outcome import OUTPUT_UNITS
+from .style import RC, save
+
+#: Axis labels of the derived quantities (the others are named as simulate's outputs, with units).
+_LABELS = {"e_t": "e_t = v_t'/v_t [-]", "abs_omega_f": "|ω_f| [rad/s]"}
+
+
+def fit_figure(residuals: pd.DataFrame, title: str, outputs) -> None:
+    """Measured values (with their standard uncertainty where one was given) and the fitted model at each
+    bounce, against the bounce's incidence from the normal (or its speed, when every bounce is normal), the
+    model's standard error from the parameters' covariance as a band (±2 standard errors)."""
+    quantities = list(dict.fromkeys(residuals["quantity"]))
+    x_name = "incidence" if residuals["incidence"].nunique() > 1 else "speed"
+    x_label = "incidence from the normal [deg]" if x_name == "incidence" else "approach speed [m/s]"
+    with plt.rc_context(RC | {"figure.figsize": (6.4, 2.6 * len(quantities) + 0.8)}):
+        fig, axes = plt.subplots(len(quantities), 1, sharex=True, squeeze=False)
+        for ax, name in zip(axes[:, 0], quantities):
+            rows = residuals[residuals["quantity"] == name].sort_values(x_name)
+            x, model, band = rows[x_name].to_numpy(), rows["model"].to_numpy(), 2.0 * rows["model_stderr"].to_numpy()
+            ax.fill_between(x, model - band, model + band, color="C0", alpha=0.25, lw=0,
+                            label="model ± 2 standard errors")
+            ax.plot(x, model, "-", color="C0", label="fitted model")
+            given = rows["sigma_given"].to_numpy(bool)
+            ax.errorbar(x[given], rows["measured"].to_numpy()[given], yerr=rows["sigma"].to_numpy()[given], fmt="o",
+                        color="C3", ms=4, capsize=2, label="measured ± its uncertainty")
+            ax.plot(x[~given], rows["measured"].to_numpy()[~given], "o", color="C3", ms=4, mfc="none",
+                    label="measured (no uncertainty given)")
+            unit = OUTPUT_UNITS.get(name, "")
+            ax.set_ylabel(_LABELS.get(name, f"{name} [{unit}]" if unit else name))
+        handles, labels = axes[0, 0].get_legend_handles_labels()
+        shown = [(h, lab) for h, lab in zip(handles, labels) if not _empty(h)]
+        fig.legend(*zip(*shown), loc="lower center", ncol=2, fontsize=8, frameon=False)
+        axes[-1, 0].set_xlabel(x_label)
+        axes[0, 0].set_title(title, fontsize=8)
+        fig.tight_layout(rect=(0, 0.07 if len(quantities) > 1 else 0.12, 1, 1))
+        save(fig, outputs)
+
+
+def _empty(handle) -> bool:
+    """A legend entry of an artist that drew nothing (no points of that kind)."""
+    data = getattr(handle, "get_xdata", None)
+    if data is not None:
+        return len(np.atleast_1d(data())) == 0
+    lines = getattr(handle, "lines", None)
+    return bool(lines) and len(np.atleast_1d(lines[0].get_xdata())) == 0

@@ -1,0 +1,365 @@
+"""Fit a ball's parameters to measured bounces: weighted least squares with honest uncertainties.
+
+The model of every bounce is :func:`sphereimpact.sweep.sweep` (``simulate``'s answer to the sweep's target) of
+the ball with the free parameters changed; a ball calibrated to a measured COR keeps that COR while its other
+normal-law parameters move (its damping is calibrated again), and ``cor`` itself may be free.  scipy's
+``least_squares`` (trust-region reflective, bounds) minimises the residuals weighted by each value's
+uncertainty; the free parameters that are positive scales are fitted in their logarithm.
+
+Uncertainties: a quantity measured with a stated ``sigma`` is weighted by it (absolute weights); a quantity
+without one is weighted by its own residual scatter at the solution, estimated in a second pass (so each
+quantity counts by how well the model fits it).  Standard errors come from the Jacobian at the solution
+(the covariance (J^T J)^-1 of the weighted problem); an optional bootstrap refits resampled bounces.  A
+parameter whose standard error exceeds its value, or whose column of the Jacobian is numerically zero, is
+reported as not identifiable from the data given.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import least_squares
+
+from ..impact.ball import Ball, ball_columns, calibrated_ball
+from ..impact.scene import Scene
+from ..sweep.engine import sweep
+from ..sweep.scenes import incidence
+from .measured import APPROACH, MEASURABLE, SOURCES, Measured, quantity
+
+#: Parameters a fit may free -> (lower bound, upper bound, fitted in its logarithm).
+FREE = {
+    "mu": (0.0, math.inf, False), "kappa": (0.0, math.inf, True), "k": (0.0, math.inf, True),
+    "modulus": (0.0, math.inf, True), "b": (0.0, math.inf, True), "chi": (0.0, math.inf, True),
+    "cor": (1e-6, 1.0 - 1e-9, False), "inertia_factor": (1e-6, 2.0 / 3.0, False), "exponent": (1.0, 3.0, False),
+}
+#: The files of a fit's folder (``sphereimpact fit --out DIR``, the pipeline's fits).
+FIT_FILES = ("ball.json", "fit.json", "residuals.csv", "fit.png")
+#: Relative step of the finite-difference Jacobian: the model is accurate to the sweep's target (1e-8), so a
+#: central difference over this step is accurate to about 1e-4 relative.
+DIFF_STEP = 1e-4
+#: A parameter fitted in its logarithm stays within this factor of its start either way (a flat direction of
+#: the residuals, a parameter the data do not constrain, must not walk to overflow).
+LOG_WINDOW = 1e6
+#: A parameter is not identifiable when its standard error exceeds this fraction of its value.
+UNIDENTIFIABLE = 1.0
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One fitted parameter: its value, standard error (Jacobian), bootstrap standard error (NaN without a
+    bootstrap) and whether the data pin it down."""
+
+    value: float
+    stderr: float
+    bootstrap_stderr: float = math.nan
+    identifiable: bool = True
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """What :func:`fit` found.
+
+    Attributes
+    ----------
+    ball : Ball
+        The ball with the fitted values (``fitted`` lists them; ``source`` says from which data).
+    parameters : dict
+        Name -> :class:`Parameter`.
+    correlation : DataFrame
+        The free parameters' correlation matrix.
+    residuals : DataFrame
+        One row per measured value: the bounce's approach, ``quantity`` and its ``unit``, ``measured``, ``model``, ``sigma`` (the
+        weight used), ``sigma_given`` (whether it was measured), ``residual`` (model - measured) and
+        ``model_stderr`` (the model's standard error there, from the parameters' covariance).
+    statistics : dict
+        ``values`` (n), ``free`` (p), ``dof``, ``chi2`` and ``reduced_chi2`` of the weighted residuals, ``rms``
+        per quantity, the optimiser's ``evaluations`` and ``status`` message.
+    notes : list of str
+        What the reader must know (a parameter not identifiable, weights estimated from the residuals).
+    """
+
+    ball: Ball
+    parameters: dict
+    correlation: pd.DataFrame
+    residuals: pd.DataFrame
+    statistics: dict
+    notes: list = field(default_factory=list)
+
+    def as_dict(self) -> dict:
+        """The result as JSON-ready values: parameters (value, stderr, ...), correlation, statistics, notes."""
+        return {"parameters": {name: {"value": p.value, "stderr": p.stderr,
+                                      **({} if math.isnan(p.bootstrap_stderr) else {"bootstrap_stderr": p.bootstrap_stderr}),
+                                      "identifiable": p.identifiable} for name, p in self.parameters.items()},
+                "correlation": {a: {b: float(self.correlation.loc[a, b]) for b in self.correlation.columns}
+                                for a in self.correlation.index},
+                "statistics": self.statistics, "notes": list(self.notes)}
+
+
+def with_values(ball: Ball, values: dict) -> Ball:
+    """``ball`` with some parameters changed: a ball calibrated to a measured COR is calibrated again (its
+    damping keeps that COR, or follows a changed ``cor``); ``modulus`` replaces ``k`` and ``kappa`` replaces
+    the Poisson's ratio or shear modulus it was given as."""
+    changes = dict(values)
+    cor = changes.pop("cor", None)
+    if "modulus" in changes:
+        changes["k"] = None
+    elif "k" in changes:
+        changes["modulus"] = None
+    if "kappa" in changes:
+        changes |= {"poisson": None, "shear_modulus": None}
+    measurement = ball.measurement
+    if cor is not None:
+        if measurement is None:
+            raise ValueError("cor: the ball has no measured COR to free (give --cor and --cor-speed, or free its "
+                             "damping parameter)")
+        measurement = replace(measurement, cor=cor)
+    normal = set(changes) & {"k", "modulus", "exponent", "inertia_factor", "mass", "diameter"}
+    if measurement is not None and (cor is not None or normal):
+        fields = ball.scene.as_dict() | changes
+        damping = ball.scene.law.damping
+        if damping is not None:
+            fields[damping] = None
+        if measurement.contact_time is not None:
+            fields |= {"k": None, "modulus": None}
+        fields = {k: v for k, v in fields.items() if k not in ("angle", "speed", "spin", "incidence", "angle_to_surface")}
+        fresh = calibrated_ball(measurement, ball.options, ball.plugins, ball.source, **fields)
+        return replace(fresh, fitted=ball.fitted | fresh.fitted)
+    return replace(ball, scene=ball.scene.with_(**changes))
+
+
+def _free_names(ball: Ball, free) -> list[str]:
+    names = [free] if isinstance(free, str) else list(free)
+    if not names:
+        raise ValueError(f"free: name at least one parameter to fit, of {', '.join(FREE)}")
+    for name in names:
+        if name not in FREE:
+            raise ValueError(f"free: {name!r} cannot be fitted; the parameters a fit may free are {', '.join(FREE)}")
+    if len(set(names)) != len(names):
+        raise ValueError("free: a parameter is named twice")
+    if "cor" in names and ball.measurement is None:
+        raise ValueError("free: 'cor' needs a ball calibrated to a measured COR (give --cor and --cor-speed), or "
+                         "free its damping parameter")
+    for name in names:
+        if name != "cor" and getattr(ball.scene, name) is None:
+            whose = (f"the {ball.scene.tangential!r} tangential contact" if name == "kappa"
+                     else f"the {ball.scene.model!r} law")
+            raise ValueError(f"free: {name!r} is not a parameter of {whose}")
+        if name == ball.scene.law.damping and ball.measurement is not None:
+            raise ValueError(f"free: {name!r} is set by the measured COR; free 'cor' instead, or describe the ball "
+                             f"with {name} rather than a COR")
+    return names
+
+
+def _start(ball: Ball, names) -> np.ndarray:
+    return np.array([ball.measurement.cor if n == "cor" else float(getattr(ball.scene, n)) for n in names])
+
+
+def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0, target: float = 1e-8) -> FitResult:
+    """Fit the ``free`` parameters of ``ball`` to ``measured`` bounces.
+
+    Parameters
+    ----------
+    measured : Measured
+        The bounces and their measured values (:func:`~sphereimpact.fit.read_measured`).
+    ball : Ball
+        The ball as known: its other parameters stay as they are; the free ones start from its values.
+    free : sequence of str
+        Names of :data:`FREE`.
+    bootstrap : int
+        Refits on this many resamplings of the bounces (0: none); their spread is ``bootstrap_stderr``.
+    seed : int
+        The bootstrap's random seed (the same seed gives the same result).
+    target : float
+        The sweep's relative accuracy of each model value.
+
+    Raises
+    ------
+    ValueError
+        A parameter that cannot be freed, fewer measured values than free parameters, or a measured e_t of
+        a normal impact.
+    """
+    names = _free_names(ball, free)
+    values = measured.values
+    if len(values) <= len(names):
+        raise ValueError(f"free: {len(names)} free parameters need more than {len(names)} measured values; "
+                         f"the data give {len(values)}")
+    table = _bounces(measured.bounces, ball)
+    theta_incidence = incidence(table)
+    e_t_rows = values["quantity"] == "e_t"
+    if (theta_incidence[values.loc[e_t_rows, "bounce"].to_numpy()] == 0).any():
+        raise ValueError("measured: e_t of a normal impact (incidence 0) is undefined; leave it out")
+    outputs = sorted({SOURCES.get(q, q) for q in values["quantity"]})
+    lower, upper, logs = (np.array([FREE[n][i] for n in names]) for i in range(3))
+    logs = logs.astype(bool)
+
+    def natural(theta):
+        return np.where(logs, np.exp(theta), theta)
+
+    def model(theta, bounces=None):
+        trial = dict(zip(names, natural(theta)))
+        try:
+            current = with_values(ball, trial)
+        except ValueError as err:
+            raise ValueError(f"fit: the ball cannot be built at {', '.join(f'{n} = {v:.6g}' for n, v in trial.items())} "
+                             f"({err}); start nearer the data or fix a parameter") from None
+        rows = table if bounces is None else table.iloc[bounces].reset_index(drop=True)
+        return sweep(rows.assign(**ball_columns(current)), target=target, outputs=outputs,
+                     settings=dict(current.options.settings))
+
+    def predictions(theta, vals=values, bounces=None):
+        out = model(theta, bounces)
+        result = np.empty(len(vals))
+        for name, rows in vals.groupby("quantity").groups.items():
+            result[rows] = quantity(name, out)[vals.loc[rows, "bounce"].to_numpy()]
+        return result
+
+    measured_values = values["value"].to_numpy(float)
+    given = values["sigma"].notna().to_numpy()
+    sigma = np.where(given, values["sigma"].to_numpy(float), _scale(values))
+    initial = _start(ball, names)
+    log_start = np.log(np.where(logs, initial, 1.0))
+    bounds = (np.where(logs, log_start - math.log(LOG_WINDOW), lower),
+              np.where(logs, log_start + math.log(LOG_WINDOW), upper))
+    start = _inside(np.where(logs, log_start, initial), *bounds)
+    evaluations = 0
+
+    def solve(theta0, weights, vals=values, data=measured_values, bounces=None):
+        nonlocal evaluations
+
+        def residual(theta):
+            return (predictions(theta, vals, bounces) - data) / weights
+
+        result = least_squares(residual, theta0, bounds=bounds, method="trf", jac="3-point", diff_step=DIFF_STEP,
+                               x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=200)
+        evaluations += result.nfev
+        return result
+
+    result = solve(start, sigma)
+    notes = []
+    if not given.all():  # weights of the unmeasured sigmas from each quantity's residual scatter
+        r = predictions(result.x) - measured_values
+        sigma = np.where(given, sigma, _scatter(values, r, len(names), sigma))
+        result = solve(result.x, sigma)
+        estimated = sorted(set(values.loc[~given, "quantity"]))
+        notes.append(f"no uncertainty given for {', '.join(estimated)}: each weighted by its own residual scatter "
+                     "at the solution")
+    theta = result.x
+    jac = result.jac
+    x = natural(theta)
+    cov, unbounded = _covariance(jac)
+    stderr_theta = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    stderr_theta[unbounded] = math.inf
+    stderr = np.where(logs, x * stderr_theta, stderr_theta)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        correlation = cov / np.outer(stderr_theta, stderr_theta)
+    correlation[unbounded, :] = correlation[:, unbounded] = math.nan
+    identifiable = ~unbounded & (stderr <= UNIDENTIFIABLE * np.abs(x))
+    for name, ok, value, err in zip(names, identifiable, x, stderr):
+        if not ok:
+            why = ("the measured values do not depend on it (its standard error is unbounded)" if math.isinf(err)
+                   else f"its standard error {err:.3g} exceeds its value {value:.3g}")
+            notes.append(f"{name} is not identifiable from these data: {why}")
+    boot = np.full(len(names), math.nan)
+    if bootstrap:
+        boot = _bootstrap(solve, measured, values, sigma, theta, natural, bootstrap, seed)
+    model_values = predictions(theta)
+    model_jac = jac * sigma[:, None]  # of the unweighted model values
+    model_stderr = np.sqrt(np.clip(np.einsum("ij,jk,ik->i", model_jac, cov, model_jac), 0.0, None))
+    fitted = with_values(ball, dict(zip(names, x)))
+    fitted = replace(fitted, fitted=fitted.fitted | {n: float(v) for n, v in zip(names, x) if n != "cor"},
+                     source=f"fitted to {len(values)} measured values of {len(measured.bounces)} bounces "
+                            f"({measured.source}); free: {', '.join(names)}" + (f"; {ball.source}" if ball.source else ""))
+    weighted = (model_values - measured_values) / sigma
+    chi2 = float(weighted @ weighted)
+    dof = len(values) - len(names)
+    approach = measured.bounces.drop(columns=["incidence"], errors="ignore")
+    residuals = pd.concat([approach.iloc[values["bounce"].to_numpy()].reset_index(drop=True),
+                           pd.DataFrame({"quantity": values["quantity"],
+                                         "unit": values["quantity"].map(MEASURABLE).to_numpy(), "measured": measured_values,
+                                         "model": model_values, "sigma": sigma, "sigma_given": given,
+                                         "residual": model_values - measured_values, "model_stderr": model_stderr,
+                                         "incidence": theta_incidence[values["bounce"].to_numpy()]})], axis=1)
+    rms = {q: float(np.sqrt(np.mean(part ** 2))) for q, part in residuals.groupby("quantity")["residual"]}
+    statistics = {"values": len(values), "bounces": len(measured.bounces), "free": len(names), "dof": dof,
+                  "chi2": chi2, "reduced_chi2": chi2 / dof, "rms": rms, "evaluations": int(evaluations),
+                  "status": result.message}
+    parameters = {n: Parameter(float(v), float(e), float(b), bool(ok))
+                  for n, v, e, b, ok in zip(names, x, stderr, boot, identifiable)}
+    return FitResult(fitted, parameters, pd.DataFrame(correlation, index=names, columns=names), residuals,
+                     statistics, notes)
+
+
+#: Directions of the weighted Jacobian whose singular value is below this fraction of the largest are taken as
+#: unconstrained: the finite-difference Jacobian is accurate to about DIFF_STEP, far above round-off.
+SINGULAR = 1e-7
+
+
+def _covariance(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The covariance (J^T J)^-1 of the fitted (transformed) parameters, on the directions the data constrain,
+    and which parameters load on a direction they do not (a singular value below :data:`SINGULAR` of the
+    largest): those have no finite standard error."""
+    _, s, vt = np.linalg.svd(jac, full_matrices=False)
+    kept = s > SINGULAR * max(s.max(), 1e-300)
+    cov = (vt[kept].T / s[kept] ** 2) @ vt[kept]
+    unbounded = (np.abs(vt[~kept]) > 1e-3).any(axis=0) if (~kept).any() else np.zeros(jac.shape[1], bool)
+    return cov, unbounded
+
+
+def _bounces(bounces: pd.DataFrame, ball: Ball) -> pd.DataFrame:
+    """The measured bounces as scene rows: their approach, the ball's where they leave it out."""
+    table = bounces.copy()
+    scene: Scene = ball.scene
+    if not any(c in table for c in ("incidence", "angle_to_surface", "angle")):
+        table["angle"] = scene.angle
+        if scene.incidence is not None:
+            table = table.drop(columns="angle").assign(incidence=scene.incidence)
+        elif scene.angle_to_surface is not None:
+            table = table.drop(columns="angle").assign(angle_to_surface=scene.angle_to_surface)
+    for name in ("speed", "spin"):
+        if name not in table:
+            table[name] = getattr(scene, name)
+    for name in ("incidence", "angle_to_surface", "angle"):
+        if name not in table:
+            table[name] = np.nan if name != "angle" else 0.0
+    return table[[c for c in (*APPROACH,) if c in table]].reset_index(drop=True)
+
+
+def _scale(values: pd.DataFrame) -> np.ndarray:
+    """First-pass weights where no uncertainty is given: each quantity's typical magnitude."""
+    typical = values.groupby("quantity")["value"].transform(lambda v: np.sqrt(np.mean(v ** 2)))
+    return np.where(typical > 0, typical, 1.0)
+
+
+def _scatter(values: pd.DataFrame, residual: np.ndarray, free: int, fallback: np.ndarray) -> np.ndarray:
+    """Each quantity's residual scatter (its RMS, corrected for the parameters fitted, shared out by the
+    total share), floored far below the quantity's magnitude so a perfect fit stays finite."""
+    n = len(values)
+    mean = pd.Series(residual ** 2).groupby(values["quantity"].to_numpy()).transform("mean").to_numpy()
+    return np.maximum(np.sqrt(mean * n / max(n - free, 1)), 1e-9 * fallback)
+
+
+def _bootstrap(solve, measured: Measured, values: pd.DataFrame, sigma, theta, natural, count: int, seed: int):
+    """The spread of the estimates over ``count`` refits, each on the bounces resampled with replacement."""
+    rng = np.random.default_rng(seed)
+    n = len(measured.bounces)
+    estimates = []
+    for _ in range(count):
+        picked = rng.integers(0, n, n)
+        rows = [np.flatnonzero(values["bounce"].to_numpy() == b) for b in picked]
+        index = np.concatenate(rows)
+        renumbered = values.iloc[index].assign(bounce=np.repeat(np.arange(n), [len(r) for r in rows]))
+        if len(renumbered) <= len(theta):
+            continue
+        result = solve(theta, sigma[index], renumbered.reset_index(drop=True), values["value"].to_numpy(float)[index],
+                       picked)
+        estimates.append(natural(result.x))
+    return np.std(np.array(estimates), axis=0, ddof=1) if len(estimates) > 1 else np.full(len(theta), math.nan)
+
+
+def _inside(theta, low, high):
+    """A start strictly inside the bounds (least_squares requires it)."""
+    span = np.where(np.isfinite(high - low), high - low, 1.0)
+    return np.clip(theta, low + 1e-9 * span, high - 1e-9 * span)

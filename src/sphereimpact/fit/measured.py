@@ -1,0 +1,137 @@
+"""Measured bounces, as a fit reads them: each bounce's approach and what was measured of its outcome.
+
+Two layouts are read.  A *wide* table has one bounce per row: columns named like the scene's approach
+(``speed`` [m/s], ``incidence`` or ``angle_to_surface`` or ``angle`` [deg], ``spin`` [rad/s]) and measured
+outputs named like ``simulate``'s (``vc_t``, ``vc_n``, ``omega_f``, ``cor``, ``rebound_angle``, ...; SI, contact
+frame) or the derived :data:`DERIVED` ones, any subset, each with an optional uncertainty column
+``sigma_<output>`` (one standard deviation, same units).  The *long* layout of the shipped Kharaz et al. (2001)
+data has columns ``quantity, incidence_deg, value``; its quantities are mapped by :data:`LONG_QUANTITIES`.
+An approach column a table does not give takes the fitted ball's value.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ..impact.outcome import NUMERIC_OUTPUTS, OUTPUT_UNITS
+from ..sweep.scenes import incidence
+
+#: Columns of a measured table that describe the approach of its bounce.
+APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
+#: Measured quantities that are not outputs of ``simulate`` but follow from them and the approach: the
+#: tangential coefficient of restitution of the centre, v_t' / v_t [-], and the rebound spin's magnitude.
+DERIVED = {"e_t": "-", "abs_omega_f": "rad/s"}
+#: Every quantity a measured table may give, with its unit.
+MEASURABLE = {name: OUTPUT_UNITS[name] for name in NUMERIC_OUTPUTS} | DERIVED
+#: The long layout's quantities (Kharaz's digitised curves) -> the quantity they measure.
+LONG_QUANTITIES = {"e_t": "e_t", "omega_rad_s": "abs_omega_f", "rebound_angle_deg": "rebound_angle"}
+
+
+@dataclass(frozen=True)
+class Measured:
+    """Measured bounces.
+
+    Attributes
+    ----------
+    bounces : DataFrame
+        One row per bounce: its approach (the columns of :data:`APPROACH` it gives).
+    values : DataFrame
+        One row per measured value: ``bounce`` (row of ``bounces``), ``quantity`` (a name of
+        :data:`MEASURABLE`), ``value`` and ``sigma`` (its standard uncertainty, NaN when not given).
+    source : str
+        Where the data come from (the file's name), for the fitted ball's record.
+    """
+
+    bounces: pd.DataFrame
+    values: pd.DataFrame
+    source: str = ""
+
+
+def read_measured(data, source: str = "") -> Measured:
+    """Measured bounces from a CSV file's path or a DataFrame, in either layout (module docstring).
+
+    Parameters
+    ----------
+    data : str, path or DataFrame
+        The table (a CSV file's ``#`` lines are comments).
+    source : str
+        Where the data come from (default: the file's path).
+
+    Raises
+    ------
+    ValueError
+        An unreadable file, a column that is neither an approach nor a measurable quantity, a value that is
+        not a finite number, a negative uncertainty, or a table with nothing measured.
+    """
+    if isinstance(data, pd.DataFrame):
+        frame, source = data.reset_index(drop=True), source or "a DataFrame"
+    else:
+        try:
+            frame = pd.read_csv(data, comment="#")
+        except (OSError, pd.errors.ParserError, UnicodeDecodeError) as err:
+            raise ValueError(f"measured: cannot read {str(data)!r} ({getattr(err, 'strerror', None) or err})") from None
+        source = source or str(data)
+    if {"quantity", "incidence_deg", "value"} <= set(frame.columns):
+        frame = _wide_from_long(frame, source)
+    measured = _checked(frame, source)
+    bounces = frame[[c for c in APPROACH if c in frame.columns]].copy()
+    values = [pd.DataFrame({"bounce": np.flatnonzero(frame[q].notna().to_numpy()), "quantity": q,
+                            "value": frame[q].dropna().to_numpy(float),
+                            "sigma": (frame[f"sigma_{q}"] if f"sigma_{q}" in frame else pd.Series(np.nan, frame.index))
+                            [frame[q].notna()].to_numpy(float)}) for q in measured]
+    return Measured(bounces.reset_index(drop=True), pd.concat(values, ignore_index=True), source)
+
+
+def _wide_from_long(frame: pd.DataFrame, source: str) -> pd.DataFrame:
+    """The long layout (quantity, incidence_deg, value) as a wide table: one bounce per measured value."""
+    unknown = sorted(set(frame["quantity"]) - set(LONG_QUANTITIES))
+    if unknown:
+        raise ValueError(f"measured: {source}: unknown quantity {unknown[0]!r} in the long layout; expected "
+                         f"{', '.join(LONG_QUANTITIES)}")
+    wide = pd.DataFrame({"incidence": pd.to_numeric(frame["incidence_deg"], errors="coerce")})
+    for name, quantity in LONG_QUANTITIES.items():
+        wide[quantity] = np.where(frame["quantity"] == name, pd.to_numeric(frame["value"], errors="coerce"), np.nan)
+    return wide[[c for c in wide.columns if c == "incidence" or wide[c].notna().any()]]
+
+
+def _checked(frame: pd.DataFrame, source: str) -> list[str]:
+    """The measured quantities of a wide table, each column checked."""
+    sigmas = {f"sigma_{q}" for q in MEASURABLE}
+    unknown = [c for c in frame.columns if c not in APPROACH and c not in MEASURABLE and c not in sigmas]
+    if unknown:
+        raise ValueError(f"measured: {source}: column {unknown[0]!r} is neither an approach ({', '.join(APPROACH)}) "
+                         f"nor a measurable quantity ({', '.join(MEASURABLE)}) nor its sigma_<quantity>")
+    for column in frame.columns:
+        numbers = pd.to_numeric(frame[column], errors="coerce")
+        bad = frame[column].notna() & ~np.isfinite(numbers)
+        if bad.any():
+            raise ValueError(f"measured: {source}: column {column!r} row {int(np.flatnonzero(bad)[0])}: "
+                             f"{frame[column][bad].iloc[0]!r} is not a finite number")
+        if column.startswith("sigma_") and (numbers <= 0).any():
+            raise ValueError(f"measured: {source}: {column} must be > 0 (a standard uncertainty)")
+        if column in APPROACH and numbers.isna().any():
+            raise ValueError(f"measured: {source}: column {column!r} has an empty cell: every bounce needs its "
+                             "approach")
+        frame[column] = numbers
+    measured = [q for q in MEASURABLE if q in frame.columns and frame[q].notna().any()]
+    if not measured:
+        raise ValueError(f"measured: {source}: nothing measured; give some of {', '.join(MEASURABLE)}")
+    return measured
+
+
+#: The sweep output each derived quantity is computed from.
+SOURCES = {"e_t": "vc_t", "abs_omega_f": "omega_f"}
+
+
+def quantity(name: str, outputs: pd.DataFrame) -> np.ndarray:
+    """The model's value of a measured quantity at each bounce, from a sweep's ``outputs`` of the bounces (its
+    rows carry each scene's approach)."""
+    if name == "e_t":
+        theta = np.radians(incidence(outputs))
+        return outputs["vc_t"].to_numpy() / (outputs["speed"].to_numpy() * np.sin(theta))
+    if name == "abs_omega_f":
+        return np.abs(outputs["omega_f"].to_numpy())
+    return outputs[name].to_numpy(dtype=float)
