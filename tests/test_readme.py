@@ -69,13 +69,15 @@ def test_check_and_update_round_trip(tmp_path):
                       "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n"
                       "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n"
                       "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n"
-                      "<!-- BEGIN GENERATED runtime -->\nold\n<!-- END GENERATED runtime -->\n")
+                      "<!-- BEGIN GENERATED runtime -->\nold\n<!-- END GENERATED runtime -->\n"
+                      "<!-- BEGIN GENERATED fit -->\nold\n<!-- END GENERATED fit -->\n")
     snippets = tmp_path / "snippets"
     snippets.mkdir()
     (snippets / "speed.md").write_text(TABLE)
     (snippets / "validation.md").write_text("measured\n")
     (snippets / "consistency.md").write_text("compared\n")
     (snippets / "runtime.md").write_text("took\n")
+    (snippets / "fit.md").write_text("fitted\n")
     (snippets / "replication.md").write_text("fresh\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))

@@ -23,7 +23,8 @@ FIGURES = [f"fig4_{i}" for i in range(2, 9)]
 OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv", "results/replication.md",
            "results/replication_findings.md", "results/config.yaml", "results/readme/replication.md",
            "results/readme/speed.md", "results/readme/validation.md", "results/readme/consistency.md",
-           "results/readme/runtime.md",
+           "results/readme/runtime.md", "results/readme/fit.md", "results/fit_kharaz/fit.json",
+           "results/fit_kharaz/ball.json", "results/fit_kharaz/residuals.csv", "results/fit_kharaz/fit.png",
            "results/consistency.csv",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
@@ -260,3 +261,28 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
     assert drop["t_f"] == pytest.approx(4.5e-3, rel=1e-8)  # and the contact time
     serve = simulate(Scene(**ball).with_(speed=30.0, angle_to_surface=12.0, spin=150.0))
     assert outcomes.loc["flat-serve", "omega_f"] == pytest.approx(serve.omega_f, rel=1e-9)
+
+
+def test_the_pipeline_fits_the_kharaz_data_as_the_api_does(workdir):
+    """The pipeline's door of the fit: rule kharaz_fit's parameters are the API's on the same ball and data, and
+    its ball file is the fitted ball."""
+    import json
+
+    import yaml
+
+    from sphereimpact import load_ball
+    from sphereimpact.fit import fit, read_measured, with_values
+    from sphereimpact.impact.ball import Ball
+    from sphereimpact.study.validation import experiment
+
+    config = yaml.safe_load((workdir / "results/config.yaml").read_text())
+    spec = config["kharaz_fit"]
+    record = json.loads((workdir / "results/fit_kharaz/fit.json").read_text())
+    ball = with_values(Ball(experiment(config["validation"]).with_tangential(spec["tangential"])),
+                       {n: v for n, v in spec["start"].items() if n in spec["free"]})
+    api = fit(read_measured(ROOT / config["validation"]["data"]), ball, spec["free"])
+    for name in spec["free"]:
+        assert record["parameters"][name]["value"] == pytest.approx(api.parameters[name].value, rel=1e-12)
+        assert record["parameters"][name]["stderr"] == pytest.approx(api.parameters[name].stderr, rel=1e-9)
+    assert record["reference"]["mu"] == config["validation"]["mu"]
+    assert load_ball(workdir / "results/fit_kharaz/ball.json").scene.mu == pytest.approx(api.ball.scene.mu, rel=1e-12)

@@ -83,6 +83,8 @@ NOTEBOOKS = {
         "results/validation_curves.csv",
         "results/validation_maw.csv",
         "results/compliance_map.csv",
+        "results/fit_kharaz/fit.json",
+        "results/fit_kharaz/fit.png",
         "paper_figures/validation_kharaz.png",
         "paper_figures/validation_maw.png",
         "paper_figures/compliance_map.png",
@@ -133,6 +135,7 @@ def chapter_outputs():
         "results/readme/speed.md",
         "results/readme/validation.md",
         "results/readme/consistency.md",
+        "results/readme/fit.md",
         "results/consistency.csv",
         *expand("results/notebooks/{name}.html", name=NOTEBOOKS),
     ]

@@ -50,11 +50,13 @@ rule readme_snippets:
         validation_summary="results/validation_summary.csv",
         validation="results/validation.csv",
         consistency="results/consistency.csv",
+        fit="results/fit_kharaz/fit.json",
     output:
         replication="results/readme/replication.md",
         speed="results/readme/speed.md",
         validation="results/readme/validation.md",
         consistency="results/readme/consistency.md",
+        fit="results/readme/fit.md",
     params:
         code=code("workflow/scripts/readme_snippets.py"),
         config=params_for("readme"),

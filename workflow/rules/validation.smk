@@ -24,6 +24,28 @@ rule validation:
         "../scripts/validation.py"
 
 
+rule kharaz_fit:
+    """The free parameters (mu, kappa) fitted to the Kharaz data, e_n given, with their standard errors."""
+    input:
+        data=config["validation"]["data"],
+    output:
+        ball="results/fit_kharaz/ball.json",
+        summary=report("results/fit_kharaz/fit.json", caption="../report/validation.rst", category="Validation"),
+        residuals="results/fit_kharaz/residuals.csv",
+        png=report("results/fit_kharaz/fit.png", caption="../report/validation.rst", category="Validation"),
+    params:
+        code=code("workflow/scripts/kharaz_fit.py"),
+        config=params_for("kharaz_fit"),
+    benchmark:
+        "results/benchmarks/validation/kharaz_fit.tsv",
+    log:
+        "logs/validation/kharaz_fit.log",
+    conda:
+        ENV
+    script:
+        "../scripts/kharaz_fit.py"
+
+
 rule compliance_map:
     """The chapter's ball over angle x kappa: where the rigid tangential contact is enough."""
     output:

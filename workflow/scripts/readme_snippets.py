@@ -5,5 +5,5 @@ from sphereimpact.study.workflow import job_log
 with job_log(snakemake.log[0], "README snippets"):
     inp, out = snakemake.input, snakemake.output
     write_snippets(snakemake.params.config, inp.replication, inp.findings, inp.bench, inp.bench_sweep,
-                   inp.validation_summary, inp.validation, inp.consistency, out.replication, out.speed,
-                   out.validation, out.consistency)
+                   inp.validation_summary, inp.validation, inp.consistency, inp.fit, out.replication, out.speed,
+                   out.validation, out.consistency, out.fit)

@@ -49,6 +49,7 @@ RULE_KEYS = {
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
     "validation": ("validation",),
+    "kharaz_fit": ("validation", "kharaz_fit"),
     "compliance_map": (*_SCENE, "compliance", "primary"),
     "validation_figures": ("compliance",),
     "own_ball": ("study", "plugins", "ball_file", "ball", "surface", "contact"),
