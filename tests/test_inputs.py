@@ -172,6 +172,16 @@ CONFIGS = [
     ({"study": "big", "bounces": {"drop": {"speed": 5.0}}, "ranges": {"map_speeds": "5:40:1e-7"}},
      "config key ranges: sweep too large"),
     ({"study": "x" * 300}, "config key study: 'xxxxxxxx"),
+    # issue 35: an own study's fit section, checked before any job
+    ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "hertz", "modulus": 1.0e+7},
+      "fit": {"data": "no/such.csv", "free": ["mu"]}},
+     "config key fit.data: measured: cannot read 'no/such.csv'"),
+    ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "hertz", "modulus": 1.0e+7},
+      "fit": {"data": "data/kharaz2001.csv", "free": ["kappa"]}},
+     "config key fit.free: free: 'kappa' is not a parameter of the 'rigid' tangential contact"),
+    ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "fit": {"data": "data/kharaz2001.csv", "free": ["spin"]}},
+     "config key fit.free.0: 'spin' is not one of"),
+    ({"kharaz_fit": {"free": ["mu", "mu"]}}, "config key kharaz_fit.free: ['mu', 'mu'] has non-unique elements"),
 ]
 
 

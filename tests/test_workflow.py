@@ -107,7 +107,9 @@ def overlapping(workdir, tmp_path_factory) -> dict:
         (copy / "results/runs/normal_modified.csv").write_text("not,a,run\n1,2,3\n")  # a corrupted input
 
     small = tmp_path_factory.mktemp("own") / "small.yaml"
-    small.write_text("ranges: {speeds: '5:25:10', map_speeds: '10:30:10', map_angles: '20:80:30'}\n")
+    bounces = synthetic_tennis_bounces(small.parent / "bounces.csv")
+    small.write_text("ranges: {speeds: '5:25:10', map_speeds: '10:30:10', map_angles: '20:80:30'}\n"
+                     f"fit: {{data: {bounces}, free: [mu]}}\n")
     start("own", lambda copy: None, snapshot=True, configfiles=["config/examples/tennis.yaml", str(small)])
     start("drawing", lambda copy: edit(copy / "src/sphereimpact/figures/style.py"), "-n")
     start("physics", lambda copy: edit(copy / "src/sphereimpact/integrators/normal.py"), "-n")
@@ -116,6 +118,32 @@ def overlapping(workdir, tmp_path_factory) -> dict:
     yield runs
     for run in runs.values():
         run.result  # noqa: B018  (no process outlives the module)
+
+
+#: The friction of the synthetic measured tennis bounces that the own study's fit must find.
+TENNIS_MU = 0.55
+
+
+def synthetic_tennis_bounces(path: Path) -> Path:
+    """Twelve bounces of the shipped tennis ball on a court of friction TENNIS_MU, their rebound velocity and
+    spin with Gaussian noise (0.05 m/s, 2 rad/s, stated), written as `sphereimpact fit`'s table."""
+    import numpy as np
+    import pandas as pd
+    import yaml
+
+    from sphereimpact.impact.ball import ball_columns
+    from sphereimpact.study.config import with_defaults
+    from sphereimpact.study.own import study_ball
+    from sphereimpact.sweep import sweep
+
+    schema = yaml.safe_load((ROOT / "config/schema.yaml").read_text())
+    ball = study_ball(with_defaults(schema, yaml.safe_load((ROOT / "config/examples/tennis.yaml").read_text())))
+    rng = np.random.default_rng(0)
+    table = pd.DataFrame({"speed": 20.0, "angle_to_surface": rng.uniform(10, 40, 12), "spin": 0.0})
+    out = sweep(table.assign(**(ball_columns(ball) | {"mu": TENNIS_MU})), outputs=["vc_t", "omega_f"])
+    table.assign(vc_t=out["vc_t"] + rng.normal(0, 0.05, 12), sigma_vc_t=0.05,
+                 omega_f=out["omega_f"] + rng.normal(0, 2.0, 12), sigma_omega_f=2.0).to_csv(path, index=False)
+    return path
 
 
 def edit(path: Path) -> None:
@@ -231,7 +259,7 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
     own = overlapping["own"]
     run, scratch, before = own.result, own.copy, own.before
     assert run.returncode == 0, run.stderr[-3000:]
-    assert set(planned(run)) <= {"own_ball", "own_bounces", "own_speed", "own_maps", "own_bounce_figure",
+    assert set(planned(run)) <= {"own_fit", "own_ball", "own_bounces", "own_speed", "own_maps", "own_bounce_figure",
                                   "own_figures", "own_page", "all", "total"}, planned(run)
     after = files(scratch)
     changed = {p for p in before if after.get(p) != before[p]}
@@ -243,8 +271,8 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
                  "histories/topspin-drive.csv", "figures/topspin-drive.png", "figures/speed.png",
                  "figures/spin_map.png", "figures/rebound_map.png"):
         assert (study / name).stat().st_size > 0, name
-    took = sorted(p.name for p in (study / "benchmarks").iterdir())  # 5 jobs and a figure per bounce
-    assert len(took) == 5 + 5 and "jobs took" in (study / "index.md").read_text(), took
+    took = sorted(p.name for p in (study / "benchmarks").iterdir())  # 6 jobs and a figure per bounce
+    assert len(took) == 6 + 5 and "jobs took" in (study / "index.md").read_text(), took
     import json
 
     import pandas as pd
@@ -256,10 +284,14 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
     ball = json.loads((study / "ball.json").read_text())["scene"]
     outcomes = read_history(study / "outcomes.csv").set_index("bounce")  # units in its header
     assert pd.read_csv(study / "outcomes.csv").columns[1] == "speed [m/s]"
+    fitted = json.loads((study / "fit/fit.json").read_text())["parameters"]["mu"]  # the config's fit section
+    assert abs(fitted["value"] - TENNIS_MU) < 3 * fitted["stderr"] and fitted["identifiable"]
+    assert ball["mu"] == pytest.approx(fitted["value"], rel=1e-12)  # the study uses the fitted ball
+    assert "Fitted to measured bounces" in (study / "index.md").read_text()
     drop = outcomes.loc["drop-test"]
     assert drop["cor"] == pytest.approx(0.745, abs=1e-8)  # the measured COR, recovered
     assert drop["t_f"] == pytest.approx(4.5e-3, rel=1e-8)  # and the contact time
-    serve = simulate(Scene(**ball).with_(speed=30.0, angle_to_surface=12.0, spin=150.0))
+    serve = simulate(Scene(**ball).with_(speed=30.0, angle_to_surface=12.0, spin=150.0))  # the fitted mu
     assert outcomes.loc["flat-serve", "omega_f"] == pytest.approx(serve.omega_f, rel=1e-9)
 
 

@@ -4,6 +4,7 @@ import os
 from snakemake.utils import validate
 
 from sphereimpact.figures.catalog import FIGURES
+from sphereimpact.fit import FIT_FILES
 from sphereimpact.study.config import check_config
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest
 

@@ -5,6 +5,31 @@
 
 OWN = f"results/studies/{config['study']}"
 BOUNCES = list(config["bounces"])
+#: The fit's files when the study fits its ball to measured bounces (config section `fit`).
+FIT = [f"{OWN}/fit/{name}" for name in FIT_FILES] if config.get("fit") else []
+
+
+rule own_fit:
+    """The ball fitted to the measured bounces of the config's `fit` section (the study then uses it)."""
+    input:
+        data=config["fit"]["data"] if config.get("fit") else [],
+        ball_file=[config["ball_file"]] if config.get("ball_file") else [],
+    output:
+        ball=f"{OWN}/fit/ball.json",
+        summary=f"{OWN}/fit/fit.json",
+        residuals=f"{OWN}/fit/residuals.csv",
+        png=report(f"{OWN}/fit/fit.png", caption="../report/own.rst", category="Own study"),
+    params:
+        code=code("workflow/scripts/own_fit.py"),
+        config=params_for("own_fit"),
+    benchmark:
+        f"{OWN}/benchmarks/fit.tsv",
+    log:
+        f"logs/studies/{config['study']}/fit.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_fit.py"
 
 
 rule own_ball:
@@ -12,6 +37,7 @@ rule own_ball:
     or read from the configured ball file."""
     input:
         ball_file=[config["ball_file"]] if config.get("ball_file") else [],
+        fitted=FIT[:1],
     output:
         ball=f"{OWN}/ball.json",
     params:
@@ -137,7 +163,9 @@ rule own_page:
         figures=[*expand(f"{OWN}/figures/{{bounce}}.png", bounce=BOUNCES),
                  *(f"{OWN}/figures/{name}.png" for name in ("speed", "spin_map", "rebound_map"))],
         benchmarks=[*(f"{OWN}/benchmarks/{name}.tsv" for name in ("ball", "bounces", "speed", "maps", "figures")),
-                    *expand(f"{OWN}/benchmarks/figure_{{bounce}}.tsv", bounce=BOUNCES)],
+                    *expand(f"{OWN}/benchmarks/figure_{{bounce}}.tsv", bounce=BOUNCES),
+                    *([f"{OWN}/benchmarks/fit.tsv"] if FIT else [])],
+        fit=FIT,
     output:
         md=f"{OWN}/index.md",
         html=report(f"{OWN}/index.html", caption="../report/own.rst", category="Own study"),

@@ -130,7 +130,9 @@ def with_values(ball: Ball, values: dict) -> Ball:
     return replace(ball, scene=ball.scene.with_(**changes))
 
 
-def _free_names(ball: Ball, free) -> list[str]:
+def free_names(ball: Ball, free) -> list[str]:
+    """The names of ``free`` checked against what ``ball`` can free (:data:`FREE`, its law's and tangential
+    model's parameters, ``cor`` only for a ball calibrated to a measured COR), without solving anything."""
     names = [free] if isinstance(free, str) else list(free)
     if not names:
         raise ValueError(f"free: name at least one parameter to fit, of {', '.join(FREE)}")
@@ -181,7 +183,7 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
         A parameter that cannot be freed, fewer measured values than free parameters, or a measured e_t of
         a normal impact.
     """
-    names = _free_names(ball, free)
+    names = free_names(ball, free)
     values = measured.values
     if len(values) <= len(names):
         raise ValueError(f"free: {len(names)} free parameters need more than {len(names)} measured values; "

@@ -82,7 +82,7 @@ def options_for(config: dict, scene: Scene) -> SolverOptions:
 
 
 #: Sections only a study of one's own ball reads.
-OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges")
+OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges", "fit")
 
 
 def config_errors(config: dict, schema_path: str) -> list[str]:

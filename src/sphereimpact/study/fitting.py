@@ -60,3 +60,14 @@ def kharaz_fit(config: dict, data_csv: str, folder: str) -> None:
     record["reference"] = {"mu": config["validation"]["mu"], "kappa": exp.kappa, "tangential": spec["tangential"],
                            "source": "mu measured by Kharaz et al. (2001); kappa = 4 G*/E* of alumina on glass"}
     summary.write_text(json.dumps(finite(record), indent=2) + "\n", encoding="utf-8")
+
+
+def study_fit(config: dict, folder: str) -> None:
+    """An own study's ``fit`` section: its ball (as the other sections describe it) fitted to the measured
+    bounces, the fit's files in ``folder`` (its ``ball.json`` is then the study's ball)."""
+    from .own import study_ball
+
+    section = config["fit"]
+    result = fit(read_measured(section["data"]), study_ball(config), section["free"], section["bootstrap"],
+                 section["seed"])
+    write_fit(result, folder)

@@ -5,7 +5,8 @@ A study other than the chapter's (config key ``study``) reads only its own secti
 diameter, inertia factor, the numbers' source), ``surface`` (friction, gravity along the level surface's
 normal), ``contact`` (a law and its parameters, or its damping, and stiffness, set from a COR, and contact
 time, measured at ``cor_speed``; a tangential model), ``bounces`` (name -> speed along the path, one
-description of the approach, spin) and ``ranges`` (the speed curve's and the maps' grids).  It never reads or
+description of the approach, spin), ``ranges`` (the speed curve's and the maps' grids) and, optionally, ``fit``
+(measured bounces and the parameters to fit to them: the study then uses the fitted ball).  It never reads or
 writes the chapter's files.
 """
 
@@ -54,12 +55,15 @@ def measurement(config: dict) -> Measurement | None:
                        contact["cor_relation"])
 
 
-def study_ball(config: dict) -> Ball:
+def study_ball(config: dict, fitted: str | None = None) -> Ball:
     """The study's ball: from its ``ball_file``, or from its ball, surface and contact sections, its damping (and k)
     calibrated to the configured COR (and contact time) at ``cor_speed`` (1 m/s if not given) when one is given.
     The config's ``plugins`` are imported first; ``contact.parameters`` are its models' own parameters and
-    ``contact.settings`` their settings."""
+    ``contact.settings`` their settings.  ``fitted``: the ball file its ``fit`` section's fit wrote, which then
+    is the study's ball."""
     names = tuple(plugins.load(config.get("plugins", [])))
+    if fitted:
+        return load_ball(fitted)
     if config.get("ball_file"):
         return load_ball(config["ball_file"])
     options = SolverOptions(settings=config["contact"].get("settings", {}))
@@ -125,6 +129,26 @@ def own_errors(config: dict) -> list[str]:
             bounce_scene(ball, spec)
         except ValueError as err:
             errors.append(f"config key bounces.{name}: {err}")
+    if config.get("fit"):
+        known = study_ball(config) if config.get("ball_file") else Ball(ball, measurement(config))
+        errors += _fit_errors(config["fit"], known)
+    return errors
+
+
+def _fit_errors(section: dict, ball: Ball) -> list[str]:
+    """The ``fit`` section's problems: its data unreadable, a free parameter the ball cannot free."""
+    from ..fit import read_measured
+    from ..fit.least_squares import free_names
+
+    errors = []
+    try:
+        read_measured(section["data"])
+    except ValueError as err:
+        errors.append(f"config key fit.data: {err}")
+    try:
+        free_names(ball, section["free"])
+    except ValueError as err:
+        errors.append(f"config key fit.free: {err}")
     return errors
 
 

@@ -28,10 +28,10 @@ MAP_OUTPUTS = ("omega_f", "vc_t", "vc_n", "rebound_angle_to_surface", "rebound_a
                "regime", "cor")
 
 
-def write_ball(config: dict, json_path: str) -> None:
-    """The study's ball (calibrated, with what was measured and fitted), as a ball file every door reads
-    (:func:`~sphereimpact.impact.ball.save_ball`)."""
-    save_ball(study_ball(config), json_path)
+def write_ball(config: dict, json_path: str, fitted: str | None = None) -> None:
+    """The study's ball (calibrated, with what was measured and fitted; the ``fit`` section's fitted ball
+    ``fitted`` when it has one), as a ball file every door reads (:func:`~sphereimpact.impact.ball.save_ball`)."""
+    save_ball(study_ball(config, fitted), json_path)
 
 
 def read_history(path) -> pd.DataFrame:
@@ -115,11 +115,12 @@ def ball_parameters(ball) -> list[tuple[str, str]]:
 
 
 def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, maps_csv: str, figures: dict,
-               md_path: str, html_path: str, benchmarks=()) -> None:
+               md_path: str, html_path: str, benchmarks=(), fit: tuple[str, str] | None = None) -> None:
     """One page, Markdown and HTML, that shows the study: the ball and what was fitted, each bounce's outputs
     and figure, the speed curve and the maps (``figures``: name -> path relative to the page), each figure with
     its caption, a line for every bounce far from the calibration's speed, and what the study's jobs took
-    (``benchmarks``: Snakemake's benchmark files of its jobs, the page's own aside)."""
+    (``benchmarks``: Snakemake's benchmark files of its jobs, the page's own aside); with a ``fit`` section, the
+    fit (``fit``: its ``fit.json`` and its figure's path relative to the page)."""
     ball, outcomes = load_ball(ball_json), read_history(outcomes_csv)
     scene, speed, maps = ball.scene, pd.read_csv(speed_csv), pd.read_csv(maps_csv)
     measured = ball.measurement
@@ -144,6 +145,7 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
               *([("p", f"The run that wrote this page: its {len(took)} jobs took {sum(took):.3g} s in all, the "
                        f"longest {max(took):.3g} s (Snakemake's benchmarks, `benchmarks/`).")] if took else []),
               ("table", (["parameter", "value"], ball_parameters(ball))),
+              *(_fit_blocks(config["fit"], *fit) if fit else []),
               ("h2", "Bounces (`outcomes.csv`, histories in `histories/`)"),
               ("table", (header, [[_cell(v) for v in row] for row in outcomes[shown].itertuples(index=False)]))]
     blocks += [("p", "Outside the calibration: " + line) for line in far]
@@ -162,6 +164,25 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
                            "grid: 90° less its angle from the normal; above 90° the ball leaves backwards."))]
     Path(md_path).write_text(_markdown(blocks), encoding="utf-8")
     Path(html_path).write_text(_html(config["study"], blocks), encoding="utf-8")
+
+
+def _fit_blocks(section: dict, fit_json: str, figure: str) -> list:
+    """The page's account of the fit: each free parameter with its standard error, the fit's quality, its notes
+    and the figure of data against model."""
+    import json
+
+    record = json.loads(Path(fit_json).read_text(encoding="utf-8"))
+    stats = record["statistics"]
+    rows = [[name, f"{p['value']:.6g}", "unbounded" if p["stderr"] is None else f"{p['stderr']:.3g}",
+             "yes" if p["identifiable"] else "no"] for name, p in record["parameters"].items()]
+    return [("h2", f"Fitted to measured bounces (`fit/`, from `{section['data']}`)"),
+            ("p", f"{stats['values']} measured values of {stats['bounces']} bounces; χ²/dof {stats['reduced_chi2']:.3g}; "
+                  + "; ".join(f"residual RMS of {q} {v:.3g}" for q, v in stats["rms"].items()) + ". The parameters "
+                  "above are the fitted ball's."),
+            ("table", (["parameter", "fitted", "standard error", "identifiable"], rows)),
+            *[("p", "Note: " + note) for note in record["notes"]],
+            ("figure", (figure, 640, "Measured values against the fitted model at each bounce; the band is ±2 "
+                        "standard errors of the model from the parameters' covariance."))]
 
 
 def _bounce_caption(name: str, row) -> str:

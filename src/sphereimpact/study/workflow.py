@@ -52,14 +52,19 @@ RULE_KEYS = {
     "kharaz_fit": ("validation", "kharaz_fit"),
     "compliance_map": (*_SCENE, "compliance", "primary"),
     "validation_figures": ("compliance",),
+    "own_fit": ("study", "plugins", "ball_file", "ball", "surface", "contact", "fit"),
     "own_ball": ("study", "plugins", "ball_file", "ball", "surface", "contact"),
     "own_bounces": ("study", "bounces", "samples"),
     "own_speed": ("study", "ranges"),
     "own_maps": ("study", "ranges"),
     "own_bounce_figure": ("study",),
     "own_figures": ("study",),
-    "own_page": ("study", "contact", "bounces"),
+    "own_page": ("study", "contact", "bounces", "fit"),
 }
+
+
+#: Config sections without a schema default: absent unless the config gives them.
+OPTIONAL = ("fit",)
 
 
 def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
@@ -79,7 +84,7 @@ def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
         section, _, entry = key.partition(".")
         if entry:
             out.setdefault(section, {})[entry] = config[section][entry]
-        else:
+        elif key in config or key not in OPTIONAL:
             out[key] = config[key]
     if case is not None:
         out["cases"] = {case: config["cases"][case]}
