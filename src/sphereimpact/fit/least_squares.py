@@ -248,17 +248,9 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
         estimated = sorted(set(values.loc[~given, "quantity"]))
         notes.append(f"no uncertainty given for {', '.join(estimated)}: each weighted by its own residual scatter "
                      "at the solution")
-    theta = result.x
-    jac = result.jac
+    theta, jac = result.x, result.jac
     x = natural(theta)
-    cov, unbounded = _covariance(jac)
-    stderr_theta = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    stderr_theta[unbounded] = math.inf
-    stderr = np.where(logs, x * stderr_theta, stderr_theta)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        correlation = cov / np.outer(stderr_theta, stderr_theta)
-    correlation[unbounded, :] = correlation[:, unbounded] = math.nan
-    identifiable = ~unbounded & (stderr <= UNIDENTIFIABLE * np.abs(x))
+    cov, stderr, correlation, identifiable = _uncertainties(jac, x, logs)
     for name, ok, value, err in zip(names, identifiable, x, stderr):
         if not ok:
             why = ("the measured values do not depend on it (its standard error is unbounded)" if math.isinf(err)
@@ -274,16 +266,9 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
     fitted = replace(fitted, fitted=fitted.fitted | {n: float(v) for n, v in zip(names, x) if n != "cor"},
                      source=f"fitted to {len(values)} measured values of {len(measured.bounces)} bounces "
                             f"({measured.source}); free: {', '.join(names)}" + (f"; {ball.source}" if ball.source else ""))
-    weighted = (model_values - measured_values) / sigma
-    chi2 = float(weighted @ weighted)
-    dof = len(values) - len(names)
-    approach = measured.bounces.drop(columns=["incidence"], errors="ignore")
-    residuals = pd.concat([approach.iloc[values["bounce"].to_numpy()].reset_index(drop=True),
-                           pd.DataFrame({"quantity": values["quantity"],
-                                         "unit": values["quantity"].map(MEASURABLE).to_numpy(), "measured": measured_values,
-                                         "model": model_values, "sigma": sigma, "sigma_given": given,
-                                         "residual": model_values - measured_values, "model_stderr": model_stderr,
-                                         "incidence": theta_incidence[values["bounce"].to_numpy()]})], axis=1)
+    residuals = _residual_table(measured, model_values, sigma, given, model_stderr, theta_incidence)
+    weighted = residuals["residual"].to_numpy() / sigma
+    chi2, dof = float(weighted @ weighted), len(values) - len(names)
     rms = {q: float(np.sqrt(np.mean(part ** 2))) for q, part in residuals.groupby("quantity")["residual"]}
     statistics = {"values": len(values), "bounces": len(measured.bounces), "free": len(names), "dof": dof,
                   "chi2": chi2, "reduced_chi2": chi2 / dof, "rms": rms, "evaluations": int(evaluations),
@@ -297,6 +282,31 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
 #: Directions of the weighted Jacobian whose singular value is below this fraction of the largest are taken as
 #: unconstrained: the finite-difference Jacobian is accurate to about DIFF_STEP, far above round-off.
 SINGULAR = 1e-7
+
+
+def _uncertainties(jac: np.ndarray, x: np.ndarray, logs: np.ndarray):
+    """(covariance of the fitted variables, standard errors of the parameters, correlation, identifiable) from
+    the weighted Jacobian at the solution: a parameter fitted in its logarithm has the error x * its log's."""
+    cov, unbounded = _covariance(jac)
+    stderr_theta = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    stderr_theta[unbounded] = math.inf
+    stderr = np.where(logs, x * stderr_theta, stderr_theta)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        correlation = cov / np.outer(stderr_theta, stderr_theta)
+    correlation[unbounded, :] = correlation[:, unbounded] = math.nan
+    return cov, stderr, correlation, ~unbounded & (stderr <= UNIDENTIFIABLE * np.abs(x))
+
+
+def _residual_table(measured: Measured, model, sigma, given, model_stderr, incidences) -> pd.DataFrame:
+    """One row per measured value: its bounce's approach (the incidence from the normal resolved), the
+    quantity and its unit, measured and model values, the weight, the residual and the model's error."""
+    values, bounce = measured.values, measured.values["bounce"].to_numpy()
+    approach = measured.bounces.drop(columns=["incidence"], errors="ignore").iloc[bounce].reset_index(drop=True)
+    return pd.concat([approach, pd.DataFrame({
+        "quantity": values["quantity"], "unit": values["quantity"].map(MEASURABLE).to_numpy(),
+        "measured": values["value"].to_numpy(float), "model": model, "sigma": sigma, "sigma_given": given,
+        "residual": model - values["value"].to_numpy(float), "model_stderr": model_stderr,
+        "incidence": incidences[bounce]})], axis=1)
 
 
 def _covariance(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
