@@ -67,6 +67,8 @@ def test_the_command_line_calibrates_saves_and_reuses_the_ball(golf, tmp_path, c
     assert run(["simulate", *GOLF_FLAGS, "--speed", "40", "--save-ball", str(path), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["cor"] == pytest.approx(0.78, rel=1e-9)
     assert load_ball(path).scene == golf.scene  # the same calibration as the API's
+    assert run(["simulate", *GOLF_FLAGS, "--speed", "40", "--save-ball", str(path)]) == 2  # kept, as --out's
+    assert "save-ball: " in capsys.readouterr().err and load_ball(path).scene == golf.scene
     assert run(["simulate", "--ball", str(path), "--speed", "30", "--angle-to-surface", "45", "--json"]) == 0
     cli = json.loads(capsys.readouterr().out)
     api = simulate(ball_scene(golf, speed=30.0, angle_to_surface=45.0))

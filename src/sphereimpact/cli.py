@@ -235,7 +235,7 @@ def _parser() -> argparse.ArgumentParser:
     add("--plot", default=None, metavar="FILE",
         help="also draw the history: displacement, velocities, spin, force against compression (.png, .pdf, .svg)")
     add("--samples", type=int, default=401, metavar="N", help="instants of --history and --plot, an integer >= 2")
-    add("--force", action="store_true", help="overwrite the --history and --plot files if they exist")
+    add("--force", action="store_true", help="overwrite the --history, --plot and --save-ball files if they exist")
 
     swp = sub.add_parser(
         "sweep", help="simulate a grid of impacts and write one row per scene", formatter_class=_Help,
@@ -554,6 +554,8 @@ def _simulate(args) -> None:
         check_out(args.history, args.force, what="history")
     if args.plot is not None:
         check_out(args.plot, args.force, FIGURE_EXTENSIONS, what="plot")
+    if args.save_ball is not None:
+        check_out(args.save_ball, args.force, (".json",), what="save-ball")
     if args.samples < 2:
         raise ValueError(f"samples must be an integer >= 2 (instants from 0 to t_f); got {args.samples}")
     ball, approach = _ball(args), {name: getattr(args, name) for name in APPROACH}
