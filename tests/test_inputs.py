@@ -18,7 +18,7 @@ import sphereimpact.sweep.engine as engine
 from sphereimpact import BeyondRadiusWarning, EnergyGainWarning, ImpactError, Scene, Separation, SolverOptions, simulate
 from sphereimpact.cli import run
 from sphereimpact.impact.scene import STANDARD_GRAVITY
-from sphereimpact.study.config import config_errors
+from sphereimpact.study.config_check import config_errors
 from sphereimpact.sweep.engine import grid, sweep
 
 SCHEMA = "config/schema.yaml"

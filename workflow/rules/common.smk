@@ -5,7 +5,7 @@ from snakemake.utils import validate
 
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.fit import FIT_FILES
-from sphereimpact.study.config import check_config
+from sphereimpact.study.config_check import check_config
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest
 
 

@@ -74,6 +74,16 @@ def study_ball(config: dict, fitted: str | None = None) -> Ball:
     return calibrated_ball(measured, options, names, source, **_fields(config))
 
 
+def described_ball(config: dict) -> Ball:
+    """The study's ball as its sections describe it, without solving anything: its ball file's, or its scene
+    with stand-ins for what the measurement will calibrate (:func:`~sphereimpact.impact.ball.uncalibrated`) and
+    the measurement; what the config checks check."""
+    if config.get("ball_file"):
+        return study_ball(config)
+    measured = measurement(config)
+    return Ball(Scene(**_fields(config)) if measured is None else uncalibrated(measured, **_fields(config)), measured)
+
+
 def bounce_scene(ball: Scene, spec: dict) -> Scene:
     """The ball in one configured bounce: speed along the path, the approach, spin."""
     path = {name: spec[name] for name in ("angle", *PATH_RULES) if name in spec}
@@ -118,8 +128,7 @@ def own_errors(config: dict) -> list[str]:
                 or "cor_speed" in contact) and "cor" not in contact:
             errors.append("config key contact: contact_time, cor_speed and cor_relation need cor")
         try:  # the ball and every bounce as Scene checks them, without the (slower) calibration
-            measured = measurement(config)
-            ball = (Scene(**_fields(config)) if measured is None else uncalibrated(measured, **_fields(config)))
+            ball = described_ball(config).scene
             SolverOptions(settings=config["contact"].get("settings", {}))
         except (ValueError, TypeError) as err:
             errors.append(f"config key contact (or ball, surface, plugins): {err}")
@@ -129,26 +138,6 @@ def own_errors(config: dict) -> list[str]:
             bounce_scene(ball, spec)
         except ValueError as err:
             errors.append(f"config key bounces.{name}: {err}")
-    if config.get("fit"):
-        known = study_ball(config) if config.get("ball_file") else Ball(ball, measurement(config))
-        errors += _fit_errors(config["fit"], known)
-    return errors
-
-
-def _fit_errors(section: dict, ball: Ball) -> list[str]:
-    """The ``fit`` section's problems: its data unreadable, a free parameter the ball cannot free."""
-    from ..fit import read_measured
-    from ..fit.least_squares import free_names
-
-    errors = []
-    try:
-        read_measured(section["data"])
-    except ValueError as err:
-        errors.append(f"config key fit.data: {err}")
-    try:
-        free_names(ball, section["free"])
-    except ValueError as err:
-        errors.append(f"config key fit.free: {err}")
     return errors
 
 
