@@ -27,15 +27,15 @@ def finite(value):
     return value
 
 
-def write_fit(result, folder) -> None:
+def write_fit(result, folder, extra: dict | None = None) -> None:
     """Write a :class:`~sphereimpact.fit.FitResult` into ``folder`` (made if missing): its files
-    (:data:`~sphereimpact.fit.FIT_FILES`) are the fitted ball, the parameters and statistics (JSON), the residual
-    table and the figure of data against model."""
+    (:data:`~sphereimpact.fit.FIT_FILES`) are the fitted ball, the parameters and statistics (JSON, with the
+    keys of ``extra`` besides), the residual table and the figure of data against model."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     ball, summary, residuals, figure = (folder / name for name in FIT_FILES)
     save_ball(result.ball, ball)
-    summary.write_text(json.dumps(finite(result.as_dict()), indent=2) + "\n", encoding="utf-8")
+    summary.write_text(json.dumps(finite(result.as_dict() | (extra or {})), indent=2) + "\n", encoding="utf-8")
     write_table(result.residuals, str(residuals), units=RESIDUAL_UNITS)
     stats = result.statistics
     title = (", ".join(f"{n} = {p.value:.4g} ± {p.stderr:.2g}" for n, p in result.parameters.items())
@@ -54,12 +54,9 @@ def kharaz_fit(config: dict, data_csv: str, folder: str) -> None:
     start = {name: value for name, value in spec["start"].items() if name in spec["free"]}
     ball = with_values(Ball(exp.with_tangential(spec["tangential"]), source="Kharaz et al. (2001)"), start)
     result = fit(read_measured(data_csv, source=Path(data_csv).name), ball, spec["free"])
-    write_fit(result, folder)
-    summary = Path(folder, FIT_FILES[1])
-    record = json.loads(summary.read_text(encoding="utf-8"))
-    record["reference"] = {"mu": config["validation"]["mu"], "kappa": exp.kappa, "tangential": spec["tangential"],
-                           "source": "mu measured by Kharaz et al. (2001); kappa = 4 G*/E* of alumina on glass"}
-    summary.write_text(json.dumps(finite(record), indent=2) + "\n", encoding="utf-8")
+    write_fit(result, folder, {"reference": {
+        "mu": config["validation"]["mu"], "kappa": exp.kappa, "tangential": spec["tangential"],
+        "source": "mu measured by Kharaz et al. (2001); kappa = 4 G*/E* of alumina on glass"}})
 
 
 def study_fit(config: dict, folder: str) -> None:
