@@ -46,11 +46,11 @@ def test_mu_comes_back_within_its_standard_error_at_the_nominal_rate(sigma):
     assert 0.50 <= np.mean(z < 1) <= 0.85 and np.mean(z < 2) >= 0.85, np.round(z, 2)
 
 
-def test_two_parameters_of_a_compliant_contact_come_back_and_the_bootstrap_agrees():
-    """mu and kappa of a linear tangential spring, from 14 bounces; the bootstrap's spread of mu (20 refits,
-    seeded: the same twice) agrees with the Jacobian's standard error within a factor 2."""
+def test_two_parameters_of_a_compliant_contact_come_back():
+    """mu and kappa of a linear tangential spring come back from 10 bounces within 3 standard errors, weakly
+    correlated, and the fitted ball carries them."""
     truth = Ball(TRUTH.with_(tangential="linear", kappa=0.6, mu=0.3))
-    data = read_measured(bounces(7, n=14, truth=truth, incidences=(5.0, 45.0)))
+    data = read_measured(bounces(7, n=10, truth=truth, incidences=(5.0, 45.0)))
     start = Ball(truth.scene.with_(mu=0.2, kappa=1.0))
     result = fit(data, start, ["mu", "kappa"])
     for name, value in (("mu", 0.3), ("kappa", 0.6)):
