@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import __version__, plugins
-from .impact.ball import FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball, save_ball
+from .impact.ball import APPROACH, FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball, save_ball
 from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .integrators import method_names
@@ -456,9 +456,10 @@ def _sweep(args) -> None:
                          f"made energy (column energy_gained; work_t up to +{result['work_t'].to_numpy()[gained].max():.3g} J): "
                          "an artefact of the model, not of the ball\n")
     if measurement is not None:
-        factor = _normal_speeds(result) / measurement.speed
-        far = int(np.count_nonzero((factor > FAR) | (factor < 1.0 / FAR)))
+        speeds = _normal_speeds(result)
+        far = int(np.count_nonzero(measurement.extrapolates(speeds)))
         if far:
+            factor = speeds / measurement.speed
             sys.stderr.write(f"sphereimpact: warning: {far} of {len(result)} scenes have a normal speed more than "
                              f"{FAR:g} times from the {measurement.speed:.3g} m/s at which the COR {measurement.cor:g} "
                              f"was measured ({factor.min():.3g} to {factor.max():.3g} times): the calibrated law "
@@ -510,9 +511,8 @@ def _readable(outputs: dict, units: dict) -> str:
     return "\n".join(lines)
 
 
-#: The approach of a scene (what a ball file leaves to the command line) and the surface (which may differ from
-#: the ball file's).
-APPROACH = ("angle", "speed", "spin", "incidence", "angle_to_surface")
+#: The surface (which may differ from the ball file's; the approach, APPROACH, is what a ball file leaves to the
+#: command line).
 SURFACE = ("mu", "gravity")
 #: Options that describe the ball and its contact: a ball file gives them all.
 CALIBRATION = ("cor", "cor_speed", "contact_time", "cor_relation")

@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from .. import plugins
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate
@@ -71,6 +73,12 @@ class Measurement:
         if self.relation not in RELATIONS:
             raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {self.relation!r}")
 
+    def extrapolates(self, v_normal):
+        """Whether a normal speed [m/s] (a number or an array of them) lies more than :data:`FAR` times from the
+        measurement's either way: there the law calibrated to it extrapolates."""
+        factor = np.asarray(v_normal) / self.speed
+        return (factor > FAR) | (factor < 1.0 / FAR)
+
 
 @dataclass(frozen=True)
 class Ball:
@@ -108,9 +116,9 @@ class Ball:
         than 1 / FAR), else None: there the calibrated law extrapolates."""
         if self.measurement is None:
             return None
-        factor = scene.v_normal / self.measurement.speed
-        if 1.0 / FAR <= factor <= FAR:
+        if not self.measurement.extrapolates(scene.v_normal):
             return None
+        factor = scene.v_normal / self.measurement.speed
         return (f"the normal speed {scene.v_normal:.3g} m/s is {factor:.3g} times the {self.measurement.speed:.3g} "
                 f"m/s at which the COR {self.measurement.cor:g} was measured: the {scene.model!r} law, calibrated "
                 "there, extrapolates")

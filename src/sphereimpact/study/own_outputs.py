@@ -132,10 +132,9 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
              f"{1e3 * speed['t_f'].min():.3g}–{1e3 * speed['t_f'].max():.3g} ms, peak force up to "
              f"{speed['force_max'].max():.4g} N over {speed['speed'].min():g}–{speed['speed'].max():g} m/s "
              f"(COR {at['cor']:.4f} at {at['speed']:g} m/s).")
-    if measured is not None:
+    if measured is not None and measured.extrapolates(speed["speed"]).any():
         low, high = speed["speed"].min() / measured.speed, speed["speed"].max() / measured.speed
-        if low < 1 / FAR or high > FAR:
-            curve += (f" The curve spans {low:.2g}–{high:.2g} times the measurement's {measured.speed:g} m/s; beyond "
+        curve += (f" The curve spans {low:.2g}–{high:.2g} times the measurement's {measured.speed:g} m/s; beyond "
                       f"{FAR:g} times either way the calibrated law extrapolates.")
     far = [f"{name}: {line}" for name, spec in config["bounces"].items()
            if (line := ball.far_from_measurement(bounce_scene(scene, spec)))]
