@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
-import numpy as np
 import pandas as pd
 
 from ..impact.outcome import OUTPUT_UNITS
@@ -35,26 +34,22 @@ def fit_figure(residuals: pd.DataFrame, title: str, outputs) -> None:
             else:
                 ax.errorbar(x, model, yerr=band, fmt="_", color="C0", ms=10, capsize=0,
                             label="fitted model at each bounce ± 2 standard errors")
-            given = rows["sigma_given"].to_numpy(bool)
-            ax.errorbar(x[given], rows["measured"].to_numpy()[given], yerr=rows["sigma"].to_numpy()[given], fmt="o",
-                        color="C3", ms=4, capsize=2, label="measured ± its uncertainty")
-            ax.plot(x[~given], rows["measured"].to_numpy()[~given], "o", color="C3", ms=4, mfc="none",
-                    label="measured (no uncertainty given)")
+            given, measured = rows["sigma_given"].to_numpy(bool), rows["measured"].to_numpy()
+            if given.any():
+                ax.errorbar(x[given], measured[given], yerr=rows["sigma"].to_numpy()[given], fmt="o", color="C3",
+                            ms=4, capsize=2, label="measured ± its uncertainty")
+            if not given.all():
+                ax.plot(x[~given], measured[~given], "o", color="C3", ms=4, mfc="none",
+                        label="measured (no uncertainty given)")
             unit = OUTPUT_UNITS.get(name, "")
             ax.set_ylabel(_LABELS.get(name, f"{name} [{unit}]" if unit else name))
-        handles, labels = axes[0, 0].get_legend_handles_labels()
-        shown = [(h, lab) for h, lab in zip(handles, labels) if not _empty(h)]
-        fig.legend(*zip(*shown), loc="lower center", ncol=2, fontsize=8, frameon=False)
+        legend = {}  # every kind of mark any panel drew, once
+        for ax in axes[:, 0]:
+            for handle, label in zip(*ax.get_legend_handles_labels()):
+                legend.setdefault(label, handle)
+        fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=2, fontsize=8, frameon=False)
         axes[-1, 0].set_xlabel(x_label)
         axes[0, 0].set_title(title, fontsize=8)
         fig.tight_layout(rect=(0, 0.07 if len(quantities) > 1 else 0.12, 1, 1))
         save(fig, outputs)
 
-
-def _empty(handle) -> bool:
-    """A legend entry of an artist that drew nothing (no points of that kind)."""
-    data = getattr(handle, "get_xdata", None)
-    if data is not None:
-        return len(np.atleast_1d(data())) == 0
-    lines = getattr(handle, "lines", None)
-    return bool(lines) and len(np.atleast_1d(lines[0].get_xdata())) == 0

@@ -24,7 +24,6 @@ import pandas as pd
 from scipy.optimize import least_squares
 
 from ..impact.ball import Ball, ball_columns, calibrated_ball
-from ..impact.scene import Scene
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
 from .measured import APPROACH, MEASURABLE, SOURCES, Measured, quantity
@@ -124,7 +123,6 @@ def with_values(ball: Ball, values: dict) -> Ball:
             fields[damping] = None
         if measurement.contact_time is not None:
             fields |= {"k": None, "modulus": None}
-        fields = {k: v for k, v in fields.items() if k not in ("angle", "speed", "spin", "incidence", "angle_to_surface")}
         fresh = calibrated_ball(measurement, ball.options, ball.plugins, ball.source, **fields)
         return replace(fresh, fitted=ball.fitted | fresh.fitted)
     return replace(ball, scene=ball.scene.with_(**changes))
@@ -321,22 +319,21 @@ def _covariance(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _bounces(bounces: pd.DataFrame, ball: Ball) -> pd.DataFrame:
-    """The measured bounces as scene rows: their approach, the ball's where they leave it out."""
+    """The measured bounces as scene rows: their approach, the ball's where they leave it out (its speed, its
+    spin, and its one description of the direction when the table gives none)."""
     table = bounces.copy()
-    scene: Scene = ball.scene
+    scene = ball.scene
     if not any(c in table for c in ("incidence", "angle_to_surface", "angle")):
-        table["angle"] = scene.angle
-        if scene.incidence is not None:
-            table = table.drop(columns="angle").assign(incidence=scene.incidence)
-        elif scene.angle_to_surface is not None:
-            table = table.drop(columns="angle").assign(angle_to_surface=scene.angle_to_surface)
+        direction = next((name for name in ("incidence", "angle_to_surface") if getattr(scene, name) is not None),
+                         "angle")
+        table[direction] = getattr(scene, direction)
     for name in ("speed", "spin"):
         if name not in table:
             table[name] = getattr(scene, name)
-    for name in ("incidence", "angle_to_surface", "angle"):
+    for name, absent in (("incidence", np.nan), ("angle_to_surface", np.nan), ("angle", 0.0)):
         if name not in table:
-            table[name] = np.nan if name != "angle" else 0.0
-    return table[[c for c in (*APPROACH,) if c in table]].reset_index(drop=True)
+            table[name] = absent
+    return table[list(APPROACH)].reset_index(drop=True)
 
 
 def _scale(values: pd.DataFrame) -> np.ndarray:
@@ -346,8 +343,8 @@ def _scale(values: pd.DataFrame) -> np.ndarray:
 
 
 def _scatter(values: pd.DataFrame, residual: np.ndarray, free: int, fallback: np.ndarray) -> np.ndarray:
-    """Each quantity's residual scatter (its RMS, corrected for the parameters fitted, shared out by the
-    total share), floored far below the quantity's magnitude so a perfect fit stays finite."""
+    """Each quantity's residual scatter: its RMS, scaled by n / (n - p) for the p parameters fitted to all n
+    values, and floored far below the quantity's magnitude (``fallback``) so a perfect fit stays finite."""
     n = len(values)
     mean = pd.Series(residual ** 2).groupby(values["quantity"].to_numpy()).transform("mean").to_numpy()
     return np.maximum(np.sqrt(mean * n / max(n - free, 1)), 1e-9 * fallback)
