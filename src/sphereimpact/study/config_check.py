@@ -54,29 +54,30 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
         filled = with_defaults(schema, config)
         lines += (_sweep_errors(config, schema) + _law_errors(config) + _tangential_errors(config)
                   + own_errors(filled))
-        if config.get("fit") and not any(line.startswith(OWN_KEYS) for line in lines):
+        if config.get("fit"):
             lines += _fit_errors(filled)
     return lines
 
 
-#: An own study's sections whose errors leave no ball to check the ``fit`` section against.
-OWN_KEYS = tuple(f"config key {key}" for key in ("ball_file", "ball", "surface", "contact", "plugins"))
-
-
 def _fit_errors(config: dict) -> list[str]:
     """An own study's ``fit`` section: its data unreadable, a free parameter the study's ball cannot free
-    (checked on the ball as described, without calibrating it)."""
+    (checked on the ball as described, without calibrating it).  Nothing when there is no ball to check it
+    against: :func:`~.own.own_errors` names what is wrong with the ball."""
     from ..fit import read_measured
     from ..fit.least_squares import free_names
     from .own import described_ball
 
+    try:
+        ball = described_ball(config)
+    except (ValueError, TypeError):
+        return []
     section, errors = config["fit"], []
     try:
         read_measured(section["data"])
     except ValueError as err:
         errors.append(f"config key fit.data: {err}")
     try:
-        free_names(described_ball(config), section["free"])
+        free_names(ball, section["free"])
     except ValueError as err:
         errors.append(f"config key fit.free: {err}")
     return errors
