@@ -24,6 +24,7 @@ from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .integrators import method_names
 from .contact.laws import LAWS, PARAMETER_NAMES
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
+from .impact.pair import PARTNER_FIELDS, PARTNER_UNITS
 from .parsing import parse_number, range_count
 from .impact.inputs import PATH_RULES, RULES, SEPARATION_CRITERIA, check_columns, magnitude_problem
 from .impact.scene import ATOL_RANGE, RTOL_RANGE, STANDARD_GRAVITY, Scene, SolverOptions
@@ -36,7 +37,8 @@ _D = Scene()
 _O = SolverOptions()
 
 #: Output units for the readable (non-JSON) output of ``simulate``.
-UNITS = {key: unit for key, unit in OUTPUT_UNITS.items() if unit and key not in ("switches", "rtol", "atol", "nfev")}
+UNITS = {key: unit for key, unit in (OUTPUT_UNITS | PARTNER_UNITS).items()
+         if unit and key not in ("switches", "rtol", "atol", "nfev")}
 
 
 def _tangential_help() -> dict:
@@ -74,6 +76,16 @@ APPROACH_HELP = {
                  "on a level flat",
     "angle_to_surface": "the ball's path as its angle to the surface [deg], in (0, 90] (90 - incidence), on a "
                         "level flat",
+}
+#: Help for the partner sphere, shared by simulate, fit and sweep.
+PARTNER_HELP = {
+    "partner_mass": "strike a partner sphere at rest instead of the flat: its mass [kg], > 0 (with "
+                    "--partner-diameter; the contact law's k, --modulus and --ramp are then the contact's, at the "
+                    "Hertz radius R1 R2 / (R1 + R2); no gravity)",
+    "partner_diameter": "the partner sphere's diameter [m], > 0",
+    "partner_inertia_factor": "the partner's alpha in I = alpha m R^2 [-], in (0, 2/3] (default 0.4)",
+    "partner_spin": "the partner's spin [rad/s] in the ball's rotational sense (both positive: the spheres rub at "
+                    "the contact) (default 0)",
 }
 
 
@@ -200,6 +212,8 @@ def _scene_options(parser: argparse.ArgumentParser) -> None:
              f"(default: {_D.gravity})")
     for name, text in _setting_flags().items():
         add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
+    for name, text in PARTNER_HELP.items():
+        add("--" + name.replace("_", "-"), type=_number, default=None, help=text)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -256,6 +270,9 @@ def _parser() -> argparse.ArgumentParser:
     for name in PATH_RULES:
         swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
                          help=APPROACH_HELP[name] + ": a value or START:STOP:STEP (then --angle stays 0)")
+    for name, text in PARTNER_HELP.items():
+        swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
+                         help=text + ": a value or START:STOP:STEP")
     for name, text in _law_flags().items():
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
@@ -378,7 +395,7 @@ def check_out(path: str, force: bool, extensions=None, what: str = "out") -> Non
 def _each_range(args, read) -> dict:
     """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
-    for name in [*RANGED, *PATH_RULES, *_law_flags(), *TANGENTIAL_PARAMETERS, *own_parameters()]:
+    for name in [*RANGED, *PATH_RULES, *PARTNER_FIELDS, *_law_flags(), *TANGENTIAL_PARAMETERS, *own_parameters()]:
         if getattr(args, name) is None:  # a law or tangential parameter not given: the default
             continue
         try:
@@ -424,7 +441,7 @@ def _sweep(args) -> None:
         ball = _ball(args)
         measurement, settings = ball.measurement, dict(ball.options.settings) | settings
         kept = {name: values for name, values in ranges.items()
-                if name in APPROACH or (name in SURFACE and name in args.given)}
+                if name in APPROACH or name in PARTNER_FIELDS or (name in SURFACE and name in args.given)}
         table = grid(**kept).assign(**ball_columns(ball, exclude=kept))
     else:
         table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
@@ -523,7 +540,13 @@ def _ball_fields(args) -> dict:
     return dict(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, mu=args.mu,
                 model=args.model, gravity=args.gravity, separation=args.separation, tangential=args.tangential,
                 **{name: getattr(args, name) for name in (*TANGENTIAL_PARAMETERS, *_law_flags())},
-                parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None})
+                parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None},
+                **_partner(args))
+
+
+def _partner(args) -> dict:
+    """The partner sphere's fields the command line gives (none: the flat)."""
+    return {name: getattr(args, name) for name in PARTNER_FIELDS if getattr(args, name) is not None}
 
 
 def _ball(args) -> Ball | None:
@@ -563,7 +586,8 @@ def _simulate(args) -> None:
         scene = Scene(**_ball_fields(args), **approach)
     else:
         surface = {name: getattr(args, name) for name in SURFACE if name in args.given}
-        scene = ball_scene(ball, **{k: v for k, v in approach.items() if v is not None}).with_(**surface)
+        scene = ball_scene(ball, **{k: v for k, v in approach.items() if v is not None}).with_(**surface,
+                                                                                               **_partner(args))
         far = ball.far_from_measurement(scene)
         if far:
             sys.stderr.write(f"sphereimpact: warning: {far}\n")
@@ -636,8 +660,8 @@ def _fit(args) -> None:
     if ball is None:
         ball = Ball(Scene(**_ball_fields(args), **{name: getattr(args, name) for name in APPROACH}),
                     options=SolverOptions(settings=_settings(args)), plugins=tuple(args.plugin or ()))
-    elif approach:
-        ball = replace(ball, scene=ball_scene(ball, **approach))
+    elif approach or _partner(args):
+        ball = replace(ball, scene=ball_scene(ball, **approach).with_(**_partner(args)))
     free = [name.strip() for name in args.free.split(",") if name.strip()]
     result = fit(read_measured(args.measured), ball, free, args.bootstrap, args.seed, args.target)
     if args.out is not None:

@@ -72,14 +72,15 @@ def options_for(cor: float) -> SolverOptions:
 
 
 def normal_cor(scene: Scene, options: SolverOptions = TIGHT) -> float:
-    """The normal coefficient of restitution -delta_dot(t_f) / v_n of ``scene``."""
-    normal = IntegratedNormal(scene, options)
+    """The normal coefficient of restitution -delta_dot(t_f) / v_n of ``scene`` (of the relative motion, with a
+    partner sphere)."""
+    normal = IntegratedNormal(scene.reduced, options)
     return -float(normal.state(normal.t_f)[1]) / scene.v_normal
 
 
 def contact_time(scene: Scene, options: SolverOptions = TIGHT) -> float:
     """The contact time t_f [s] of ``scene``."""
-    return IntegratedNormal(scene, options).t_f
+    return IntegratedNormal(scene.reduced, options).t_f
 
 
 def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> Calibration:
@@ -130,7 +131,7 @@ def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> 
 
 
 def _relations(scene: Scene, cor: float) -> dict:
-    return {name: float(relation(cor, scene)) for name, relation in scene.law.cor_relations.items()}
+    return {name: float(relation(cor, scene.reduced)) for name, relation in scene.law.cor_relations.items()}
 
 
 def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:

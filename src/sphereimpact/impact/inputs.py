@@ -44,6 +44,16 @@ PATH_RULES = {
 }
 
 
+#: A partner sphere the ball strikes instead of the flat (:mod:`.pair`): (allowed range, vectorised test) of its
+#: fields, all optional; ``partner_mass`` and ``partner_diameter`` give the partner, the others need it.
+PARTNER_RULES = {
+    "partner_mass": ("a finite number > 0 kg", lambda x: x > 0),
+    "partner_diameter": ("a finite number > 0 m", lambda x: x > 0),
+    "partner_inertia_factor": (RULES["inertia_factor"][0], RULES["inertia_factor"][1]),
+    "partner_spin": ("a finite number rad/s (in the ball's rotational sense)", lambda x: x == x),
+}
+
+
 def as_number(name: str, value) -> float:
     """``value`` as a Python float when it is a real number: int, float, a numpy scalar or a 0-d array.
 
@@ -220,9 +230,9 @@ def check_columns(columns: dict) -> dict:
         ``"<name> must be <range>; got <value> (row <i>)"``.
     """
     for name, values in columns.items():
-        if name in RULES or name in PATH_RULES:
-            optional = name in PATH_RULES  # a path field is NaN in the rows that do not give it
-            allowed, ok = (PATH_RULES if optional else RULES)[name]
+        if name in RULES or name in PATH_RULES or name in PARTNER_RULES:
+            optional = name not in RULES  # a path or partner field is NaN in the rows that do not give it
+            allowed, ok = (RULES | PATH_RULES | PARTNER_RULES)[name]
             raw = np.asarray(values)
             if raw.dtype == bool or (raw.dtype == object and any(isinstance(v, (bool, np.bool_)) for v in raw.flat)):
                 raise TypeError(f"{name} must be real numbers; got a boolean")
@@ -251,7 +261,8 @@ def check_columns(columns: dict) -> dict:
             except (TypeError, ValueError):
                 raise ValueError(f"{name} must be a number; got a non-numeric value") from None
         else:
-            known = [*RULES, *PATH_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, *own_parameters()]
+            known = [*RULES, *PATH_RULES, *PARTNER_RULES, *TEXT_FIELDS, *PARAMETER_NAMES, *TANGENTIAL_PARAMETERS,
+                     *own_parameters()]
             raise ValueError(f"unknown scene parameter {name!r}; expected one of {', '.join(known)}")
     if all(name in columns for name in ("mass", "speed", "diameter")):
         problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])

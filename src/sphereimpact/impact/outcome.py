@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..ode.events import extremum
+from .pair import PARTNER_OUTPUTS
 from .scene import Scene
 
 #: The outputs of one impact, in the order of the JSON object and tables.
@@ -194,6 +195,12 @@ class Outcome:
         :func:`sphereimpact.simulate` warns with an :class:`~sphereimpact.errors.EnergyGainWarning`).
     method, rtol, atol, nfev, wall_time
         Solver statistics; ``wall_time`` [s] covers the whole call.
+    partner_vc_t, partner_vc_n, partner_omega_f : float or None
+        With a partner sphere (:attr:`Scene.partner_mass`): its centre's velocity along t and n [m/s] and its
+        spin [rad/s] after the impact; None on the flat.  Then ``vc_t``, ``vc_n`` and ``omega_f`` are the
+        ball's (the partner at rest before), and ``ve_t``, ``ve_n``, ``cor``, the rebound angles, ``work_t`` and
+        the normal outputs are of the relative motion (:attr:`Scene.reduced`): ``ve_t`` is the slip of the
+        ball's surface on the partner's, and the COR is of the relative normal velocities.
     """
 
     t_m: float
@@ -223,6 +230,9 @@ class Outcome:
     wall_time: float
     scene: Scene = field(repr=False, compare=False)
     motion: object = field(repr=False, compare=False)
+    partner_vc_t: float | None = None
+    partner_vc_n: float | None = None
+    partner_omega_f: float | None = None
 
     @classmethod
     def from_motion(cls, motion, wall_time: float) -> "Outcome":
@@ -247,16 +257,18 @@ class Outcome:
         return cls(**values, wall_time=wall_time, scene=s, motion=motion, **motion.stats)
 
     def to_dict(self) -> dict:
-        """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS`."""
+        """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS` (and, with a partner sphere,
+        :data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS`)."""
         out = {}
-        for key in OUTPUT_KEYS:
+        for key in (*OUTPUT_KEYS, *(PARTNER_OUTPUTS if self.partner_vc_n is not None else ())):
             value = getattr(self, key)
             out[key] = float(value) if isinstance(value, (float, np.floating)) else value
         return out
 
     def history(self, n: int = 401):
         """Time histories on ``n`` uniform instants over [0, t_f]: a DataFrame whose columns are
-        :data:`HISTORY_COLUMNS` (SI units, recorded in its ``attrs["units"]``).
+        :data:`HISTORY_COLUMNS` (SI units, recorded in its ``attrs["units"]``).  With a partner sphere, the
+        relative motion: the reduced sphere's (:attr:`Scene.reduced`) on the partner's surface.
 
         Raises
         ------
@@ -265,7 +277,7 @@ class Outcome:
         """
         if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < 2:
             raise ValueError(f"n must be an integer >= 2 (instants from 0 to t_f); got {n!r}")
-        s = self.scene
+        s = self.motion.scene
         t = np.linspace(0.0, self.t_f, n)
         k = self.motion.kinematics(t)
         radius, beta = s.radius, s.tilt  # the flat's tilt orients the global frame

@@ -21,8 +21,9 @@ from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
                                   kappa_from_shear_modulus)
-from .inputs import (PATH_RULES, RULES, _check, _check_choice, as_number, law_parameters,
+from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, law_parameters,
                      magnitude_problem, scale_problem)
+from .pair import PARTNER_FIELDS, reduced_body
 
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
@@ -55,7 +56,7 @@ class FrozenMapping(Mapping):
 
 @dataclass(frozen=True)
 class Scene:
-    """One sphere striking a rigid inclined flat.
+    """One sphere striking a rigid inclined flat, or a partner sphere at rest.
 
     Parameters
     ----------
@@ -111,6 +112,18 @@ class Scene:
         [deg] in [0, 90) (Kharaz's and the DEM codes' convention), or its angle to the surface [deg] in
         (0, 90] (the sports convention, 90 - incidence), with ``speed`` along the path.  At most one of
         them, and then ``angle`` stays 0: exactly one description of the approach per scene.
+    partner_mass, partner_diameter : float or None
+        A partner sphere the ball strikes instead of the flat [kg], [m], both > 0, or None (the rigid flat).  The
+        partner starts at rest apart from its spin (any collision can be shifted to that frame); the contact
+        frame is the partner's surface's (n its outward normal at the contact, t along the incoming tangential
+        motion).  The pair is solved exactly as one sphere on the flat (:attr:`reduced`,
+        :mod:`sphereimpact.impact.pair`): the law's ``k``, ``modulus`` and ``ramp`` are the contact's, at the
+        Hertz radius R* = R1 R2 / (R1 + R2).  Gravity is refused with a partner.
+    partner_inertia_factor : float
+        The partner's alpha in I = alpha m R^2 [-], in (0, 2/3]; 0.4 by default.
+    partner_spin : float
+        The partner's spin [rad/s] in the ball's rotational sense (two spheres turning the same way rub at the
+        contact: the slip is v_t - omega_0 R - partner_spin R2); 0 by default.
     parameters : mapping of str to float
         The law's and the tangential model's own parameters (those that are not fields above, declared by a
         registered model: :mod:`sphereimpact.contact.parameters`), each read as ``scene.name``; checked,
@@ -139,6 +152,10 @@ class Scene:
     spin: float = 0.0
     incidence: float | None = None
     angle_to_surface: float | None = None
+    partner_mass: float | None = None
+    partner_diameter: float | None = None
+    partner_inertia_factor: float = 0.4
+    partner_spin: float = 0.0
     parameters: Mapping[str, float] = FrozenMapping()
 
     def __post_init__(self):
@@ -148,6 +165,9 @@ class Scene:
         if problem:
             raise ValueError(problem)
         self._check_path()
+        if self._check_partner():
+            self._take_reduced()
+            return
         _check_choice("model", self.model, tuple(LAWS))
         object.__setattr__(self, "separation", Separation.parse(self.separation))
         object.__setattr__(self, "parameters", self._own_parameters())
@@ -165,6 +185,49 @@ class Scene:
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
         self._resolve_kappa()
+
+    def _check_partner(self) -> bool:
+        """Check the partner's fields; True when the scene has a partner sphere."""
+        for name, (allowed, ok) in PARTNER_RULES.items():
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
+        if self.partner_mass is None and self.partner_diameter is None:
+            for name in PARTNER_FIELDS[2:]:
+                if getattr(self, name) != Scene.__dataclass_fields__[name].default:
+                    raise ValueError(f"{name} describes a partner sphere: give partner_mass and partner_diameter too")
+            return False
+        if self.partner_mass is None or self.partner_diameter is None:
+            missing = "partner_mass" if self.partner_mass is None else "partner_diameter"
+            raise ValueError(f"{missing} is required with a partner sphere (give both partner_mass [kg] and "
+                             "partner_diameter [m], or neither for the rigid flat)")
+        if self.gravity != 0:
+            raise ValueError(f"gravity must be 0 with a partner sphere (two free bodies: gravity does not press the "
+                             f"contact); got {self.gravity!r}")
+        return True
+
+    def _take_reduced(self) -> None:
+        """Solve the pair as one sphere on the flat (:attr:`reduced`): build it, which checks the law and the
+        tangential model at the contact's mass and radius, and take its resolved parameters."""
+        m_star, r_star, alpha_star, spin_star = reduced_body(
+            self.mass, self.radius, self.inertia_factor, self.spin, self.partner_mass, 0.5 * self.partner_diameter,
+            self.partner_inertia_factor, self.partner_spin)
+        own = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in PARTNER_FIELDS}
+        reduced = Scene(**own | dict(mass=m_star, diameter=2.0 * r_star, inertia_factor=alpha_star, spin=spin_star))
+        for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, "separation", "parameters"):
+            object.__setattr__(self, name, getattr(reduced, name))
+        self.__dict__["_reduced"] = reduced
+
+    @property
+    def reduced(self) -> "Scene":
+        """The one sphere on the rigid flat whose impact is this scene's relative motion: the scene itself without
+        a partner; with one, the sphere of mass m*, radius R*, inertia factor alpha* and spin w*
+        (:func:`~sphereimpact.impact.pair.reduced_body`)."""
+        return self.__dict__.get("_reduced", self)
+
+    @property
+    def has_partner(self) -> bool:
+        """True when the ball strikes a partner sphere, not the flat."""
+        return self.partner_mass is not None
 
     def _own_parameters(self) -> FrozenMapping:
         """The law's and the tangential model's own parameters: each given one declared, each checked, the
@@ -324,7 +387,7 @@ class Scene:
     @property
     def frequency(self) -> float:
         """1 / T [1/s], T the law's natural contact time (omega_n for a linear spring)."""
-        return float(self.law.frequency(self))
+        return float(self.law.frequency(self.reduced))
 
     @property
     def time_scale(self) -> float:
@@ -334,13 +397,13 @@ class Scene:
     @property
     def family(self) -> dict:
         """The law's dimensionless numbers fixing the weightless normal motion (e.g. zeta and lam)."""
-        return {name: float(value) for name, value in self.law.family(self).items()}
+        return {name: float(value) for name, value in self.law.family(self.reduced).items()}
 
     @property
     def omega_n(self) -> float:
         """Undamped natural frequency sqrt(k/m) [rad/s] of a linear spring (ValueError for a Hertz law)."""
         self._linear_spring("omega_n")
-        return math.sqrt(self.k / self.mass)
+        return math.sqrt(self.k / self.reduced.mass)
 
     @property
     def zeta(self) -> float:
@@ -348,7 +411,7 @@ class Scene:
         self._linear_spring("zeta")
         if self.b is None:
             raise ValueError(f"zeta: model {self.model!r} has no damping coefficient b")
-        return self.b / (2.0 * math.sqrt(self.k * self.mass))
+        return self.b / (2.0 * math.sqrt(self.k * self.reduced.mass))
 
     def _linear_spring(self, what: str) -> None:
         if self.law.spring != "linear":
@@ -359,25 +422,27 @@ class Scene:
     def has_tangential_motion(self) -> bool:
         """False for a normal impact without spin on a level or vertically approached flat: then there is no
         tangential state at all."""
-        return self.incidence_deg != 0 or self.spin != 0 or self.g_tangent != 0
+        return self.incidence_deg != 0 or self.reduced.spin != 0 or self.g_tangent != 0
 
     @property
     def slip0(self) -> float:
-        """The contact point's tangential velocity at first contact, v_t - omega_0 R [m/s]."""
-        return self.v_tangent - self.spin * self.radius
+        """The contact point's tangential velocity at first contact, v_t - omega_0 R [m/s] (relative to the
+        partner's surface: v_t - omega_0 R - partner_spin R2)."""
+        return self.v_tangent - self.reduced.spin * self.reduced.radius
 
     def force(self, delta, delta_dot):
         """Normal contact force P [N] of this scene's law at (delta [m], delta_dot [m/s])."""
-        return self.law.force(delta, delta_dot, self)
+        return self.law.force(delta, delta_dot, self.reduced)
 
     def stage_force(self, delta, delta_dot):
         """The law continued smoothly past delta = 0 [N], for integrator stages only (see ContactLaw.continued)."""
-        return self.law.continued(delta, delta_dot, self)
+        return self.law.continued(delta, delta_dot, self.reduced)
 
     def as_dict(self) -> dict:
-        """The fields as plain values, for JSON and tables (``parameters`` as a dict, left out when empty):
-        ``Scene(**scene.as_dict())`` is the scene again."""
-        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "parameters"}
+        """The fields as plain values, for JSON and tables (``parameters`` as a dict, left out when empty; the
+        partner's fields left out without a partner): ``Scene(**scene.as_dict())`` is the scene again."""
+        out = {f.name: getattr(self, f.name) for f in fields(self)
+               if f.name != "parameters" and (self.has_partner or f.name not in PARTNER_FIELDS)}
         return out | ({"parameters": dict(self.parameters)} if self.parameters else {})
 
     def with_(self, **changes) -> "Scene":
@@ -398,8 +463,9 @@ class Scene:
             changes = {"angle": 0.0, **{name: None for name in PATH_RULES}} | changes
         elif changes.get("angle"):  # a tilted flat approached vertically: no path
             changes = {name: None for name in PATH_RULES} | changes
-        if "diameter" in changes and self.modulus is not None and "k" not in changes:
-            changes["k"] = None  # k follows the modulus at the new radius
+        if ("diameter" in changes or "partner_diameter" in changes) and self.modulus is not None \
+                and "k" not in changes:
+            changes["k"] = None  # k follows the modulus at the new (contact's) radius
         tangential = TANGENTIALS.model(changes.get("tangential", self.tangential))
         if not tangential.stiffness_parameters:
             changes = {name: None for name in TANGENTIAL_PARAMETERS} | changes

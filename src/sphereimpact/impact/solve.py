@@ -24,6 +24,7 @@ from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
 from .outcome import Outcome
+from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS
 
@@ -102,6 +103,8 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
+    if scene.has_partner:  # exactly one sphere on the flat, then each body's velocities from the impulses
+        return pair_outcome(simulate(scene.reduced, options, body, strict), scene)
     options = SolverOptions() if options is None else options
     if not isinstance(options, SolverOptions):
         raise TypeError("options must be a sphereimpact.SolverOptions, e.g. SolverOptions(rtol=1e-10), or None; "
@@ -177,7 +180,8 @@ def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = F
         As :func:`simulate`, for the first scene that fails.
     """
     options = SolverOptions() if options is None else options
-    scenes = list(scenes)
+    given = list(scenes)
+    scenes = [scene.reduced if isinstance(scene, Scene) else scene for scene in given]
     outcomes: list = [None] * len(scenes)
     batches: dict = {}
     for i, scene in enumerate(scenes):
@@ -199,4 +203,15 @@ def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = F
                 outcome = Outcome.from_motion(motion, 0.0)
             outcomes[i] = _checked(replace(outcome, wall_time=normal_time + share + time.perf_counter() - start),
                                    strict)
-    return outcomes
+    return [pair_outcome(outcome, scene) if scene.has_partner else outcome for outcome, scene in zip(outcomes, given)]
+
+
+def pair_outcome(outcome: Outcome, scene: Scene) -> Outcome:
+    """The outcome of ``scene``, a ball striking a partner sphere, from ``outcome``, its reduced sphere's on the
+    flat (:attr:`Scene.reduced`): the ball's and the partner's velocities and spins from the impulses
+    (:func:`~sphereimpact.impact.pair.pair_velocities`); every relative output as the reduced sphere's."""
+    values = pair_velocities(
+        {"vc_t": outcome.vc_t, "vc_n": outcome.vc_n, "omega_f": outcome.omega_f}, scene.mass, scene.radius,
+        scene.inertia_factor, scene.spin, scene.partner_mass, 0.5 * scene.partner_diameter,
+        scene.partner_inertia_factor, scene.partner_spin, scene.v_normal, scene.v_tangent)
+    return replace(outcome, scene=scene, **{key: float(value) for key, value in values.items()})

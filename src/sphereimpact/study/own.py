@@ -3,11 +3,11 @@ page it writes are :mod:`.own_outputs`'), all under ``results/studies/<name>/``.
 
 A study other than the chapter's (config key ``study``) reads only its own sections: ``ball`` (mass,
 diameter, inertia factor, the numbers' source), ``surface`` (friction, gravity along the level surface's
-normal), ``contact`` (a law and its parameters, or its damping, and stiffness, set from a COR, and contact
-time, measured at ``cor_speed``; a tangential model), ``bounces`` (name -> speed along the path, one
-description of the approach, spin), ``ranges`` (the speed curve's and the maps' grids) and, optionally, ``fit``
-(measured bounces and the parameters to fit to them: the study then uses the fitted ball).  It never reads or
-writes the chapter's files.
+normal, or a partner sphere the ball strikes instead), ``contact`` (a law and its parameters, or its damping,
+and stiffness, set from a COR, and contact time, measured at ``cor_speed``; a tangential model), ``bounces``
+(name -> speed along the path, one description of the approach, spin), ``ranges`` (the speed curve's and the
+maps' grids) and, optionally, ``fit`` (measured bounces and the parameters to fit to them: the study then uses
+the fitted ball).  It never reads or writes the chapter's files.
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ def _fields(config: dict) -> dict:
     given = {name: contact[name] for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS) if name in contact}
     return dict(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"], mu=surface["mu"],
                 gravity=surface["gravity"], model=contact["model"], separation=contact["separation"],
-                tangential=contact["tangential"], **given, parameters=contact.get("parameters", {}))
+                tangential=contact["tangential"], **given, parameters=contact.get("parameters", {}),
+                **{f"partner_{name}": value for name, value in surface.get("partner", {}).items()})
 
 
 def measurement(config: dict) -> Measurement | None:

@@ -24,6 +24,7 @@ from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_en
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..contact.tangential import TANGENTIALS
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
+from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Work, single_options
 from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
 
@@ -51,7 +52,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
         ``separation``, ``tangential``, ``kappa``, ``spin``, ...) or a model's own parameters; missing ones take
-        the chapter's defaults.
+        the chapter's defaults.  ``partner_mass`` and ``partner_diameter`` (``partner_inertia_factor``,
+        ``partner_spin``) give a row a partner sphere instead of the flat (empty cells: the flat): the table then
+        gains the partner's outputs (:mod:`.pairs`).
         A DataFrame is one scene per row (:func:`rows` builds one from paired lists); a dict of values or
         lists is every combination of them (:func:`grid`), as on the command line.
     target : float
@@ -94,6 +97,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
+    if has_partner(scenes) or (span is not None and has_partner(span)):  # each pair as its reduced sphere
+        return pair_sweep(sweep, scenes, target=target, chunk_size=chunk_size, progress=progress, span=span,
+                          outputs=outputs, settings=settings, paths=paths)
     wanted = outputs_wanted(outputs)
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_table(scenes)

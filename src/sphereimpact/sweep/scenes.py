@@ -18,14 +18,16 @@ from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..contact.separation import Separation
 from ..contact.declared import own_parameters
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
+from ..impact.pair import PARTNER_FIELDS
 from ..impact.scene import Scene
 from ..memory import check_size
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
 
 #: Scene parameters, with the single-impact defaults for missing columns.  A model's own parameters are
-#: columns too, after these (those of the models a table names: :func:`own_parameter_columns`).
-SCENE_COLUMNS = tuple(f.name for f in fields(Scene) if f.name != "parameters")
+#: columns too, after these (those of the models a table names: :func:`own_parameter_columns`).  A partner
+#: sphere's columns are not: a table that names them is swept as its reduced spheres' (:mod:`.pairs`).
+SCENE_COLUMNS = tuple(f.name for f in fields(Scene) if f.name != "parameters" and f.name not in PARTNER_FIELDS)
 DEFAULTS = {name: Scene.__dataclass_fields__[name].default for name in SCENE_COLUMNS}
 
 

@@ -1,0 +1,121 @@
+"""Sweeps of sphere-sphere impacts: each row with a partner solved as its reduced sphere on the flat.
+
+A table whose rows name a partner sphere (the ``partner_*`` columns of :data:`~sphereimpact.impact.pair.PARTNER_FIELDS`)
+is swept as the table of each row's reduced sphere (:func:`~sphereimpact.impact.pair.reduced_body`: the row's
+mass, diameter, inertia factor and spin replaced by m*, 2 R*, alpha* and w*), through every path of the sweep,
+and each body's velocities then follow from the impulses (:func:`~sphereimpact.impact.pair.pair_velocities`),
+as :func:`sphereimpact.simulate` derives them.  The table written keeps the rows' own columns.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..impact.inputs import check_columns
+from ..impact.outcome import SCALAR_OUTPUTS
+from ..impact.pair import PARTNER_FIELDS, PARTNER_OUTPUTS, pair_velocities, reduced_body
+from ..impact.scene import Scene
+from .scenes import grid, incidence
+
+#: The ball's columns the reduction replaces, with the Scene's defaults.
+BODY = {name: Scene.__dataclass_fields__[name].default for name in ("mass", "diameter", "inertia_factor", "spin")}
+#: The pair's outputs the reduced sphere's give (the ball's are its velocities' and spin's after the impact).
+MAPPED = ("vc_t", "vc_n", "omega_f")
+
+
+def has_partner(scenes) -> bool:
+    """True when a table (DataFrame, or a dict of values or lists) names a partner sphere's column."""
+    return any(name in PARTNER_FIELDS for name in (scenes.columns if isinstance(scenes, pd.DataFrame) else scenes))
+
+
+def given_table(scenes) -> pd.DataFrame:
+    """The table of scenes as given (a dict is every combination of its values, as :func:`~.scenes.grid`)."""
+    return grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes).reset_index(drop=True)
+
+
+def partner_columns(frame: pd.DataFrame) -> dict:
+    """The rows' partner fields as float arrays, checked (NaN where a row has no partner; its inertia factor and
+    spin defaulted): ValueError names the parameter and the first bad row."""
+    n = len(frame)
+    raw = {name: frame[name].to_numpy() if name in frame else np.full(n, np.nan) for name in PARTNER_FIELDS}
+    check_columns({name: values for name, values in raw.items() if name in frame})
+    columns = {name: np.asarray(values, dtype=float) for name, values in raw.items()}
+    mass, diameter = columns["partner_mass"], columns["partner_diameter"]
+    pair = ~np.isnan(mass)
+    for name, other in (("partner_mass", diameter), ("partner_diameter", mass)):
+        lacking = np.isnan(columns[name]) & ~np.isnan(other)
+        if lacking.any():
+            raise ValueError(f"{name} is required with a partner sphere (give both partner_mass [kg] and "
+                             f"partner_diameter [m], or neither for the rigid flat) (row {int(np.flatnonzero(lacking)[0])})")
+    for name in PARTNER_FIELDS[2:]:
+        default = Scene.__dataclass_fields__[name].default
+        stray = ~pair & ~np.isnan(columns[name]) & (columns[name] != default)
+        if stray.any():
+            raise ValueError(f"{name} describes a partner sphere: give partner_mass and partner_diameter too "
+                             f"(row {int(np.flatnonzero(stray)[0])})")
+        columns[name] = np.where(np.isnan(columns[name]), default, columns[name])
+    if "gravity" in frame:
+        pulled = pair & (np.asarray(frame["gravity"], dtype=float) != 0)
+        if pulled.any():
+            i = int(np.flatnonzero(pulled)[0])
+            raise ValueError(f"gravity must be 0 with a partner sphere (two free bodies: gravity does not press the "
+                             f"contact); got {frame['gravity'].iloc[i]!r} (row {i})")
+    return columns
+
+
+def _body(frame: pd.DataFrame) -> dict:
+    """The ball's mass, diameter, inertia factor and spin per row, defaulted where not given (checked later)."""
+    n = len(frame)
+    out = {}
+    for name, default in BODY.items():
+        values = np.asarray(frame[name], dtype=float) if name in frame else np.full(n, default)
+        out[name] = np.where(np.isnan(values), default, values)
+    return out
+
+
+def reduced_table(frame: pd.DataFrame) -> pd.DataFrame:
+    """The table of each row's reduced sphere: the partner's columns dropped and, in the rows with a partner, the
+    ball's mass, diameter, inertia factor and spin replaced by m*, 2 R*, alpha* and w*."""
+    partner, body = partner_columns(frame), _body(frame)
+    pair = ~np.isnan(partner["partner_mass"])
+    m, r, alpha, spin = reduced_body(body["mass"], 0.5 * body["diameter"], body["inertia_factor"], body["spin"],
+                                     partner["partner_mass"], 0.5 * partner["partner_diameter"],
+                                     partner["partner_inertia_factor"], partner["partner_spin"])
+    reduced = frame.drop(columns=[name for name in PARTNER_FIELDS if name in frame])
+    for name, value in (("mass", m), ("diameter", 2.0 * r), ("inertia_factor", alpha), ("spin", spin)):
+        reduced[name] = np.where(pair, value, body[name])
+    return reduced
+
+
+def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFrame:
+    """``sweep(scenes, ...)`` for a table with partner spheres: the reduced table swept by ``sweep`` (the engine's
+    function), then, in the rows with a partner, the ball's velocities and spin and the partner's
+    (:data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS`; 0 in rows on the flat, which does not move) from the
+    impulses.  The scene columns are the rows' own, the partner's after them; ``k`` is the contact's."""
+    given = given_table(scenes)
+    partner, body = partner_columns(given), _body(given)
+    wanted = None if outputs is None else [outputs] if isinstance(outputs, str) else list(outputs)
+    solved_for = None if wanted is None else [name for name in dict.fromkeys([*wanted, *MAPPED, "cor"])
+                                              if name not in PARTNER_OUTPUTS]
+    reduced_span = None if span is None else reduced_table(given_table(span))
+    result = sweep(reduced_table(given), span=reduced_span, outputs=solved_for, **options)
+    pair = ~np.isnan(partner["partner_mass"])
+    angle = np.radians(incidence(result))
+    v_n = result["speed"].to_numpy() * np.cos(angle)
+    v_t = np.where(angle == 0, 0.0, result["speed"].to_numpy() * np.sin(angle))
+    velocities = pair_velocities({name: result[name].to_numpy() for name in MAPPED}, body["mass"],
+                                 0.5 * body["diameter"], body["inertia_factor"], body["spin"],
+                                 partner["partner_mass"], 0.5 * partner["partner_diameter"],
+                                 partner["partner_inertia_factor"], partner["partner_spin"], v_n, v_t)
+    for name in (*MAPPED, *PARTNER_OUTPUTS):
+        flat = result[name].to_numpy() if name in MAPPED else np.zeros(len(given))
+        result[name] = np.where(pair, velocities[name], flat)
+    for name, values in body.items():
+        result[name] = values
+    result = pd.concat([result, pd.DataFrame(partner)], axis=1)
+    scene_columns = [name for name in result.columns if name not in SCALAR_OUTPUTS
+                     and name not in (*PARTNER_FIELDS, *PARTNER_OUTPUTS, "path")]
+    shown = [name for name in SCALAR_OUTPUTS if name in result and (wanted is None or name in wanted)]
+    partner_shown = [name for name in PARTNER_OUTPUTS if wanted is None or name in wanted]
+    return result[[*scene_columns, *PARTNER_FIELDS, *shown, *partner_shown, "path"]]
