@@ -22,6 +22,7 @@ include: "workflow/rules/laws.smk"
 include: "workflow/rules/validation.smk"
 include: "workflow/rules/notebook.smk"
 include: "workflow/rules/own.smk"
+include: "workflow/rules/benchmarks.smk"
 
 
 if config["study"] == "chapter4":

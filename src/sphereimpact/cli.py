@@ -339,6 +339,28 @@ def _parser() -> argparse.ArgumentParser:
                      help=f"also write {', '.join(FIT_FILES)} into DIR (made if missing): the fitted ball for "
                           "--ball, load_ball and a study's ball_file, the residuals and data against model")
     fit.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
+
+    bench = sub.add_parser(
+        "benchmark", help="the field's benchmark tests, exact, and a DEM code's deviation from them",
+        description="Reference files of Chung & Ooi's eight DEM benchmark tests (Granular Matter 13, 2011), solved "
+                    "exactly, and a DEM code's deviation from them.")
+    tests = bench.add_subparsers(dest="benchmark", required=True, parser_class=_Parser)
+    chung = tests.add_parser(
+        "chung-ooi", help="write one CSV per test: inputs and exact outputs", formatter_class=_Help,
+        description="Write test1.csv ... test8.csv to DIR: each test's cases (inputs and exact outputs, SI units in "
+                    "the header). The exact contact: Hertz, Hunt-Crossley damping set to the test's COR, and the "
+                    "exact elastic microslip tangential contact.")
+    chung.add_argument("--out", required=True, metavar="DIR", help="folder of the reference files (created)")
+    chung.add_argument("--tests", default=None, metavar="LIST", help="comma-separated test numbers (default: all)")
+    chung.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
+    against = tests.add_parser(
+        "compare", help="a DEM code's deviation from the reference files", formatter_class=_Help,
+        description="For every test<N>.csv in THEIRS (the reference file's rows and columns, holding the code's "
+                    "outputs), the largest deviation from DIR's reference per test and output: absolute, and "
+                    "relative to the exact column's largest magnitude.")
+    against.add_argument("reference", metavar="DIR", help="the reference files (benchmark chung-ooi --out DIR)")
+    against.add_argument("theirs", metavar="THEIRS", help="the DEM code's files, named and laid out as DIR's")
+    against.add_argument("--json", action="store_true", help="print a JSON list instead of the table")
     return parser
 
 
@@ -682,6 +704,40 @@ def _fit(args) -> None:
     sys.stdout.write("\n".join(lines) + "\n")
 
 
+def _benchmark(args) -> None:
+    """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, or a code's deviation from them."""
+    from .study.chung_ooi import compare, load_tests, write_reference
+
+    if args.benchmark == "compare":
+        for name, folder in (("DIR", args.reference), ("THEIRS", args.theirs)):
+            if not os.path.isdir(folder):
+                raise ValueError(f"{name}: {folder!r} is not a folder")
+        table = compare(args.reference, args.theirs)
+        if args.json:
+            json.dump(table.to_dict("records"), sys.stdout, indent=2)
+            sys.stdout.write("\n")
+        else:
+            sys.stdout.write(table.to_string(index=False, float_format=lambda x: f"{x:.3g}") + "\n")
+        return
+    try:
+        numbers = None if args.tests is None else [int(n) for n in args.tests.split(",") if n.strip()]
+    except ValueError:
+        raise ValueError(f"tests must be comma-separated test numbers, e.g. 1,4; got {args.tests!r}") from None
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        raise ValueError(f"out is a file, not a folder: {args.out!r}")
+    if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
+        raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
+    _, tests = load_tests()
+    unknown = [n for n in numbers or () if n not in tests]
+    if unknown:
+        raise ValueError(f"tests must be some of {', '.join(map(str, sorted(tests)))}; got {unknown[0]!r}")
+    os.makedirs(args.out, exist_ok=True)
+    for number in numbers or tests:
+        check_out(os.path.join(args.out, f"test{number}.csv"), args.force, (".csv",))
+    for path in write_reference(args.out, numbers):
+        sys.stdout.write(f"{path}\n")
+
+
 def run(argv=None) -> int:
     """Parse ``argv`` and run the command; return the exit status (0 done, 1 failed, 2 bad input).
 
@@ -693,7 +749,7 @@ def run(argv=None) -> int:
         parser = _parser()
         args = parser.parse_args(_values_as_one_token(argv, parser))
         args.given = _given(argv, parser, args.command)
-        {"sweep": _sweep, "simulate": _simulate, "fit": _fit}[args.command](args)
+        {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
     except MemoryError:

@@ -139,4 +139,6 @@ def chapter_outputs():
         "results/readme/fit.md",
         "results/consistency.csv",
         *expand("results/notebooks/{name}.html", name=NOTEBOOKS),
+        *expand("results/chung_ooi/test{n}.png", n=config["chung_ooi"]["tests"]),
+        "results/readme/chung_ooi.md",
     ]

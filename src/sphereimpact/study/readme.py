@@ -28,7 +28,7 @@ from .tables import markdown_table
 from .workflow import job_seconds
 
 #: Blocks of the README, in order.
-BLOCKS = ("replication", "speed", "validation", "fit", "consistency", "runtime")
+BLOCKS = ("replication", "speed", "validation", "fit", "chung_ooi", "consistency", "runtime")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on
 #: this project's 2-core machines: one timing moved by up to 1.8x between two idle runs (garbage collector
 #: off), and a speed-up is the ratio of two timings.

@@ -1,0 +1,340 @@
+"""Chung & Ooi's eight DEM benchmark tests (Granular Matter 13, 2011, 643-656), with exact references.
+
+The tests' inputs, each number with its source, are :data:`DEFINITION`.  Each test is a list of scenes, one per
+case (material and varied input); its reference is this project's exact solution of the same contact: elastic
+Hertz (tests 1, 2, 5, 6) or Hunt-Crossley damping set so that each row's normal COR is the test's (3, 4, 7, 8),
+and the exact elastic microslip contact of Cattaneo and Mindlin for the tangential motion (tests 4-8).  Beside
+it, the simplified rules DEM codes use (:data:`DEM_RULES`), and for test 3 every damped law of the project.
+:func:`write_reference` writes one CSV per test for DEM developers (units in the header) and :func:`compare`
+reports a code's deviation from it.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import yaml
+
+from ..contact.materials import dundurs_beta, effective_moduli
+from ..impact.calibrate import calibrate
+from ..impact.scene import Scene
+from ..impact.solve import simulate_many
+
+#: The tests' inputs and their sources.
+DEFINITION = Path(__file__).with_name("chung_ooi.yaml")
+#: The exact tangential contact: elastic microslip (checked against Cattaneo-Mindlin and Maw's gross-slip line).
+EXACT = "microslip"
+#: The simplified tangential rules DEM codes use, solved beside the exact contact.
+DEM_RULES = ("mindlin", "mindlin-displacement", "rigid")
+#: The damped laws of test 3, each with its damping set to the requested COR (the linear springs with the
+#: Hertz contact's elastic contact time).
+DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modified")
+#: Hertz's contact time of two elastic spheres, t_f = HERTZ_TIME (m*^2 / (R* E*^2 v))^(1/5): twice the time to
+#: delta_m, 2 delta_m / v int_0^1 (1 - x^(5/2))^(-1/2) dx = (4/5) B(2/5, 1/2) delta_m / v (Johnson, Contact Mechanics,
+#: 1985, sec. 11.4), with delta_m = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5): 2.868...
+HERTZ_TIME = 0.8 * math.sqrt(math.pi) * math.gamma(0.4) / math.gamma(0.9) * (15.0 / 16.0) ** 0.4
+#: Columns of a reference file and their units: the inputs, then the outputs.
+INPUTS = {"test": "-", "case": "", "model": "", "tangential": "", "speed": "m/s", "incidence": "deg",
+          "spin": "rad/s", "mass": "kg", "diameter": "m", "partner_mass": "kg", "partner_diameter": "m",
+          "partner_spin": "rad/s", "modulus": "Pa", "kappa": "-", "mu": "-", "cor_target": "-", "dundurs_beta": "-"}
+OUTPUTS = {"t_f": "s", "delta_m": "m", "force_max": "N", "vc_t": "m/s", "vc_n": "m/s", "omega_f": "rad/s",
+           "ve_t": "m/s", "cor": "-", "e_t": "-", "rebound_angle_contact": "deg", "partner_vc_t": "m/s",
+           "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
+#: Hertz's closed forms of the elastic normal tests, beside the computed t_f, delta_m and force_max.
+CLOSED_FORMS = {"hertz_t_f": "s", "hertz_delta_m": "m", "hertz_force_max": "N"}
+
+
+def load_tests(path=DEFINITION) -> tuple[dict, dict]:
+    """The materials and the tests of a definition file (:data:`DEFINITION` by default)."""
+    definition = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    return definition["materials"], {int(number): test for number, test in definition["tests"].items()}
+
+
+def _values(test: dict, name: str) -> list:
+    value = test.get(name)
+    return [] if value is None else list(value) if isinstance(value, list) else [value]
+
+
+def _approaches(test: dict) -> list[dict]:
+    """The varied input of a test as Scene approach fields (speed, incidence, spin) and the COR, one per row."""
+    cors = _values(test, "cor")
+    if "incidence" in test:
+        return [dict(speed=test["speed"], incidence=float(a), cor=cors[0]) for a in _values(test, "incidence")]
+    v_n = test["normal_speed"]
+    if "tangential_speed" in test and "surface_speed" not in test and len(_values(test, "tangential_speed")) > 1:
+        return [dict(speed=math.hypot(v_n, v_t), incidence=math.degrees(math.atan2(v_t, v_n)), cor=cors[0])
+                for v_t in _values(test, "tangential_speed")]
+    if "surface_speed" in test:
+        return [dict(speed=v_n, incidence=0.0, spin=-s / test["radius"], cor=cors[0])
+                for s in _values(test, "surface_speed")]
+    if "spin" in test:
+        return [dict(speed=v_n, incidence=0.0, spin=float(w), cor=cors[0]) for w in _values(test, "spin")]
+    return [dict(speed=v_n, incidence=0.0, cor=c) for c in cors]
+
+
+def test_scenes(number: int, tangential: str = EXACT, model: str = "hunt-crossley", path=DEFINITION) -> pd.DataFrame:
+    """Test ``number``'s scenes, one row per case: the inputs (:data:`INPUTS`) and the ``scene`` column, with the
+    tangential model ``tangential`` and, where the COR is below 1, the damped law ``model`` calibrated at each
+    row's normal speed (elastic ``hertz`` where the COR is 1; a linear law gets the Hertz contact's elastic
+    contact time)."""
+    materials, tests = load_tests(path)
+    test = tests[number]
+    rows = []
+    for name in test["materials"]:
+        material = materials[name]
+        radius, partner = test["radius"], test.get("partner")
+        mass = material["rho"] * 4.0 / 3.0 * math.pi * radius ** 3
+        if partner is None:
+            e_star, g_star = effective_moduli(material["E"], material["nu"], math.inf, material["nu"])
+            beta = (1 - 2 * material["nu"]) / (2 * (1 - material["nu"]))  # against a rigid plane (G2 infinite)
+            bodies = {}
+        else:
+            e_star, g_star = effective_moduli(material["E"], material["nu"], material["E"], material["nu"])
+            beta = dundurs_beta(material["E"], material["nu"], material["E"], material["nu"])
+            r2 = radius * partner["radius_factor"]
+            bodies = dict(partner_mass=material["rho"] * partner["density_factor"] * 4.0 / 3.0 * math.pi * r2 ** 3,
+                          partner_diameter=2 * r2)
+        kappa = 4.0 * g_star / e_star
+        for approach in _approaches(test):
+            cor = approach.pop("cor")
+            spin = approach.get("spin", 0.0)
+            both = dict(partner_spin=spin) if test.get("partner_spins") == "same" else {}
+            scene = _scene(dict(mass=mass, diameter=2 * radius, mu=test["mu"], **approach, **bodies, **both),
+                           e_star, kappa, cor, tangential, model)
+            rows.append({"test": number, "case": name, "model": scene.model, "tangential": tangential,
+                         "speed": scene.speed, "incidence": scene.incidence_deg, "spin": scene.spin, "mass": mass,
+                         "diameter": 2 * radius, "partner_mass": bodies.get("partner_mass", math.nan),
+                         "partner_diameter": bodies.get("partner_diameter", math.nan),
+                         "partner_spin": scene.partner_spin if scene.has_partner else math.nan,
+                         "modulus": e_star, "kappa": kappa, "mu": test["mu"], "cor_target": cor,
+                         "dundurs_beta": beta, "scene": scene})
+    return pd.DataFrame(rows)
+
+
+def _scene(fields: dict, e_star: float, kappa: float, cor: float, tangential: str, model: str) -> Scene:
+    """One test scene: elastic Hertz at COR 1, else ``model`` with its damping calibrated at this normal speed."""
+    stiffness = dict(kappa=kappa) if tangential != "rigid" else {}
+    if cor == 1.0:
+        return Scene(model="hertz", modulus=e_star, tangential=tangential, **stiffness, **fields)
+    elastic = Scene(model="hertz", modulus=e_star, **fields)
+    if model in ("hertz", "hunt-crossley"):
+        scene = Scene(model="hunt-crossley", modulus=e_star, tangential=tangential, **stiffness, **fields)
+    else:  # a linear spring with the Hertz contact's elastic contact time
+        k = elastic.reduced.mass * (math.pi / hertz(elastic)["hertz_t_f"]) ** 2
+        scene = Scene(model=model, k=k, tangential=tangential, **stiffness, **fields)
+    return calibrate(scene, cor).scene
+
+
+def hertz(scene: Scene) -> dict:
+    """Hertz's elastic closed forms (:data:`CLOSED_FORMS`) for the normal approach of ``scene`` (Johnson, Contact
+    Mechanics, 1985, sec. 11.4): delta_m = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5), P_max = 4/3 E* sqrt(R*)
+    delta_m^(3/2), t_f = :data:`HERTZ_TIME` (m*^2 / (R* E*^2 v))^(1/5), with m*, R* of the contact."""
+    reduced, v = scene.reduced, scene.v_normal
+    e_star = 0.75 * scene.k / math.sqrt(reduced.radius)
+    delta_m = (15.0 * reduced.mass * v * v / (16.0 * e_star * math.sqrt(reduced.radius))) ** 0.4
+    return {"hertz_t_f": HERTZ_TIME * (reduced.mass ** 2 / (reduced.radius * e_star ** 2 * v)) ** 0.2,
+            "hertz_delta_m": delta_m, "hertz_force_max": 4.0 / 3.0 * e_star * math.sqrt(reduced.radius) * delta_m ** 1.5}
+
+
+def solve(table: pd.DataFrame) -> pd.DataFrame:
+    """The table's scenes solved (:func:`~sphereimpact.impact.solve.simulate_many`): its inputs and
+    :data:`OUTPUTS` (e_t = vc_t / v_t where the approach has a tangential speed; the partner's where there is
+    one), and Hertz's closed forms for the elastic rows."""
+    outcomes = simulate_many(table["scene"].tolist())
+    out = table.drop(columns="scene").copy()
+    for key in OUTPUTS:
+        values = []
+        for scene, outcome in zip(table["scene"], outcomes):
+            if key == "e_t":
+                values.append(outcome.vc_t / scene.v_tangent if scene.v_tangent > 0 else math.nan)
+            else:
+                value = getattr(outcome, key)
+                values.append(math.nan if value is None else float(value))
+        out[key] = values
+    forms = [hertz(scene) if scene.model == "hertz" else dict.fromkeys(CLOSED_FORMS, math.nan) for scene in table["scene"]]
+    return pd.concat([out, pd.DataFrame(forms, index=out.index)], axis=1)
+
+
+def reference(number: int, path=DEFINITION) -> pd.DataFrame:
+    """Test ``number``'s exact reference: the exact contact (:data:`EXACT`) for the oblique tests, the normal
+    motion alone for the normal ones (1-3; test 3 once per law of :data:`DAMPED_LAWS`)."""
+    oblique = number >= 4
+    laws = DAMPED_LAWS if number == 3 else ("hunt-crossley",)
+    return solve(pd.concat([test_scenes(number, EXACT if oblique else "rigid", law, path) for law in laws],
+                           ignore_index=True))
+
+
+def dem_rules(number: int, path=DEFINITION) -> pd.DataFrame:
+    """Test ``number`` (an oblique one) solved with each simplified DEM rule of :data:`DEM_RULES`."""
+    return solve(pd.concat([test_scenes(number, rule, path=path) for rule in DEM_RULES], ignore_index=True))
+
+
+def deviations(rules: pd.DataFrame, exact: pd.DataFrame, quantities=("e_t", "omega_f", "vc_t", "rebound_angle_contact",
+                                                                      "partner_omega_f")) -> pd.DataFrame:
+    """Per tangential rule and quantity, the largest deviation of ``rules`` from ``exact`` (rows matched by case
+    and position): absolute, and relative to the largest magnitude of the exact column."""
+    rows = []
+    exact = exact.reset_index(drop=True)
+    for rule, part in rules.groupby("tangential", sort=False):
+        part = part.reset_index(drop=True)
+        for quantity in quantities:
+            if quantity not in exact or not (np.abs(exact[quantity]) > 0).any():
+                continue
+            diff = np.abs(part[quantity].to_numpy() - exact[quantity].to_numpy())
+            scale = float(np.nanmax(np.abs(exact[quantity].to_numpy())))
+            rows.append({"test": int(exact["test"].iloc[0]), "tangential": rule, "quantity": quantity,
+                         "max_abs": float(np.nanmax(diff)), "max_rel": float(np.nanmax(diff)) / scale})
+    return pd.DataFrame(rows)
+
+
+def header(units: dict) -> dict:
+    """Column name -> ``name [unit]`` (no brackets for text columns)."""
+    return {name: f"{name} [{unit}]" if unit else name for name, unit in units.items()}
+
+
+def write_table(table: pd.DataFrame, path) -> None:
+    """A reference table as CSV, each column headed ``name [unit]``, numbers to 12 significant digits."""
+    units = INPUTS | OUTPUTS | CLOSED_FORMS
+    table.rename(columns=header({name: units[name] for name in table.columns if name in units})).to_csv(
+        path, index=False, float_format="%.12g", lineterminator="\n")
+
+
+def read_table(path) -> pd.DataFrame:
+    """A reference table (or a DEM code's, in the same columns), the units stripped from its header."""
+    table = pd.read_csv(path)
+    return table.rename(columns={name: name.split(" [")[0] for name in table.columns})
+
+
+def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
+    """One CSV per test, ``test<N>.csv``, in ``folder`` (created): each test's inputs and exact outputs; every test
+    of the definition, or those ``numbers``."""
+    folder = Path(folder)
+    _, tests = load_tests(path)
+    unknown = [n for n in numbers or () if n not in tests]
+    if unknown:
+        raise ValueError(f"tests must be some of {', '.join(map(str, sorted(tests)))}; got {unknown[0]!r}")
+    folder.mkdir(parents=True, exist_ok=True)
+    written = []
+    for number in sorted(numbers or tests):
+        target = folder / f"test{number}.csv"
+        write_table(reference(number, path), target)
+        written.append(target)
+    return written
+
+
+def compare(reference_folder, theirs_folder) -> pd.DataFrame:
+    """A DEM code's deviation from the references: for every ``test<N>.csv`` in ``theirs_folder`` (the reference's
+    rows and columns, their outputs), per test and output column, the largest absolute deviation and the
+    largest relative to the exact column's largest magnitude (the columns the exact solution holds at 0, a normal
+    test's tangential outputs, are not compared).
+
+    Raises
+    ------
+    ValueError
+        A file with no reference, other rows than the reference's, or inputs that differ from it.
+    """
+    theirs_folder, reference_folder = Path(theirs_folder), Path(reference_folder)
+    files = sorted(theirs_folder.glob("test*.csv"))
+    if not files:
+        raise ValueError(f"THEIRS: no test<N>.csv file in {str(theirs_folder)!r}")
+    rows = []
+    for file in files:
+        mine = reference_folder / file.name
+        if not mine.exists():
+            raise ValueError(f"THEIRS: {file.name} has no reference in {str(reference_folder)!r} (test1.csv ... test8.csv)")
+        exact, code = read_table(mine), read_table(file)
+        if len(code) != len(exact):
+            raise ValueError(f"THEIRS: {file.name} has {len(code)} rows; the reference has {len(exact)}, one per case")
+        for name in ("speed", "incidence", "spin", "mass", "diameter"):
+            if name in code and not np.allclose(code[name], exact[name], rtol=1e-6, equal_nan=True):
+                i = int(np.flatnonzero(~np.isclose(code[name], exact[name], rtol=1e-6, equal_nan=True))[0])
+                raise ValueError(f"THEIRS: {file.name} row {i}: {name} {code[name].iloc[i]!r} is not the reference's "
+                                 f"{exact[name].iloc[i]!r}: give the reference's inputs")
+        for quantity in OUTPUTS:
+            if quantity not in code or quantity not in exact or not (np.abs(exact[quantity]) > 0).any():
+                continue  # not an output of this test (a normal test's tangential ones are 0)
+            diff = np.abs(code[quantity].to_numpy(dtype=float) - exact[quantity].to_numpy(dtype=float))
+            scale = float(np.nanmax(np.abs(exact[quantity])))
+            rows.append({"test": int(exact["test"].iloc[0]), "quantity": quantity, "unit": OUTPUTS[quantity],
+                         "rows": int(np.isfinite(diff).sum()), "max_abs": float(np.nanmax(diff)),
+                         "max_rel": float(np.nanmax(diff)) / scale})
+    return pd.DataFrame(rows)
+
+
+#: The varied input of each oblique test, plotted along x: (column, label).
+VARIED = {4: ("incidence", "incidence [deg]"), 5: ("incidence", "incidence [deg]"), 6: ("spin", "spin [rad/s]"),
+          7: ("spin", "spin of each sphere [rad/s]"), 8: ("spin", "spin of the ball [rad/s]")}
+
+
+def run_study(folder, numbers=None, path=DEFINITION) -> None:
+    """The pipeline's study (rule ``chung_ooi``): in ``folder``, each test's reference ``test<N>.csv``, the DEM
+    rules' solutions of the oblique tests (``dem_rules.csv``) and their deviations from the reference
+    (``deviations.csv``), and the checks of each reference against its closed forms (``checks.csv``)."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    _, tests = load_tests(path)
+    numbers = sorted(numbers or tests)
+    rules, deviation, checks = [], [], []
+    for number in numbers:
+        exact = reference(number, path)
+        write_table(exact, folder / f"test{number}.csv")
+        checks.append(_checks(number, exact))
+        if number >= 4:
+            solved = dem_rules(number, path)
+            rules.append(solved)
+            deviation.append(deviations(solved, exact))
+    write_table(pd.concat(rules, ignore_index=True) if rules else pd.DataFrame(columns=list(INPUTS)),
+                folder / "dem_rules.csv")
+    (pd.concat(deviation, ignore_index=True) if deviation else pd.DataFrame(
+        columns=["test", "tangential", "quantity", "max_abs", "max_rel"])).to_csv(
+        folder / "deviations.csv", index=False, float_format="%.6g", lineterminator="\n")
+    pd.concat(checks, ignore_index=True).to_csv(folder / "checks.csv", index=False, float_format="%.6g",
+                                                lineterminator="\n")
+
+
+def _checks(number: int, exact: pd.DataFrame) -> pd.DataFrame:
+    """How far test ``number``'s reference is from its independent check: Hertz's closed forms (elastic rows), the
+    requested COR (damped rows), and, where the contact slides throughout (slip never stops: the last rows of
+    tests 5 and 6), Maw's gross-slip line vc_t = v_t - mu (1 + e) v_n."""
+    rows = []
+    elastic = exact["model"] == "hertz"
+    for name in ("t_f", "delta_m", "force_max"):
+        if elastic.any():
+            part = exact[elastic]
+            rows.append({"test": number, "check": f"{name} against Hertz's closed form",
+                         "max_rel": float(np.max(np.abs(part[name] / part[f"hertz_{name}"] - 1)))})
+    rows.append({"test": number, "check": "COR against the requested one",
+                 "max_rel": float(np.max(np.abs(exact["cor"] / exact["cor_target"] - 1)))})
+    if number in (5, 6):  # sliding throughout, far beyond the rigid contact's limit (1 + 1/alpha) mu (1 + e) v_n
+        v_n = exact["speed"] * np.cos(np.radians(exact["incidence"]))
+        v_t = exact["speed"] * np.sin(np.radians(exact["incidence"]))
+        slip = v_t - exact["spin"] * 0.5 * exact["diameter"]
+        limit = (1 + 1 / Scene().inertia_factor) * exact["mu"] * (1 + exact["cor"]) * v_n
+        sliding = np.abs(slip) > 3.5 * limit
+        if sliding.any():
+            line = v_t - np.sign(slip) * exact["mu"] * (1 + exact["cor"]) * v_n
+            rows.append({"test": number, "check": "vc_t against the gross-slip line (sliding rows)",
+                         "max_rel": float(np.max(np.abs(exact["vc_t"] - line)[sliding]) / np.abs(line[sliding]).max())})
+    return pd.DataFrame(rows)
+
+
+def readme_block(folder) -> str:
+    """The README's block: per test, its reference's worst check and the DEM rules' largest deviation."""
+    folder = Path(folder)
+    checks, deviation = pd.read_csv(folder / "checks.csv"), pd.read_csv(folder / "deviations.csv")
+    _, tests = load_tests()
+    rows = []
+    for number, part in checks.groupby("test", sort=True):
+        worst = part.loc[part["max_rel"].idxmax()]
+        mine = deviation[deviation["test"] == number]
+        rules = "; ".join(f"`{rule}` {group['max_rel'].max():.2g} ({group.loc[group['max_rel'].idxmax(), 'quantity']})"
+                          for rule, group in mine.groupby("tangential", sort=False)) or "—"
+        rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", rules))
+    table = "\n".join(["| test | what | reference against its check (largest relative difference) | DEM rules' largest "
+                       "relative deviation from the exact contact |", "|---|---|---|---|"]
+                      + [f"| {' | '.join(row)} |" for row in rows])
+    return ("Chung & Ooi's benchmark tests, exact (`results/chung_ooi/`, rule `chung_ooi`; inputs and sources in "
+            "`src/sphereimpact/study/chung_ooi.yaml`):\n\n" + table + "\n")

@@ -1,0 +1,66 @@
+# Chung & Ooi's eight DEM benchmark tests: their own folder, results/chung_ooi/; no chapter file.
+CHUNG_OOI = config["chung_ooi"]["tests"]
+
+
+rule chung_ooi:
+    """Each test's exact reference (one CSV per test, as `sphereimpact benchmark chung-ooi` writes them), the DEM
+    rules beside the exact contact and their deviations, and each reference's check against its closed form."""
+    input:
+        definition="src/sphereimpact/study/chung_ooi.yaml",
+    output:
+        tables=expand("results/chung_ooi/test{n}.csv", n=CHUNG_OOI),
+        rules="results/chung_ooi/dem_rules.csv",
+        deviations=report("results/chung_ooi/deviations.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
+        checks=report("results/chung_ooi/checks.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
+    params:
+        code=code("workflow/scripts/chung_ooi.py"),
+        tests=CHUNG_OOI,
+    benchmark:
+        "results/benchmarks/benchmarks/chung_ooi.tsv"
+    log:
+        "logs/benchmarks/chung_ooi.log",
+    conda:
+        ENV
+    script:
+        "../scripts/chung_ooi.py"
+
+
+rule chung_ooi_figures:
+    """One figure per test: the exact reference, the DEM rules, and the Kharaz data for test 4."""
+    input:
+        tables=rules.chung_ooi.output.tables,
+        rules=rules.chung_ooi.output.rules,
+        data=config["validation"]["data"],
+    output:
+        png=report(
+            expand("results/chung_ooi/test{n}.png", n=CHUNG_OOI), caption="../report/chung_ooi.rst", category="Benchmarks"
+        ),
+    params:
+        code=code("workflow/scripts/chung_ooi_figures.py"),
+    benchmark:
+        "results/benchmarks/benchmarks/chung_ooi_figures.tsv"
+    log:
+        "logs/benchmarks/chung_ooi_figures.log",
+    conda:
+        ENV
+    script:
+        "../scripts/chung_ooi_figures.py"
+
+
+rule chung_ooi_readme:
+    """The README's block of the benchmark tests: each reference's check and the DEM rules' largest deviation."""
+    input:
+        checks=rules.chung_ooi.output.checks,
+        deviations=rules.chung_ooi.output.deviations,
+    output:
+        md="results/readme/chung_ooi.md",
+    params:
+        code=code("workflow/scripts/chung_ooi_readme.py"),
+    benchmark:
+        "results/benchmarks/benchmarks/chung_ooi_readme.tsv"
+    log:
+        "logs/benchmarks/chung_ooi_readme.log",
+    conda:
+        ENV
+    script:
+        "../scripts/chung_ooi_readme.py"
