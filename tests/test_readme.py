@@ -70,7 +70,8 @@ def test_check_and_update_round_trip(tmp_path):
                       "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n"
                       "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n"
                       "<!-- BEGIN GENERATED runtime -->\nold\n<!-- END GENERATED runtime -->\n"
-                      "<!-- BEGIN GENERATED fit -->\nold\n<!-- END GENERATED fit -->\n")
+                      "<!-- BEGIN GENERATED fit -->\nold\n<!-- END GENERATED fit -->\n"
+                      "<!-- BEGIN GENERATED chung_ooi -->\nold\n<!-- END GENERATED chung_ooi -->\n")
     snippets = tmp_path / "snippets"
     snippets.mkdir()
     (snippets / "speed.md").write_text(TABLE)
@@ -78,6 +79,7 @@ def test_check_and_update_round_trip(tmp_path):
     (snippets / "consistency.md").write_text("compared\n")
     (snippets / "runtime.md").write_text("took\n")
     (snippets / "fit.md").write_text("fitted\n")
+    (snippets / "chung_ooi.md").write_text("benchmarked\n")
     (snippets / "replication.md").write_text("fresh\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))
