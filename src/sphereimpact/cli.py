@@ -30,6 +30,7 @@ from .impact.inputs import PATH_RULES, RULES, SEPARATION_CRITERIA, check_columns
 from .impact.scene import ATOL_RANGE, RTOL_RANGE, STANDARD_GRAVITY, Scene, SolverOptions
 from .impact.solve import BODIES, simulate
 from .contact.declared import own_parameters, settings as declared_settings
+from .contact.materials import material_fields
 from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
 from .fit import FIT_FILES, FREE, MEASURABLE
 
@@ -167,6 +168,23 @@ def _number(text: str) -> float:
         raise argparse.ArgumentTypeError(str(err)) from None
 
 
+def _material_pair(text: str) -> tuple[float, float]:
+    """``E,NU`` as two numbers (Young's modulus [Pa], Poisson's ratio)."""
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"give Young's modulus and Poisson's ratio as E,NU, e.g. 70e9,0.33; got {text!r}")
+    return _number(parts[0]), _number(parts[1])
+
+
+#: Help for the bodies' materials, shared by simulate, fit and sweep.
+MATERIAL_HELP = {
+    "ball_material": "the ball's Young's modulus [Pa] and Poisson's ratio, E,NU (a DEM deck's): they set the contact's "
+                     "--modulus E* and, for a compliant tangential model, --kappa = 4 G*/E* (Johnson 1985)",
+    "surface_material": "with --ball-material: the struck surface's E,NU, the flat's or the partner sphere's (default: "
+                        "a rigid flat)",
+}
+
+
 def _scene_options(parser: argparse.ArgumentParser) -> None:
     """The options that describe a scene (the approach, the ball, its contact and surface, a ball file, the
     calibration from a measured COR): ``simulate``'s and ``fit``'s."""
@@ -214,6 +232,8 @@ def _scene_options(parser: argparse.ArgumentParser) -> None:
         add("--" + name.replace("_", "-"), type=int, default=None, metavar="N", help=text)
     for name, text in PARTNER_HELP.items():
         add("--" + name.replace("_", "-"), type=_number, default=None, help=text)
+    for name, text in MATERIAL_HELP.items():
+        add("--" + name.replace("_", "-"), type=_material_pair, default=None, metavar="E,NU", help=text)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -273,6 +293,8 @@ def _parser() -> argparse.ArgumentParser:
     for name, text in PARTNER_HELP.items():
         swp.add_argument("--" + name.replace("_", "-"), default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP")
+    for name, text in MATERIAL_HELP.items():
+        swp.add_argument("--" + name.replace("_", "-"), type=_material_pair, default=None, metavar="E,NU", help=text)
     for name, text in _law_flags().items():
         swp.add_argument("--" + name, default=None, metavar="RANGE",
                          help=text + ": a value or START:STOP:STEP. A parameter the law does not use is refused")
@@ -467,7 +489,9 @@ def _sweep(args) -> None:
         table = grid(**kept).assign(**ball_columns(ball, exclude=kept))
     else:
         table = grid(**ranges).assign(model=args.model, separation=args.separation,  # law parameters: checked by sweep
-                                      tangential=args.tangential)
+                                      tangential=args.tangential,
+                                      **_materials(args, {n for n in ("k", "modulus", *TANGENTIAL_PARAMETERS)
+                                                          if n in ranges}))
     if args.ball is None and args.cor is None:
         unused = [name for name in CALIBRATION[1:] if name in args.given]
         if unused:
@@ -557,13 +581,26 @@ SURFACE = ("mu", "gravity")
 CALIBRATION = ("cor", "cor_speed", "contact_time", "cor_relation")
 
 
+def _materials(args, given) -> dict:
+    """The contact's modulus (and kappa) from --ball-material and --surface-material, if given
+    (:func:`~sphereimpact.contact.materials.material_fields`); ``given``: the contact's fields given besides."""
+    if args.ball_material is None:
+        if args.surface_material is not None:
+            raise ValueError("surface_material needs ball_material (the ball's E,NU): the contact's E* is of both bodies")
+        return {}
+    compliant = bool(TANGENTIALS.model(args.tangential).stiffness_parameters)
+    return material_fields(args.ball_material, args.surface_material, compliant, given)
+
+
 def _ball_fields(args) -> dict:
     """The Scene fields the command line gives besides the approach: ball, contact, surface."""
+    contact = {name: getattr(args, name) for name in ("k", "modulus", *TANGENTIAL_PARAMETERS)
+               if getattr(args, name, None) is not None}
     return dict(mass=args.mass, diameter=args.diameter, inertia_factor=args.inertia_factor, mu=args.mu,
                 model=args.model, gravity=args.gravity, separation=args.separation, tangential=args.tangential,
                 **{name: getattr(args, name) for name in (*TANGENTIAL_PARAMETERS, *_law_flags())},
                 parameters={name: getattr(args, name) for name in own_parameters() if getattr(args, name) is not None},
-                **_partner(args))
+                **_partner(args)) | _materials(args, contact)
 
 
 def _partner(args) -> dict:
@@ -576,7 +613,7 @@ def _ball(args) -> Ball | None:
     other flags; None when neither is given.  With a ball file, a flag that describes the ball is refused."""
     if args.ball is not None:
         describing = {"mass", "diameter", "inertia_factor", "model", "separation", "tangential", *TANGENTIAL_PARAMETERS,
-                      *_law_flags(), *own_parameters(), *CALIBRATION}
+                      *_law_flags(), *own_parameters(), *CALIBRATION, *MATERIAL_HELP}
         clash = sorted(name for name in args.given if name in describing)
         if clash:
             raise ValueError(f"--{clash[0].replace('_', '-')}: the ball file {args.ball!r} describes the ball and "

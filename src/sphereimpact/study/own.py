@@ -19,7 +19,8 @@ from ..memory import check_size
 from ..parsing import parse_range, range_count
 from ..impact.inputs import PATH_RULES
 from ..impact.scene import Scene, SolverOptions
-from ..contact.tangential import TANGENTIAL_PARAMETERS
+from ..contact.materials import material_fields
+from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 
 #: The chapter's study: the replication.  Any other name is a study of one's own ball.
 CHAPTER = "chapter4"
@@ -41,6 +42,10 @@ def _fields(config: dict) -> dict:
     """The Scene fields of the study's ball, contact and surface sections (without the measurement)."""
     ball, surface, contact = config["ball"], config["surface"], config["contact"]
     given = {name: contact[name] for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS) if name in contact}
+    if "materials" in contact:  # E* (and kappa) of the two bodies, as a DEM deck gives them
+        body = {name: (m["E"], m["nu"]) for name, m in contact["materials"].items()}
+        given |= material_fields(body["ball"], body.get("surface"),
+                                 bool(TANGENTIALS.model(contact["tangential"]).stiffness_parameters), set(given))
     return dict(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"], mu=surface["mu"],
                 gravity=surface["gravity"], model=contact["model"], separation=contact["separation"],
                 tangential=contact["tangential"], **given, parameters=contact.get("parameters", {}),
