@@ -90,6 +90,13 @@ NOTEBOOKS = {
         "paper_figures/validation_maw.png",
         "paper_figures/compliance_map.png",
     ],
+    "chung_ooi": [
+        "results/config.yaml",
+        "results/chung_ooi/checks.csv",
+        "results/chung_ooi/deviations.csv",
+        *expand("results/chung_ooi/test{n}.csv", n=config["chung_ooi"]["tests"]),
+        *expand("results/chung_ooi/test{n}.png", n=config["chung_ooi"]["tests"]),
+    ],
     "sweeps": [
         "results/config.yaml",
         "results/sweep/angle_speed.csv",

@@ -12,7 +12,8 @@ from .style import RC, save
 PANELS = (("vc_t", "v_t' of the ball [m/s]"), ("omega_f", "ω_f of the ball [rad/s]"),
           ("rebound_angle_contact", "contact point's rebound\nangle from the normal [deg]"))
 #: Line styles of the tangential rules: the exact contact solid.
-STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "rigid": "-."}
+STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "linear": (0, (5, 1, 1, 1, 1, 1)),
+          "rigid": "-."}
 
 
 def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFrame, varied, data=None,
@@ -45,7 +46,7 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
                 for colour, case in zip(("C0", "C3", "C2"), dict.fromkeys(exact["case"])):
                     for rule, part in pd.concat([exact, rules]).groupby("tangential", sort=False):
                         rows = part[part["case"] == case].sort_values(column)
-                        ax.plot(rows[column], rows[quantity], STYLES.get(rule, "-"), color=colour, lw=1.2,
+                        ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=colour, lw=1.2,
                                 label=f"{case}, {rule}" + (" (exact)" if rule == "microslip" else ""))
                 ax.set_ylabel(ylabel)
             if data is not None:

@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 import yaml
 
+from ..contact.laws import LAWS
 from ..contact.materials import dundurs_beta, effective_moduli
 from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
@@ -27,8 +28,9 @@ from ..impact.solve import simulate_many
 DEFINITION = Path(__file__).with_name("chung_ooi.yaml")
 #: The exact tangential contact: elastic microslip (checked against Cattaneo-Mindlin and Maw's gross-slip line).
 EXACT = "microslip"
-#: The simplified tangential rules DEM codes use, solved beside the exact contact.
-DEM_RULES = ("mindlin", "mindlin-displacement", "rigid")
+#: The simplified tangential rules DEM codes use, solved beside the exact contact (``linear``: with the linear
+#: spring-dashpot normal law it needs, its spring giving the Hertz contact's elastic contact time).
+DEM_RULES = ("mindlin", "mindlin-displacement", "linear", "rigid")
 #: The damped laws of test 3, each with its damping set to the requested COR (the linear springs with the
 #: Hertz contact's elastic contact time).
 DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modified")
@@ -103,7 +105,7 @@ def test_scenes(number: int, tangential: str = EXACT, model: str = "hunt-crossle
             spin = approach.get("spin", 0.0)
             both = dict(partner_spin=spin) if test.get("partner_spins") == "same" else {}
             scene = _scene(dict(mass=mass, diameter=2 * radius, mu=test["mu"], **approach, **bodies, **both),
-                           e_star, kappa, cor, tangential, model)
+                           e_star, kappa, cor, tangential, "kelvin-voigt" if tangential == "linear" else model)
             rows.append({"test": number, "case": name, "model": scene.model, "tangential": tangential,
                          "speed": scene.speed, "incidence": scene.incidence_deg, "spin": scene.spin, "mass": mass,
                          "diameter": 2 * radius, "partner_mass": bodies.get("partner_mass", math.nan),
@@ -117,14 +119,18 @@ def test_scenes(number: int, tangential: str = EXACT, model: str = "hunt-crossle
 def _scene(fields: dict, e_star: float, kappa: float, cor: float, tangential: str, model: str) -> Scene:
     """One test scene: elastic Hertz at COR 1, else ``model`` with its damping calibrated at this normal speed."""
     stiffness = dict(kappa=kappa) if tangential != "rigid" else {}
-    if cor == 1.0:
+    hertzian = model in ("hertz", "hunt-crossley")
+    if cor == 1.0 and hertzian:
         return Scene(model="hertz", modulus=e_star, tangential=tangential, **stiffness, **fields)
-    elastic = Scene(model="hertz", modulus=e_star, **fields)
-    if model in ("hertz", "hunt-crossley"):
+    if hertzian:
         scene = Scene(model="hunt-crossley", modulus=e_star, tangential=tangential, **stiffness, **fields)
     else:  # a linear spring with the Hertz contact's elastic contact time
+        elastic = Scene(model="hertz", modulus=e_star, **fields)
         k = elastic.reduced.mass * (math.pi / hertz(elastic)["hertz_t_f"]) ** 2
-        scene = Scene(model=model, k=k, tangential=tangential, **stiffness, **fields)
+        damping = {LAWS.law(model).damping: 0.0} if cor == 1.0 else {}
+        scene = Scene(model=model, k=k, tangential=tangential, **stiffness, **fields, **damping)
+        if cor == 1.0:
+            return scene
     return calibrate(scene, cor).scene
 
 
@@ -322,7 +328,8 @@ def _checks(number: int, exact: pd.DataFrame) -> pd.DataFrame:
 
 
 def readme_block(folder) -> str:
-    """The README's block: per test, its reference's worst check and the DEM rules' largest deviation."""
+    """The README's block: per test, its reference's worst check, Dundurs' beta of its pairs (the coupling the exact
+    elastic solution neglects) and the DEM rules' largest deviation."""
     folder = Path(folder)
     checks, deviation = pd.read_csv(folder / "checks.csv"), pd.read_csv(folder / "deviations.csv")
     _, tests = load_tests()
@@ -332,9 +339,11 @@ def readme_block(folder) -> str:
         mine = deviation[deviation["test"] == number]
         rules = "; ".join(f"`{rule}` {group['max_rel'].max():.2g} ({group.loc[group['max_rel'].idxmax(), 'quantity']})"
                           for rule, group in mine.groupby("tangential", sort=False)) or "—"
-        rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", rules))
-    table = "\n".join(["| test | what | reference against its check (largest relative difference) | DEM rules' largest "
-                       "relative deviation from the exact contact |", "|---|---|---|---|"]
+        cases = read_table(folder / f"test{number}.csv").drop_duplicates("case")
+        beta = ", ".join(f"{b:.2f}" for b in cases["dundurs_beta"])
+        rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", beta, rules))
+    table = "\n".join(["| test | what | reference against its check (largest relative difference) | Dundurs' β "
+                       "(neglected) | DEM rules' largest relative deviation from the exact contact |", "|---|---|---|---|---|"]
                       + [f"| {' | '.join(row)} |" for row in rows])
     return ("Chung & Ooi's benchmark tests, exact (`results/chung_ooi/`, rule `chung_ooi`; inputs and sources in "
             "`src/sphereimpact/study/chung_ooi.yaml`):\n\n" + table + "\n")
