@@ -197,3 +197,24 @@ def test_own_study_surface_takes_a_partner():
     scene = study_ball(config).scene
     assert (scene.partner_mass, scene.partner_diameter, scene.partner_inertia_factor, scene.partner_spin) == \
         (0.2, 0.05, 0.4, 3.0)
+
+
+def test_fit_recovers_friction_from_bounces_on_a_partner(tmp_path, capsys):
+    """The fit's doors with a partner: bounces of a ball on a partner sphere that slide throughout, made by simulate
+    with mu = 0.1, give mu back through the API and the command line."""
+    from sphereimpact.fit import fit, read_measured
+    from sphereimpact.impact.ball import Ball
+
+    pair = dict(partner_mass=0.3, partner_diameter=0.1, partner_spin=5.0)
+    rows = []
+    for incidence in (50.0, 60.0, 70.0):
+        out = simulate(Scene(incidence=incidence, mu=0.1, **pair))
+        assert out.regime == "sliding"
+        rows.append({"speed": 3.0, "incidence": incidence, "vc_t": out.vc_t, "omega_f": out.omega_f})
+    path = tmp_path / "bounces.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    result = fit(read_measured(path), Ball(Scene(mu=0.3, **pair)), ["mu"])
+    assert result.parameters["mu"].value == pytest.approx(0.1, rel=1e-7)
+    assert run(["fit", str(path), "--free", "mu", "--mu", "0.3", "--partner-mass", "0.3", "--partner-diameter", "0.1",
+                "--partner-spin", "5", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["parameters"]["mu"]["value"] == pytest.approx(0.1, rel=1e-7)
