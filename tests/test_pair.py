@@ -162,6 +162,10 @@ def test_sweep_and_simulate_many_give_simulate_on_a_mixed_table():
 def test_sweep_refuses_a_partner_row_with_gravity():
     with pytest.raises(ValueError, match=r"gravity must be 0 with a partner sphere.*\(row 1\)"):
         sweep(pd.DataFrame({"partner_mass": [np.nan, 0.2], "partner_diameter": [np.nan, 0.05], "gravity": [9.8, 9.8]}))
+    with pytest.raises(ValueError, match=r"mass must be a finite number > 0 kg; got -1.0 \(row 1\)"):
+        sweep(pd.DataFrame({"mass": [0.1, -1.0], "partner_mass": [0.2, 0.2], "partner_diameter": [0.05, 0.05]}))
+    with pytest.raises(ValueError, match=r"partner_diameter is required with a partner sphere.*\(row 0\)"):
+        sweep(pd.DataFrame({"partner_mass": [0.2]}))
 
 
 def test_command_line_simulates_and_sweeps_a_pair(tmp_path, capsys):

@@ -65,8 +65,10 @@ def partner_columns(frame: pd.DataFrame) -> dict:
 
 
 def _body(frame: pd.DataFrame) -> dict:
-    """The ball's mass, diameter, inertia factor and spin per row, defaulted where not given (checked later)."""
+    """The ball's mass, diameter, inertia factor and spin per row, checked (ValueError naming the parameter and
+    the row), defaulted where not given."""
     n = len(frame)
+    check_columns({name: frame[name].to_numpy() for name in BODY if name in frame and frame[name].notna().all()})
     out = {}
     for name, default in BODY.items():
         values = np.asarray(frame[name], dtype=float) if name in frame else np.full(n, default)
