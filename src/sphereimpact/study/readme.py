@@ -216,7 +216,8 @@ def consistency_block(consistency_csv: str, target: float = 1e-8) -> str:
 #: The pipeline's parts (``results/benchmarks/<part>/...``, one per rule file), as the runtime block names them.
 PARTS = {"simulate": "the chapter's runs", "report": "tables and README blocks", "figures": "the chapter's figures",
          "numerics": "numerics: accuracy, stability, benchmarks", "sweep": "sweeps and their differential test",
-         "laws": "contact laws", "validation": "validation against measurements", "notebook": "notebooks"}
+         "laws": "contact laws", "validation": "validation against measurements",
+         "benchmarks": "the field's benchmark tests (Chung & Ooi)", "notebook": "notebooks"}
 
 
 def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
