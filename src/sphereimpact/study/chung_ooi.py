@@ -66,18 +66,18 @@ def _approaches(test: dict) -> list[dict]:
     if "incidence" in test:
         return [dict(speed=test["speed"], incidence=float(a), cor=cors[0]) for a in _values(test, "incidence")]
     v_n = test["normal_speed"]
-    if "tangential_speed" in test and "surface_speed" not in test and len(_values(test, "tangential_speed")) > 1:
-        return [dict(speed=math.hypot(v_n, v_t), incidence=math.degrees(math.atan2(v_t, v_n)), cor=cors[0])
-                for v_t in _values(test, "tangential_speed")]
-    if "surface_speed" in test:
+    if "surface_speed" in test:  # the spin alone makes the contact point slip at omega R
         return [dict(speed=v_n, incidence=0.0, spin=-s / test["radius"], cor=cors[0])
                 for s in _values(test, "surface_speed")]
+    if "tangential_speed" in test:
+        return [dict(speed=math.hypot(v_n, v_t), incidence=math.degrees(math.atan2(v_t, v_n)), cor=cors[0])
+                for v_t in _values(test, "tangential_speed")]
     if "spin" in test:
         return [dict(speed=v_n, incidence=0.0, spin=float(w), cor=cors[0]) for w in _values(test, "spin")]
     return [dict(speed=v_n, incidence=0.0, cor=c) for c in cors]
 
 
-def test_scenes(number: int, tangential: str = EXACT, model: str = "hunt-crossley", path=DEFINITION) -> pd.DataFrame:
+def scenes_of_test(number: int, tangential: str = EXACT, model: str = "hunt-crossley", path=DEFINITION) -> pd.DataFrame:
     """Test ``number``'s scenes, one row per case: the inputs (:data:`INPUTS`) and the ``scene`` column, with the
     tangential model ``tangential`` and, where the COR is below 1, the damped law ``model`` calibrated at each
     row's normal speed (elastic ``hertz`` where the COR is 1; a linear law gets the Hertz contact's elastic
@@ -89,13 +89,12 @@ def test_scenes(number: int, tangential: str = EXACT, model: str = "hunt-crossle
         material = materials[name]
         radius, partner = test["radius"], test.get("partner")
         mass = material["rho"] * 4.0 / 3.0 * math.pi * radius ** 3
+        other = math.inf if partner is None else material["E"]  # a rigid plane, or a partner of the same material
+        e_star, g_star = effective_moduli(material["E"], material["nu"], other, material["nu"])
+        beta = dundurs_beta(material["E"], material["nu"], other, material["nu"])
         if partner is None:
-            e_star, g_star = effective_moduli(material["E"], material["nu"], math.inf, material["nu"])
-            beta = (1 - 2 * material["nu"]) / (2 * (1 - material["nu"]))  # against a rigid plane (G2 infinite)
             bodies = {}
         else:
-            e_star, g_star = effective_moduli(material["E"], material["nu"], material["E"], material["nu"])
-            beta = dundurs_beta(material["E"], material["nu"], material["E"], material["nu"])
             r2 = radius * partner["radius_factor"]
             bodies = dict(partner_mass=material["rho"] * partner["density_factor"] * 4.0 / 3.0 * math.pi * r2 ** 3,
                           partner_diameter=2 * r2)
@@ -169,13 +168,13 @@ def reference(number: int, path=DEFINITION) -> pd.DataFrame:
     motion alone for the normal ones (1-3; test 3 once per law of :data:`DAMPED_LAWS`)."""
     oblique = number >= 4
     laws = DAMPED_LAWS if number == 3 else ("hunt-crossley",)
-    return solve(pd.concat([test_scenes(number, EXACT if oblique else "rigid", law, path) for law in laws],
+    return solve(pd.concat([scenes_of_test(number, EXACT if oblique else "rigid", law, path) for law in laws],
                            ignore_index=True))
 
 
 def dem_rules(number: int, path=DEFINITION) -> pd.DataFrame:
     """Test ``number`` (an oblique one) solved with each simplified DEM rule of :data:`DEM_RULES`."""
-    return solve(pd.concat([test_scenes(number, rule, path=path) for rule in DEM_RULES], ignore_index=True))
+    return solve(pd.concat([scenes_of_test(number, rule, path=path) for rule in DEM_RULES], ignore_index=True))
 
 
 def deviations(rules: pd.DataFrame, exact: pd.DataFrame, quantities=("e_t", "omega_f", "vc_t", "rebound_angle_contact",
