@@ -8,6 +8,7 @@ kelvin-voigt closed form for it (COR 0.6788 against 0.5864 from simulate, no err
 
 import importlib
 import json
+import math
 import os
 import subprocess
 import sys
@@ -482,3 +483,29 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     row = maps[(maps["angle_to_surface"] == 30.0) & (maps["speed"] == 4.0)].iloc[0]
     assert row["omega_f"] == pytest.approx(simulate(scene.with_(angle_to_surface=30.0, speed=4.0), options).omega_f,
                                            rel=1e-7)
+
+
+@pytest.mark.filterwarnings("ignore::sphereimpact.EnergyGainWarning")  # sliding on past rolling: the toy makes energy
+def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share_slide, tmp_path, capsys):
+    """Bounces made with slide_share = 0.6 give it back from 0.3 (the parameter allows only positive values: the fit
+    moves it in its logarithm), through fit() and `sphereimpact fit --plugin plugin_model --free slide_share`."""
+    from sphereimpact.fit import fit, read_measured
+    from sphereimpact.fit.least_squares import own_bounds
+    from sphereimpact.impact.ball import Ball
+
+    rows = []
+    for incidence in (20.0, 40.0, 60.0):
+        out = simulate(Scene(incidence=incidence, tangential="share-slide", parameters={"slide_share": 0.6}))
+        rows.append({"speed": 3.0, "incidence": incidence, "vc_t": out.vc_t, "omega_f": out.omega_f})
+    path = tmp_path / "bounces.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    ball = Ball(Scene(tangential="share-slide", parameters={"slide_share": 0.3}), plugins=("plugin_model",))
+    assert own_bounds(ball) == {"slide_share": (0.0, math.inf, True)}
+    result = fit(read_measured(path), ball, ["slide_share"])
+    assert result.parameters["slide_share"].value == pytest.approx(0.6, rel=1e-7)
+    assert result.ball.scene.slide_share == pytest.approx(0.6, rel=1e-7)
+    assert run(["fit", str(path), "--plugin", "plugin_model", "--tangential", "share-slide", "--slide-share", "0.3",
+                "--free", "slide_share", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["parameters"]["slide_share"]["value"] == pytest.approx(0.6, rel=1e-7)
+    assert run(["fit", str(path), "--free", "slide_share"]) == 2
+    assert "'slide_share' cannot be fitted" in capsys.readouterr().err

@@ -347,7 +347,7 @@ def _parser() -> argparse.ArgumentParser:
     fit.add_argument("measured", metavar="MEASURED", help="the measured bounces, a CSV file")
     fit.add_argument("--free", required=True, metavar="NAMES",
                      help=f"comma-separated parameters to fit, of {', '.join(FREE)} (cor: the measured COR the "
-                          "damping is calibrated to, with --cor)")
+                          "damping is calibrated to, with --cor), or a plug-in model's own parameters")
     _scene_options(fit)
     fit.add_argument("--bootstrap", type=int, default=0, metavar="N",
                      help="also refit N resamplings of the bounces, an integer in [0, 10000]: their spread is a "

@@ -38,6 +38,9 @@ class Parameter:
         Vectorised test of the allowed range (finite values only reach it).
     default : float or None
         Used when the parameter is not given; None makes it required.
+    bounds : (float, float) or None
+        The range a fit may explore (``sphereimpact fit --free name``), inside ``allowed``; None: above 0, in its
+        logarithm, when ``ok`` allows only positive values, else unbounded.
     """
 
     name: str
@@ -46,6 +49,7 @@ class Parameter:
     allowed: str
     ok: Callable
     default: float | None = None
+    bounds: tuple | None = None
 
     def __post_init__(self):
         if not NAME.match(self.name):

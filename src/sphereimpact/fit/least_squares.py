@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
 
+from ..contact.tangential import TANGENTIALS
 from ..impact.ball import Ball, ball_columns, calibrated_ball
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
@@ -128,15 +129,32 @@ def with_values(ball: Ball, values: dict) -> Ball:
     return replace(ball, scene=ball.scene.with_(**changes))
 
 
+def own_bounds(ball: Ball) -> dict:
+    """The own parameters of ``ball``'s law and tangential model (a plug-in's), as :data:`FREE` gives the others:
+    name -> (lower, upper, fitted in its logarithm), from each parameter's declared ``bounds``, or above 0 in its
+    logarithm when it allows only positive values, else unbounded."""
+    scene, out = ball.scene, {}
+    for parameter in (*scene.law.own_parameters, *TANGENTIALS.model(scene.tangential).own_parameters):
+        if parameter.bounds is not None:
+            out[parameter.name] = (float(parameter.bounds[0]), float(parameter.bounds[1]), False)
+        else:
+            positive = bool(parameter.ok(1.0)) and not bool(parameter.ok(0.0)) and not bool(parameter.ok(-1.0))
+            out[parameter.name] = (0.0, math.inf, True) if positive else (-math.inf, math.inf, False)
+    return out
+
+
 def free_names(ball: Ball, free) -> list[str]:
     """The names of ``free`` checked against what ``ball`` can free (:data:`FREE`, its law's and tangential
-    model's parameters, ``cor`` only for a ball calibrated to a measured COR), without solving anything."""
+    model's parameters and own parameters, ``cor`` only for a ball calibrated to a measured COR), without
+    solving anything."""
     names = [free] if isinstance(free, str) else list(free)
+    freeable = [*FREE, *own_bounds(ball)]
     if not names:
-        raise ValueError(f"free: name at least one parameter to fit, of {', '.join(FREE)}")
+        raise ValueError(f"free: name at least one parameter to fit, of {', '.join(freeable)}")
     for name in names:
-        if name not in FREE:
-            raise ValueError(f"free: {name!r} cannot be fitted; the parameters a fit may free are {', '.join(FREE)}")
+        if name not in freeable:
+            raise ValueError(f"free: {name!r} cannot be fitted; the parameters a fit may free are "
+                             f"{', '.join(freeable)}")
     if len(set(names)) != len(names):
         raise ValueError("free: a parameter is named twice")
     if "cor" in names and ball.measurement is None:
@@ -167,7 +185,7 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
     ball : Ball
         The ball as known: its other parameters stay as they are; the free ones start from its values.
     free : sequence of str
-        Names of :data:`FREE`.
+        Names of :data:`FREE`, or own parameters of the ball's law or tangential model (:func:`own_bounds`).
     bootstrap : int
         Refits on this many resamplings of the bounces (0: none); their spread is ``bootstrap_stderr``.
     seed : int
@@ -192,7 +210,8 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
     if (theta_incidence[values.loc[e_t_rows, "bounce"].to_numpy()] == 0).any():
         raise ValueError("measured: e_t of a normal impact (incidence 0) is undefined; leave it out")
     outputs = sorted({SOURCES.get(q, q) for q in values["quantity"]})
-    lower, upper, logs = (np.array([FREE[n][i] for n in names]) for i in range(3))
+    limits = FREE | own_bounds(ball)
+    lower, upper, logs = (np.array([limits[n][i] for n in names]) for i in range(3))
     logs = logs.astype(bool)
 
     def natural(theta):
