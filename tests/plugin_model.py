@@ -15,7 +15,7 @@ from sphereimpact.contact.tangential import TANGENTIALS, Phase, PositiveImpulse,
 
 NAME = "share-slide"
 SHARE = Parameter("slide_share", "-", "fraction of Coulomb's friction the sliding contact carries",
-                  "a finite number in (0, 1]", lambda x: (x > 0) & (x <= 1))
+                  "a finite number in (0, 1]", lambda x: (x > 0) & (x <= 1), bounds=(1e-3, 1.0))
 STEPS = Setting("trapezoid_steps", "the share-slide model's trapezoid steps over the contact", 2, 1_000_000,
                 default="the exact impulse")
 

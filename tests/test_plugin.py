@@ -487,11 +487,16 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
 
 @pytest.mark.filterwarnings("ignore::sphereimpact.EnergyGainWarning")  # sliding on past rolling: the toy makes energy
 def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share_slide, tmp_path, capsys):
-    """Bounces made with slide_share = 0.6 give it back from 0.3 (the parameter allows only positive values: the fit
-    moves it in its logarithm), through fit() and `sphereimpact fit --plugin plugin_model --free slide_share`."""
+    """Bounces made with slide_share = 0.6 give it back from 0.3 within the range it declares for a fit, through fit()
+    and `sphereimpact fit --plugin plugin_model --free slide_share`; a parameter declaring no range is moved in its
+    logarithm when it allows only positive values, else anywhere."""
+    from sphereimpact import Parameter
     from sphereimpact.fit import fit, read_measured
-    from sphereimpact.fit.least_squares import own_bounds
+    from sphereimpact.fit.least_squares import fit_range, own_bounds
     from sphereimpact.impact.ball import Ball
+
+    assert fit_range(Parameter("p", "-", "", "> 0", lambda x: x > 0)) == (0.0, math.inf, True)
+    assert fit_range(Parameter("q", "-", "", "any", lambda x: x == x)) == (-math.inf, math.inf, False)
 
     rows = []
     for incidence in (20.0, 40.0, 60.0):
@@ -500,7 +505,7 @@ def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share
     path = tmp_path / "bounces.csv"
     pd.DataFrame(rows).to_csv(path, index=False)
     ball = Ball(Scene(tangential="share-slide", parameters={"slide_share": 0.3}), plugins=("plugin_model",))
-    assert own_bounds(ball) == {"slide_share": (0.0, math.inf, True)}
+    assert own_bounds(ball) == {"slide_share": (1e-3, 1.0, False)}
     result = fit(read_measured(path), ball, ["slide_share"])
     assert result.parameters["slide_share"].value == pytest.approx(0.6, rel=1e-7)
     assert result.ball.scene.slide_share == pytest.approx(0.6, rel=1e-7)

@@ -133,14 +133,18 @@ def own_bounds(ball: Ball) -> dict:
     """The own parameters of ``ball``'s law and tangential model (a plug-in's), as :data:`FREE` gives the others:
     name -> (lower, upper, fitted in its logarithm), from each parameter's declared ``bounds``, or above 0 in its
     logarithm when it allows only positive values, else unbounded."""
-    scene, out = ball.scene, {}
-    for parameter in (*scene.law.own_parameters, *TANGENTIALS.model(scene.tangential).own_parameters):
-        if parameter.bounds is not None:
-            out[parameter.name] = (float(parameter.bounds[0]), float(parameter.bounds[1]), False)
-        else:
-            positive = bool(parameter.ok(1.0)) and not bool(parameter.ok(0.0)) and not bool(parameter.ok(-1.0))
-            out[parameter.name] = (0.0, math.inf, True) if positive else (-math.inf, math.inf, False)
-    return out
+    scene = ball.scene
+    return {parameter.name: fit_range(parameter)
+            for parameter in (*scene.law.own_parameters, *TANGENTIALS.model(scene.tangential).own_parameters)}
+
+
+def fit_range(parameter) -> tuple[float, float, bool]:
+    """(lower, upper, fitted in its logarithm) of a declared :class:`~sphereimpact.contact.parameters.Parameter`:
+    its ``bounds``, else above 0 in its logarithm when its ``ok`` allows only positive values, else unbounded."""
+    if parameter.bounds is not None:
+        return float(parameter.bounds[0]), float(parameter.bounds[1]), False
+    positive = bool(parameter.ok(1.0)) and not bool(parameter.ok(0.0)) and not bool(parameter.ok(-1.0))
+    return (0.0, math.inf, True) if positive else (-math.inf, math.inf, False)
 
 
 def free_names(ball: Ball, free) -> list[str]:
