@@ -61,7 +61,7 @@ def test_each_path_alone_agrees_with_simulate_on_the_rows_it_admits(solved, smal
 
 
 def test_paths_are_named():
-    with pytest.raises(ValueError, match="paths must be some of single, family-interpolant"):
+    with pytest.raises(ValueError, match="paths must be some of similar, single, family-interpolant"):
         sweep({"angle": [30.0]}, paths=["fastest"])
 
 

@@ -103,18 +103,24 @@ def _approaches(rng, diameter: np.ndarray) -> pd.DataFrame:
 
 
 #: The groups of :func:`random_scenes`, in turn: one ball of each law an interpolant serves at many angles
-#: and speeds (eq. 4.2: the lam interpolant; the Hunt-Crossley laws: the family interpolant), and many balls
-#: of eq. 4.2 at one scene each (the (zeta, lam) plane).
-GROUPS = ("modified", "hunt-crossley", "linear-hunt-crossley", "many modified balls")
+#: and speeds (eq. 4.2: the lam interpolant; the Hunt-Crossley laws: the family interpolant), many balls
+#: of eq. 4.2 at one scene each (the (zeta, lam) plane), and one elastic Hertz ball of a compliant tangential
+#: contact over a few incidences and many speeds (a map: the similar-scenes path).
+GROUPS = ("modified", "hunt-crossley", "linear-hunt-crossley", "many modified balls", "compliant map")
+#: Most scenes of the compliant map's group (each reference is one compliant impact, milliseconds each).
+COMPLIANT_MAP_ROWS = 400
 
 
 def _group_balls(kind: str, rng, n: int) -> pd.DataFrame:
     """``n`` balls of a group (see :data:`GROUPS`): the law's parameters drawn as for any ball, eq. 4.2 at a
     damping ratio up to 0.5 (the plane's domain), a rigid contact; the many balls are sports balls, so that
     the plane's rectangle spans a few decades of lam."""
-    model = "modified" if kind == "many modified balls" else kind
+    model = {"many modified balls": "modified", "compliant map": "hertz"}.get(kind, kind)
     balls = _balls(rng, n).assign(model=model, tangential="rigid", kappa=np.nan, k=np.nan, modulus=np.nan,
                                   b=np.nan, ramp=np.nan, chi=np.nan, exponent=np.nan)
+    if kind == "compliant map":
+        return balls.assign(modulus=_loguniform(rng, 1e6, 1e10, n), kappa=rng.uniform(0.5, 1.2, n),
+                            tangential=rng.choice(COMPLIANT["hertz"], n))
     if kind == "many modified balls":
         balls = balls.assign(mass=rng.uniform(0.05, 0.5, n), diameter=rng.uniform(0.04, 0.08, n), ramp=100.0,
                              k=rng.uniform(2e4, 2e5, n))
@@ -129,7 +135,7 @@ def _group_balls(kind: str, rng, n: int) -> pd.DataFrame:
     return balls
 
 
-def random_scenes(n: int, seed: int = 0, groups: int = 4, group_size: int = 0) -> pd.DataFrame:
+def random_scenes(n: int, seed: int = 0, groups: int = len(GROUPS), group_size: int = 0) -> pd.DataFrame:
     """``n`` random scenes (see the module docstring), shuffled: ``groups`` groups of ``group_size`` scenes
     (:data:`GROUPS` in turn; default: a quarter of ``n`` between them), the rest one to four scenes per ball.
 
@@ -140,15 +146,18 @@ def random_scenes(n: int, seed: int = 0, groups: int = 4, group_size: int = 0) -
     group_size = group_size or max(1, n // (4 * max(groups, 1)))
     parts, left = [], n
     for g in range(groups):
-        size = min(group_size, left)
+        kind = GROUPS[g % len(GROUPS)]
+        size = min(group_size, left, COMPLIANT_MAP_ROWS if kind == "compliant map" else left)
         if size <= 0:
             break
-        kind = GROUPS[g % len(GROUPS)]
         balls = _group_balls(kind, rng, size if kind == "many modified balls" else 1)
         balls = balls.loc[np.zeros(size, int) if len(balls) == 1 else np.arange(size)].reset_index(drop=True)
         scenes = _approaches(rng, balls["diameter"].to_numpy())
         if kind == "many modified balls":
             scenes["speed"] = rng.uniform(0.5, 30.0, size)
+        if kind == "compliant map":  # a few incidences, each at many speeds: scenes alike but for their scales
+            scenes = scenes.assign(angle=np.nan, angle_to_surface=np.nan, spin=0.0,
+                                   incidence=rng.choice(rng.uniform(1.0, 85.0, 8), size))
         parts.append(pd.concat([balls, scenes.assign(gravity=0.0)], axis=1))
         left -= size
     if left > 0:  # one to four scenes per ball

@@ -26,7 +26,7 @@ from ..impact.scene import SolverOptions
 from ..impact.solve import simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
-from .scenes import CLOSED_FORMS, Numbers, _compliant, incidence, scene_of
+from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, _compliant, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
 #: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
@@ -220,33 +220,126 @@ class SinglePath(SweepPath):
 
     @staticmethod
     def _solve(rows: np.ndarray, work: Work) -> dict:
-        """Every output of ``simulate`` on each row, :data:`SINGLES_CHUNK` scenes per call (a batched tangential
-        kernel runs them together), progress after each; an ImpactError names the first failing row."""
-        out = {key: np.full(rows.size, np.nan) for key in NUMERIC_OUTPUTS}
-        regime = np.empty(rows.size, dtype=object)
-        for start in range(0, rows.size, SINGLES_CHUNK):
-            chunk = rows[start:start + SINGLES_CHUNK]
-            scenes = [scene_of(work.frame.iloc[i].to_dict()) for i in chunk]
+        """Every output of ``simulate`` on each row (:meth:`solve_scenes`)."""
+        outs = SinglePath.solve_scenes([scene_of(work.frame.iloc[i].to_dict()) for i in rows], rows, work, "sweep row")
+        out = {key: np.array([np.nan if getattr(one, key) is None else getattr(one, key) for one in outs], dtype=float)
+               for key in NUMERIC_OUTPUTS}
+        return out | {"regime": np.array([one.regime for one in outs], dtype=object)}
+
+    @staticmethod
+    def solve_scenes(scenes: list, rows, work: Work, what: str) -> list:
+        """``simulate`` on each scene, :data:`SINGLES_CHUNK` per call (a batched tangential kernel runs them
+        together), progress after each; an ImpactError names the first failing one as ``what`` ``rows[i]``."""
+        outs = []
+        for start in range(0, len(scenes), SINGLES_CHUNK):
+            chunk = scenes[start:start + SINGLES_CHUNK]
             with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
                 try:
-                    outs = simulate_many(scenes, work.options)
+                    outs += simulate_many(chunk, work.options)
                 except ImpactError:
-                    for i, scene in zip(chunk, scenes):  # name the first scene that fails alone
+                    for i, scene in zip(rows[start:start + SINGLES_CHUNK], chunk):  # the first that fails alone
                         try:
                             simulate(scene, work.options)
                         except ImpactError as err:
-                            raise ImpactError(f"sweep row {i}: {err}") from None
+                            raise ImpactError(f"{what} {i}: {err}") from None
                     raise
-            for j, one in enumerate(outs, start):
-                for key in out:
-                    value = getattr(one, key)
-                    out[key][j] = np.nan if value is None else value
-                regime[j] = one.regime
             if work.progress:
-                work.progress(start + chunk.size, rows.size)
-        return out | {"regime": regime}
+                work.progress(start + len(chunk), len(scenes))
+        return outs
+
+
+# ---------------------------------------------------------------- scenes alike but for their scales
+
+
+#: How each numeric output scales between two scenes of one dimensionless problem: by the time scale T = 1 / w,
+#: the length v_n T, the speed v_n, the spin v_n / R, the force m v_n / T, the energy m v_n^2; the others
+#: (the COR, the rebound angles, the mode switches) are the same.
+SCALES = {"t_m": "time", "t_f": "time", "t_roll": "time", "delta_m": "length", "vc_t": "speed", "vc_n": "speed",
+          "ve_t": "speed", "ve_n": "speed", "omega_f": "spin", "force_min": "force", "force_max": "force",
+          "work_t": "energy"}
+
+
+def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
+    """The dimensionless problem of each of ``rows`` (a compliant tangential contact, no gravity) as a hashable
+    key: its law's family (or zeta and lam), separation criterion, tangential model, kappa, inertia factor,
+    friction, incidence, spin R / v_n and its models' own parameters.  Two scenes with one key differ only in
+    their scales: every output of one is the other's, scaled (:data:`SCALES`)."""
+    angle = incidence(frame)
+    columns = [frame[name].to_numpy() for name in ("tangential", "kappa", "inertia_factor", "mu")]
+    own = [frame[name].to_numpy() for name in frame.columns[len(SCENE_COLUMNS):]]
+    spin_ratio = frame["spin"].to_numpy() * 0.5 * frame["diameter"].to_numpy() / d.v_n
+    def same(value):  # an empty cell (NaN) equals another, as a key
+        return None if isinstance(value, float) and value != value else value
+
+    keys = {}
+    for i in rows:
+        normal = d.family[i] if d.family[i] is not None else (frame["model"].iat[i], d.zeta[i], d.lam[i])
+        keys[i] = tuple(same(v) for v in (normal, bool(d.force[i]), *(c[i] for c in columns), angle[i], spin_ratio[i],
+                                          *(float(c[i]) for c in own)))
+    return keys
+
+
+def _scales(frame: pd.DataFrame, d: Numbers, rows) -> dict:
+    """The scales (:data:`SCALES`) of the scenes ``rows`` (indices), as arrays."""
+    mass, radius = frame["mass"].to_numpy()[rows], 0.5 * frame["diameter"].to_numpy()[rows]
+    v_n, w = d.v_n[rows], d.w[rows]
+    return {"time": 1.0 / w, "length": v_n / w, "speed": v_n, "spin": v_n / radius, "force": mass * v_n * w,
+            "energy": mass * v_n * v_n}
+
+
+class SimilarPath(SweepPath):
+    """Scenes of a compliant tangential contact (solved one impact at a time) that share their dimensionless
+    problem with others of the sweep: ``simulate`` once per problem, on its first scene in the sweep's span,
+    each output scaled to the others (the solvers work in the contact's own scales, so the outputs scale
+    exactly, to the tolerance of one solve).  A map of one ball over angle and speed has one problem per angle
+    when the law's family does not change with speed (an elastic Hertz contact, a damping set per speed)."""
+
+    name = "similar"
+    summary = "simulate once per dimensionless problem, scaled to the scenes that share it (compliant contact)"
+    gives = "all"
+
+    def take(self, work, todo, span_todo):
+        def eligible(frame, d, mask):
+            return np.flatnonzero(mask & _one_by_one(frame) & (frame["gravity"].to_numpy() == 0) & np.isfinite(d.w))
+
+        span_keys = _similar_keys(work.span_frame, work.span, eligible(work.span_frame, work.span, span_todo))
+        first, count = {}, {}
+        for i, key in span_keys.items():
+            first.setdefault(key, i)
+            count[key] = count.get(key, 0) + 1
+        shared = {key for key, n in count.items() if n > 1}
+        taken = np.zeros(len(work.span_frame), bool)
+        taken[[i for i, key in span_keys.items() if key in shared]] = True
+        keys = span_keys if not work.sharded else _similar_keys(work.frame, work.numbers,
+                                                                  eligible(work.frame, work.numbers, todo))
+        members: dict = {}
+        for i, key in keys.items():
+            if key in shared and todo[i]:
+                members.setdefault(key, []).append(i)
+        if not members:
+            return Take([], taken)
+        rows = np.sort(np.concatenate([np.array(group) for group in members.values()]))
+        return Take([Task(rows, lambda: self._solve(rows, members, first, work))], taken)
+
+    @staticmethod
+    def _solve(rows: np.ndarray, members: dict, first: dict, work: Work) -> dict:
+        """Each problem's representative solved by ``simulate`` (a batched tangential kernel runs them together),
+        its outputs scaled to every member."""
+        keys = list(members)
+        firsts = np.array([first[key] for key in keys])
+        scenes = [scene_of(work.span_frame.iloc[i].to_dict()) for i in firsts]
+        solved = SinglePath.solve_scenes(scenes, firsts, work, "sweep span row")
+        which = np.empty(rows.size, dtype=np.int64)  # each row's problem, as an index into keys
+        position = np.searchsorted(rows, np.concatenate([members[key] for key in keys]))
+        which[position] = np.repeat(np.arange(len(keys)), [len(members[key]) for key in keys])
+        theirs, own = _scales(work.frame, work.numbers, rows), _scales(work.span_frame, work.span, firsts[which])
+        out = {}
+        for name in NUMERIC_OUTPUTS:
+            value = np.array([np.nan if getattr(one, name) is None else getattr(one, name) for one in solved])[which]
+            out[name] = value * (theirs[SCALES[name]] / own[SCALES[name]]) if name in SCALES else value
+        return out | {"regime": np.array([one.regime for one in solved], dtype=object)[which]}
 
 
 # ---------------------------------------------------------------- laws without a batched kernel
@@ -311,8 +404,9 @@ class PerFamilyPath(SweepPath):
     def take(self, work, todo, span_todo):
         d = work.numbers
         rows = np.flatnonzero(~d.batched & todo & work.needs.completes)
-        task = Task(rows, lambda: self._solve(work, rows))
-        return Take([task] if rows.size else [], span_todo & ~work.span.batched & work.span_needs.completes)
+        span = span_todo & ~work.span.batched & work.span_needs.completes
+        task = Task(rows, lambda: self._solve(work, rows, np.flatnonzero(span)))
+        return Take([task] if rows.size else [], span)
 
     @staticmethod
     def _keys(d: Numbers, rows: np.ndarray) -> list:
@@ -320,7 +414,9 @@ class PerFamilyPath(SweepPath):
         return [(*f, float(g), bool(force)) for f, g, force in zip(d.family[rows], d.gamma[rows], d.force[rows])]
 
     @classmethod
-    def _solve(cls, work: Work, rows: np.ndarray) -> dict:
+    def _solve(cls, work: Work, rows: np.ndarray, span_rows: np.ndarray) -> dict:
+        """The rows' normal outputs, each family's from its first scene among the span's rows this path takes
+        (``span_rows``: not those an earlier path took)."""
         extremes, levels = work.needs.extremes, work.needs.levels[rows]
         options = work.options
         keys = cls._keys(work.numbers, rows)
@@ -329,7 +425,6 @@ class PerFamilyPath(SweepPath):
             members.setdefault(key, []).append(i)
         first = {}  # each family's first scene in the whole sweep: what a shard solves is the sweep's
         if work.sharded:
-            span_rows = np.flatnonzero(~work.span.batched)
             for i, key in zip(span_rows, cls._keys(work.span, span_rows)):
                 if key in members:
                     first.setdefault(key, work.span_frame.iloc[i])
@@ -522,7 +617,7 @@ class RungeKuttaLanesPath(_ByCriterion):
 
 
 #: The paths in their precedence: the first that takes a row solves it.
-ORDER = (SinglePath(), FamilyInterpolantPath(), PerFamilyPath(), ClosedPath(), LambdaInterpolantPath(), PlanePath(),
-         TaylorLanesPath(), RungeKuttaLanesPath())
+ORDER = (SimilarPath(), SinglePath(), FamilyInterpolantPath(), PerFamilyPath(), ClosedPath(), LambdaInterpolantPath(),
+         PlanePath(), TaylorLanesPath(), RungeKuttaLanesPath())
 #: name -> summary of every path, in precedence order (the ``path`` column's values).
 PATHS = {path.name: path.summary for path in ORDER}

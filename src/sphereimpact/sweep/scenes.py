@@ -66,12 +66,25 @@ def scene_table(scenes) -> pd.DataFrame:
         except ValueError as err:
             raise ValueError(f"{err} (row {i})") from None
     tangential = np.column_stack([frame[name].to_numpy() for name in TANGENTIAL_PARAMETERS])
-    for i in np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1)):
-        try:  # the tangential model's parameters depend on the law: checked as the Scene checks them
-            scene = scene_of(frame.iloc[i].to_dict())
-        except ValueError as err:
-            raise ValueError(f"{err} (row {i})") from None
-        frame.loc[frame.index[i], "kappa"] = np.nan if scene.kappa is None else scene.kappa
+    rows = np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1))
+    if rows.size:  # the tangential model's parameters depend on the law: checked as the Scene checks them
+        kappa = frame["kappa"].to_numpy().copy()
+        # once per ball, contact and surface: the approach does not reach these checks (the flat's tilt does,
+        # with gravity, through the weight it presses)
+        keys = frame.iloc[rows].drop(columns=["speed", "spin", *PATH_RULES])
+        keys.loc[keys["gravity"].to_numpy() == 0, "angle"] = 0.0
+        groups = keys.groupby(list(keys.columns), dropna=False, sort=False).ngroup().to_numpy()
+        firsts = np.unique(groups, return_index=True)[1]
+        checked = np.empty(firsts.size)
+        for g, first in enumerate(firsts):  # in the order of their first rows: the first bad row is named
+            i = int(rows[first])
+            try:
+                scene = scene_of(frame.iloc[i].to_dict())
+            except ValueError as err:
+                raise ValueError(f"{err} (row {i})") from None
+            checked[g] = np.nan if scene.kappa is None else scene.kappa
+        kappa[rows] = checked[groups]
+        frame["kappa"] = kappa
     return frame
 
 
