@@ -514,3 +514,14 @@ def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share
     assert json.loads(capsys.readouterr().out)["parameters"]["slide_share"]["value"] == pytest.approx(0.6, rel=1e-7)
     assert run(["fit", str(path), "--free", "slide_share"]) == 2
     assert "'slide_share' cannot be fitted" in capsys.readouterr().err
+
+
+@pytest.mark.filterwarnings("ignore::sphereimpact.EnergyGainWarning")
+def test_a_model_that_does_not_declare_itself_scale_free_is_solved_scene_by_scene(share_slide):
+    """The similar-scenes path takes only models that declare ``scale_free``: the plug-in's scenes, alike but for
+    their speed, each go to simulate; a built-in compliant model's share one solve."""
+    table = grid(incidence=[30.0], speed=[1.0, 2.0, 4.0])
+    plugin = sweep(table.assign(tangential="share-slide", slide_share=0.5))
+    assert set(plugin["path"]) == {"single"}
+    builtin = sweep(table.assign(model="hertz", modulus=1e8, tangential="mindlin", kappa=0.8))
+    assert set(builtin["path"]) == {"similar"}

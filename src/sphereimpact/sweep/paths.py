@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 
 from ..contact.separation import Separation
+from ..contact.tangential import TANGENTIALS
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
 from ..impact.outcome import NUMERIC_OUTPUTS
 from ..impact.scene import SolverOptions
@@ -290,11 +291,12 @@ def _scales(frame: pd.DataFrame, d: Numbers, rows) -> dict:
 
 
 class SimilarPath(SweepPath):
-    """Scenes of a compliant tangential contact (solved one impact at a time) that share their dimensionless
-    problem with others of the sweep: ``simulate`` once per problem, on its first scene in the sweep's span,
-    each output scaled to the others (the solvers work in the contact's own scales, so the outputs scale
-    exactly, to the tolerance of one solve).  A map of one ball over angle and speed has one problem per angle
-    when the law's family does not change with speed (an elastic Hertz contact, a damping set per speed)."""
+    """Scenes of a compliant tangential contact (solved one impact at a time) whose model declares itself
+    ``scale_free`` and that share their dimensionless problem with others of the sweep: ``simulate`` once per
+    problem, on its first scene in the sweep's span, each output scaled to the others (the solvers work in the
+    contact's own scales, so the outputs scale exactly, to the tolerance of one solve).  A map of one ball over
+    angle and speed has one problem per angle when the law's family does not change with speed (an elastic
+    Hertz contact, a damping set per speed)."""
 
     name = "similar"
     summary = "simulate once per dimensionless problem, scaled to the scenes that share it (compliant contact)"
@@ -302,7 +304,13 @@ class SimilarPath(SweepPath):
 
     def take(self, work, todo, span_todo):
         def eligible(frame, d, mask):
-            return np.flatnonzero(mask & _one_by_one(frame) & (frame["gravity"].to_numpy() == 0) & np.isfinite(d.w))
+            names = frame["tangential"].to_numpy()
+            free = np.zeros(names.shape, bool)
+            for name, model in TANGENTIALS.items():
+                if model.scale_free:  # a model that does not declare it is solved scene by scene
+                    free |= names == name
+            return np.flatnonzero(mask & free & _one_by_one(frame) & (frame["gravity"].to_numpy() == 0)
+                                  & np.isfinite(d.w))
 
         span_keys = _similar_keys(work.span_frame, work.span, eligible(work.span_frame, work.span, span_todo))
         first, count = {}, {}

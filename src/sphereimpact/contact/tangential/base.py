@@ -109,6 +109,11 @@ class TangentialModel:
         kernel, cheaper than one at a time), as a list in their order; None: one at a time.
     settings : tuple of Setting
         Its numerical settings (a resolution), read as ``options.setting(name)`` (None: not given).
+    scale_free : bool
+        True when its motion, in the contact's own scales (time 1 / w, speed v_n, spin v_n / R), depends only on
+        dimensionless numbers (kappa, mu, alpha, the normal law's family and its own dimensionless parameters):
+        a sweep then solves scenes alike but for their scales once (the ``similar`` path).  False (the default
+        for a model registered from outside): each scene is solved.
     """
 
     name: str
@@ -120,6 +125,7 @@ class TangentialModel:
     swept: "SweptTangential | None" = None
     many: Callable | None = None
     settings: tuple = ()
+    scale_free: bool = False
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]

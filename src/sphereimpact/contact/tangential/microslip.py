@@ -379,5 +379,5 @@ MICROSLIP_MODEL = TANGENTIALS.register(TangentialModel(
     "microslip", doc="exact elastic microslip of a Hertz contact (method of dimensionality reduction), Hertz laws",
     stiffness="k_t = 2 G* a, resolved across the contact", parameters=(KAPPA, POISSON, SHEAR_MODULUS),
     spring="hertz", motion=MicroslipTangential, many=MicroslipTangential.many,
-    settings=(ELEMENTS_SETTING, TIME_STEPS_SETTING)))
+    settings=(ELEMENTS_SETTING, TIME_STEPS_SETTING), scale_free=True))
 

@@ -292,13 +292,13 @@ class CompliantTangential:
 LINEAR = TANGENTIALS.register(TangentialModel(
     "linear", doc="spring k_t = kappa k capped by mu P, linear-spring laws", stiffness="k_t = kappa k, constant",
     parameters=(KAPPA, POISSON), spring="linear",
-    motion=lambda normal, options: CompliantTangential(normal, options, rescale="never")))
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="never"), scale_free=True))
 MINDLIN = TANGENTIALS.register(TangentialModel(
     "mindlin", doc="k_t = 8 G* a on force increments, rescaled while unloading, capped by mu P, Hertz laws",
     stiffness="k_t = 8 G* a",
     parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
-    motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading")))
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading"), scale_free=True))
 MINDLIN_DISPLACEMENT = TANGENTIALS.register(TangentialModel(
     "mindlin-displacement", doc="k_t = 8 G* a on the total displacement, capped by mu P, Hertz laws",
     stiffness="F = -8 G* a xi", parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
-    motion=lambda normal, options: CompliantTangential(normal, options, rescale="always")))
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="always"), scale_free=True))
