@@ -9,8 +9,8 @@ import pandas as pd
 from .style import RC, save
 
 #: The oblique tests' panels: (column, axis label).
-PANELS = (("vc_t", "v_t' of the ball [m/s]"), ("omega_f", "ω_f of the ball [rad/s]"),
-          ("rebound_angle_contact", "contact point's rebound\nangle from the normal [deg]"))
+PANELS = (("vc_t", "ball's v_t' [m/s]"), ("omega_f", "ball's ω_f [rad/s]"),
+          ("rebound_angle_contact", "contact-point rebound [deg]"))
 #: Line styles of the tangential rules: the exact contact solid.
 STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "linear": (0, (5, 1, 1, 1, 1, 1)),
           "rigid": "-."}
@@ -60,7 +60,7 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
             axes[-1].set_xlabel(label)
             handles, labels = axes[0].get_legend_handles_labels()
             fig.legend(handles, labels, fontsize=6, ncol=2, loc="lower center")
-            fig.subplots_adjust(bottom=0.24)
+            fig.subplots_adjust(left=0.17, bottom=0.24, hspace=0.3)
         fig.suptitle(f"Chung & Ooi test {number}: {title}", fontsize=9)
         save(fig, outputs)
         plt.close(fig)
