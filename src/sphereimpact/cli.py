@@ -743,7 +743,7 @@ def _fit(args) -> None:
 
 def _benchmark(args) -> None:
     """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, or a code's deviation from them."""
-    from .study.chung_ooi import compare, load_tests, write_reference
+    from .study.chung_ooi import chosen_tests, compare, write_reference
 
     if args.benchmark == "compare":
         for name, folder in (("DIR", args.reference), ("THEIRS", args.theirs)):
@@ -764,12 +764,9 @@ def _benchmark(args) -> None:
         raise ValueError(f"out is a file, not a folder: {args.out!r}")
     if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
         raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
-    _, tests = load_tests()
-    unknown = [n for n in numbers or () if n not in tests]
-    if unknown:
-        raise ValueError(f"tests must be some of {', '.join(map(str, sorted(tests)))}; got {unknown[0]!r}")
+    numbers = chosen_tests(numbers)
     os.makedirs(args.out, exist_ok=True)
-    for number in numbers or tests:
+    for number in numbers:
         check_out(os.path.join(args.out, f"test{number}.csv"), args.force, (".csv",))
     for path in write_reference(args.out, numbers):
         sys.stdout.write(f"{path}\n")

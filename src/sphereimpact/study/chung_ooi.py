@@ -186,13 +186,23 @@ def deviations(rules: pd.DataFrame, exact: pd.DataFrame, quantities=("e_t", "ome
     for rule, part in rules.groupby("tangential", sort=False):
         part = part.reset_index(drop=True)
         for quantity in quantities:
-            if quantity not in exact or not (np.abs(exact[quantity]) > 0).any():
-                continue
-            diff = np.abs(part[quantity].to_numpy() - exact[quantity].to_numpy())
-            scale = float(np.nanmax(np.abs(exact[quantity].to_numpy())))
-            rows.append({"test": int(exact["test"].iloc[0]), "tangential": rule, "quantity": quantity,
-                         "max_abs": float(np.nanmax(diff)), "max_rel": float(np.nanmax(diff)) / scale})
+            found = _deviation(part, exact, quantity)
+            if found is not None:
+                rows.append({"test": int(exact["test"].iloc[0]), "tangential": rule, "quantity": quantity,
+                             "max_abs": found["max_abs"], "max_rel": found["max_rel"]})
     return pd.DataFrame(rows)
+
+
+def _deviation(code: pd.DataFrame, exact: pd.DataFrame, quantity: str) -> dict | None:
+    """How far ``code``'s column ``quantity`` is from ``exact``'s, row by row: the rows compared, the largest absolute
+    difference and that over the exact column's largest magnitude; None where either lacks the column or the exact
+    solution holds it at 0 (a normal test's tangential outputs: nothing to compare)."""
+    if quantity not in code or quantity not in exact or not (np.abs(exact[quantity]) > 0).any():
+        return None
+    diff = np.abs(code[quantity].to_numpy(dtype=float) - exact[quantity].to_numpy(dtype=float))
+    largest = float(np.nanmax(diff))
+    return {"rows": int(np.isfinite(diff).sum()), "max_abs": largest,
+            "max_rel": largest / float(np.nanmax(np.abs(exact[quantity])))}
 
 
 def header(units: dict) -> dict:
@@ -213,17 +223,24 @@ def read_table(path) -> pd.DataFrame:
     return table.rename(columns={name: name.split(" [")[0] for name in table.columns})
 
 
-def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
-    """One CSV per test, ``test<N>.csv``, in ``folder`` (created): each test's inputs and exact outputs; every test
-    of the definition, or those ``numbers``."""
-    folder = Path(folder)
+def chosen_tests(numbers=None, path=DEFINITION) -> list[int]:
+    """``numbers``, sorted, checked against the definition's tests (all of them when None): ValueError names one
+    it lacks."""
     _, tests = load_tests(path)
     unknown = [n for n in numbers or () if n not in tests]
     if unknown:
         raise ValueError(f"tests must be some of {', '.join(map(str, sorted(tests)))}; got {unknown[0]!r}")
+    return sorted(numbers or tests)
+
+
+def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
+    """One CSV per test, ``test<N>.csv``, in ``folder`` (created): each test's inputs and exact outputs; every test
+    of the definition, or those ``numbers``."""
+    folder = Path(folder)
+    numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
     written = []
-    for number in sorted(numbers or tests):
+    for number in numbers:
         target = folder / f"test{number}.csv"
         write_table(reference(number, path), target)
         written.append(target)
@@ -259,13 +276,10 @@ def compare(reference_folder, theirs_folder) -> pd.DataFrame:
                 raise ValueError(f"THEIRS: {file.name} row {i}: {name} {code[name].iloc[i]!r} is not the reference's "
                                  f"{exact[name].iloc[i]!r}: give the reference's inputs")
         for quantity in OUTPUTS:
-            if quantity not in code or quantity not in exact or not (np.abs(exact[quantity]) > 0).any():
-                continue  # not an output of this test (a normal test's tangential ones are 0)
-            diff = np.abs(code[quantity].to_numpy(dtype=float) - exact[quantity].to_numpy(dtype=float))
-            scale = float(np.nanmax(np.abs(exact[quantity])))
-            rows.append({"test": int(exact["test"].iloc[0]), "quantity": quantity, "unit": OUTPUTS[quantity],
-                         "rows": int(np.isfinite(diff).sum()), "max_abs": float(np.nanmax(diff)),
-                         "max_rel": float(np.nanmax(diff)) / scale})
+            found = _deviation(code, exact, quantity)
+            if found is not None:
+                rows.append({"test": int(exact["test"].iloc[0]), "quantity": quantity, "unit": OUTPUTS[quantity],
+                             **found})
     return pd.DataFrame(rows)
 
 
@@ -279,9 +293,8 @@ def run_study(folder, numbers=None, path=DEFINITION) -> None:
     rules' solutions of the oblique tests (``dem_rules.csv``) and their deviations from the reference
     (``deviations.csv``), and the checks of each reference against its closed forms (``checks.csv``)."""
     folder = Path(folder)
+    numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
-    _, tests = load_tests(path)
-    numbers = sorted(numbers or tests)
     rules, deviation, checks = [], [], []
     for number in numbers:
         exact = reference(number, path)

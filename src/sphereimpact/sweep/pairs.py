@@ -16,7 +16,7 @@ from ..impact.inputs import check_columns
 from ..impact.outcome import SCALAR_OUTPUTS
 from ..impact.pair import PARTNER_FIELDS, PARTNER_OUTPUTS, pair_velocities, reduced_body
 from ..impact.scene import Scene
-from .scenes import grid, incidence
+from .scenes import given_table, incidence
 
 #: The ball's columns the reduction replaces, with the Scene's defaults.
 BODY = {name: Scene.__dataclass_fields__[name].default for name in ("mass", "diameter", "inertia_factor", "spin")}
@@ -27,11 +27,6 @@ MAPPED = ("vc_t", "vc_n", "omega_f")
 def has_partner(scenes) -> bool:
     """True when a table (DataFrame, or a dict of values or lists) names a partner sphere's column."""
     return any(name in PARTNER_FIELDS for name in (scenes.columns if isinstance(scenes, pd.DataFrame) else scenes))
-
-
-def given_table(scenes) -> pd.DataFrame:
-    """The table of scenes as given (a dict is every combination of its values, as :func:`~.scenes.grid`)."""
-    return grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes).reset_index(drop=True)
 
 
 def partner_columns(frame: pd.DataFrame) -> dict:
@@ -76,9 +71,10 @@ def _body(frame: pd.DataFrame) -> dict:
     return out
 
 
-def reduced_table(frame: pd.DataFrame) -> pd.DataFrame:
+def reduced_table(frame: pd.DataFrame) -> tuple[pd.DataFrame, dict, dict]:
     """The table of each row's reduced sphere: the partner's columns dropped and, in the rows with a partner, the
-    ball's mass, diameter, inertia factor and spin replaced by m*, 2 R*, alpha* and w*."""
+    ball's mass, diameter, inertia factor and spin replaced by m*, 2 R*, alpha* and w*; with the rows' partner
+    (:func:`partner_columns`) and ball (:func:`_body`) columns it was reduced from."""
     partner, body = partner_columns(frame), _body(frame)
     pair = ~np.isnan(partner["partner_mass"])
     m, r, alpha, spin = reduced_body(body["mass"], 0.5 * body["diameter"], body["inertia_factor"], body["spin"],
@@ -87,7 +83,7 @@ def reduced_table(frame: pd.DataFrame) -> pd.DataFrame:
     reduced = frame.drop(columns=[name for name in PARTNER_FIELDS if name in frame])
     for name, value in (("mass", m), ("diameter", 2.0 * r), ("inertia_factor", alpha), ("spin", spin)):
         reduced[name] = np.where(pair, value, body[name])
-    return reduced
+    return reduced, partner, body
 
 
 def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFrame:
@@ -95,13 +91,12 @@ def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFram
     function), then, in the rows with a partner, the ball's velocities and spin and the partner's
     (:data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS`; 0 in rows on the flat, which does not move) from the
     impulses.  The scene columns are the rows' own, the partner's after them; ``k`` is the contact's."""
-    given = given_table(scenes)
-    partner, body = partner_columns(given), _body(given)
+    reduced, partner, body = reduced_table(given_table(scenes).reset_index(drop=True))
     wanted = None if outputs is None else [outputs] if isinstance(outputs, str) else list(outputs)
     solved_for = None if wanted is None else [name for name in dict.fromkeys([*wanted, *MAPPED, "cor"])
                                               if name not in PARTNER_OUTPUTS]
-    reduced_span = None if span is None else reduced_table(given_table(span))
-    result = sweep(reduced_table(given), span=reduced_span, outputs=solved_for, **options)
+    reduced_span = None if span is None else reduced_table(given_table(span).reset_index(drop=True))[0]
+    result = sweep(reduced, span=reduced_span, outputs=solved_for, **options)
     pair = ~np.isnan(partner["partner_mass"])
     angle = np.radians(incidence(result))
     v_n = result["speed"].to_numpy() * np.cos(angle)
@@ -111,7 +106,7 @@ def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFram
                                  partner["partner_mass"], 0.5 * partner["partner_diameter"],
                                  partner["partner_inertia_factor"], partner["partner_spin"], v_n, v_t)
     for name in (*MAPPED, *PARTNER_OUTPUTS):
-        flat = result[name].to_numpy() if name in MAPPED else np.zeros(len(given))
+        flat = result[name].to_numpy() if name in MAPPED else np.zeros(len(result))
         result[name] = np.where(pair, velocities[name], flat)
     for name, values in body.items():
         result[name] = values

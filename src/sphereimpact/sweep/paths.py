@@ -269,7 +269,7 @@ def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
     their scales: every output of one is the other's, scaled (:data:`SCALES`)."""
     angle = incidence(frame)
     columns = [frame[name].to_numpy() for name in ("tangential", "kappa", "inertia_factor", "mu")]
-    own = [frame[name].to_numpy() for name in frame.columns[len(SCENE_COLUMNS):]]
+    own = [frame[name].to_numpy() for name in frame.columns if name not in SCENE_COLUMNS]  # the models' own
     spin_ratio = frame["spin"].to_numpy() * 0.5 * frame["diameter"].to_numpy() / d.v_n
     def same(value):  # an empty cell (NaN) equals another, as a key
         return None if isinstance(value, float) and value != value else value

@@ -39,10 +39,7 @@ def scene_table(scenes) -> pd.DataFrame:
     missing column is for every row: it takes the default, or its law's or model's (so one table may describe
     one row's approach by incidence and another's by the flat's tilt, one Hertz law by k and another by
     modulus), as the sweep's own tables write them."""
-    if isinstance(scenes, dict):  # sized before the grid is made, as the command line sizes its ranges
-        check_size({name: int(np.size(values)) for name, values in scenes.items()},
-                   "sweep shards of it (span= keeps them one sweep) or coarser values")
-    given = grid(**scenes) if isinstance(scenes, dict) else pd.DataFrame(scenes)
+    given = given_table(scenes)
     own = own_parameters()
     unknown = [c for c in given.columns if c not in SCENE_COLUMNS and c not in own]
     if unknown:
@@ -86,6 +83,16 @@ def scene_table(scenes) -> pd.DataFrame:
         kappa[rows] = checked[groups]
         frame["kappa"] = kappa
     return frame
+
+
+def given_table(scenes) -> pd.DataFrame:
+    """The scenes as given, one per row: a DataFrame as is, a dict every combination of its values (:func:`grid`),
+    sized before the grid is made, as the command line sizes its ranges."""
+    if not isinstance(scenes, dict):
+        return pd.DataFrame(scenes)
+    check_size({name: int(np.size(values)) for name, values in scenes.items()},
+               "sweep shards of it (span= keeps them one sweep) or coarser values")
+    return grid(**scenes)
 
 
 def _defaulted(values: np.ndarray, default) -> np.ndarray:
