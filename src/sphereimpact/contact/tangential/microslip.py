@@ -77,39 +77,40 @@ def hertz_moduli(scene) -> tuple[float, float]:
     return e_star, scene.kappa * e_star
 
 
-def row_weights(xi_a: np.ndarray, elements: int) -> tuple[np.ndarray, np.ndarray]:
-    """Covered length and normal-load share of each cell of the element row.
+def cell_weights(a0, a1, left, width):
+    """Weights of element-row cells whose contact radius goes linearly in time from ``a0`` to ``a1`` over a step.
 
     Parameters
     ----------
-    xi_a : array
-        Contact radius a / a_max [-] (any shape S).
-    elements : int
-        Cells of equal width on [0, 1] (in units of a_max).
+    a0, a1 : arrays
+        Contact radius at the step's start and end, over a_max [-] (broadcast with ``left``).
+    left : array
+        Left edges of the cells [a_max].
+    width : float
+        Width of a cell [a_max].
 
     Returns
     -------
-    length, share : arrays of shape S + (elements,)
-        The length of each cell inside [0, xi_a] [a_max], and the cell's share of the integral of
-        w = (a^2 - x^2) / R over the contact [-]: the shares add up to 1 where xi_a > 0, else 0.
+    mean_length : array
+        Each cell's covered length clip(a - left, 0, width), averaged over the step exactly [a_max]: a cell
+        that enters or leaves the contact part-way through is credited with the mean, where the ends' mean
+        would credit a cell entering at the step's end with half its length.
+    share : array
+        The cell's share at the step's end of the integral of w = (a^2 - x^2) / R over the contact [-]: the
+        shares of a row add up to 1 where a1 > 0, else 0.
     """
-    width = 1.0 / elements
-    left = np.arange(elements) * width
-    a = np.asarray(xi_a, dtype=float)[..., None]
-    length = np.minimum(np.maximum(a - left, 0.0), width)
+    length0 = np.clip(a0 - left, 0.0, width)
+    length = np.clip(a1 - left, 0.0, width)
     right = left + length
-    load = a * a * length - (right * right * right - left * left * left) / 3.0  # int of a^2 - x^2, covered part
-    total = 2.0 * a * a * a / 3.0
+    load = a1 * a1 * length - (right * right * right - left * left * left) / 3.0  # int of a^2 - x^2, covered part
+    total = 2.0 * a1 * a1 * a1 / 3.0
+    change = a1 - a0
+    crossing = ((np.minimum(a0, a1) < left + width) & (np.maximum(a0, a1) > left)
+                & (np.abs(change) > 1e-9 * width))  # the covered length changes slope within the step
     with np.errstate(invalid="ignore", divide="ignore"):
         share = np.where(total > 0, load / total, 0.0)
-    return length, share
-
-
-def hold(held, mean_length, d_u, limit):
-    """One step of the element row: each cell's held displacement (the integral of u over its part in
-    contact) grows by its mean covered length times the rigid displacement ``d_u`` while it sticks, and is
-    held to its limit (its share of the Coulomb cap over the row's stiffness) when it slides."""
-    return np.minimum(np.maximum(held + mean_length * d_u, -limit), limit)
+        exact = (_covered_integral(a1, left, width) - _covered_integral(a0, left, width)) / change
+    return np.where(crossing, exact, 0.5 * (length0 + length)), share
 
 
 def _covered_integral(a, left, width):
@@ -118,30 +119,51 @@ def _covered_integral(a, left, width):
     return 0.5 * inside * inside + width * np.maximum(a - left - width, 0.0)
 
 
-def _weights(xi_a, cap, elements, stiffness, xi_before):
-    """Covered lengths at the step ends, their means over each step and the cells' limits, for the steps from
-    ``xi_before`` through ``xi_a`` (shape (steps, ...)).
+class _Block:
+    """The element row's weights for a block of steps of one contact (``xi_a`` of shape (S,)) or B at once
+    ((S, B)): each cell's limit, its share of the Coulomb cap over the row's stiffness, as an array (S, [B,] N);
+    and the few cells whose covered length is not the full width all through a step (the band at the contact's
+    edge), with their exact mean covered lengths.
 
-    Within a step the contact radius is taken as linear in time, so a cell that enters or leaves the contact
-    part-way through a step is credited with the mean of its covered length over the step, exactly: the
-    ends' mean would credit a cell that enters at the step's end with half its length."""
-    length, share = row_weights(xi_a, elements)
-    limit = cap[..., None] * share / np.asarray(stiffness)[..., None]
-    width = 1.0 / elements
-    left = np.arange(elements) * width
-    a0 = np.concatenate([np.asarray(xi_before)[None], xi_a[:-1]])[..., None]
-    a1 = xi_a[..., None]
-    change = a1 - a0
-    length0 = np.clip(a0 - left, 0.0, width)
-    mean_length = 0.5 * (length0 + length)  # exact where the cell's covered length is linear over the step
-    crossing = np.nonzero((np.minimum(a0, a1) < left + width) & (np.maximum(a0, a1) > left)
-                          & (np.abs(change) > 1e-9 * width))
-    if crossing[0].size:  # the few cells whose covered length changes slope within the step
-        a0, a1, change = (np.broadcast_to(v, length.shape)[crossing] for v in (a0, a1, change))
-        cell_left = np.broadcast_to(left, length.shape)[crossing]
-        mean_length[crossing] = (_covered_integral(a1, cell_left, width)
-                                 - _covered_integral(a0, cell_left, width)) / change
-    return length, mean_length, limit
+    A cell covered all through a step has mean length ``width`` and limit cap / stiffness times
+    (a^2 width - c_i) / (2 a^3 / 3), with c_i the integral of x^2 over the cell; a cell beyond the contact at
+    the step's end has limit 0 (that formula is negative there), which clears what it held.  Only the band is
+    weighed cell by cell (:func:`cell_weights`), so a step costs a few passes over the row."""
+
+    def __init__(self, xi_a, cap, stiffness, elements, xi_before):
+        width = 1.0 / elements
+        left = np.arange(elements) * width
+        a1 = np.asarray(xi_a, dtype=float)
+        a0 = np.concatenate([np.asarray(xi_before, dtype=float)[None], a1[:-1]])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = np.where(a1 > 0, cap / (np.asarray(stiffness) * (2.0 / 3.0) * a1 * a1 * a1), 0.0)
+        c = ((left + width) ** 3 - left ** 3) / 3.0
+        limit = np.maximum(scale[..., None] * ((a1 * a1 * width)[..., None] - c), 0.0)
+        low = np.clip(np.floor(np.minimum(a0, a1) * elements), 0, elements).astype(np.int64)
+        high = np.clip(np.ceil(a1 * elements), 0, elements).astype(np.int64)
+        counts = np.maximum(high - low, 0).ravel()
+        lanes = np.repeat(np.arange(counts.size), counts)  # flat (step, lane) of each band cell
+        cells = low.ravel()[lanes] + np.arange(lanes.size) - np.repeat(np.cumsum(counts) - counts, counts)
+        mean, share = cell_weights(a0.ravel()[lanes], a1.ravel()[lanes], cells * width, width)
+        flat = limit.reshape(-1, elements)
+        flat[lanes, cells] = (np.broadcast_to(cap / np.asarray(stiffness), a1.shape).ravel()[lanes] * share)
+        per_step = a1[0].size if a1.ndim > 1 else 1
+        bounds = np.searchsorted(lanes, np.arange(0, a1.shape[0] + 1) * per_step)
+        self.limit, self.width = limit, width
+        self.band = [(lanes[i:j] % per_step, cells[i:j], mean[i:j]) for i, j in zip(bounds[:-1], bounds[1:])]
+
+    def hold(self, j, held, d_u):
+        """Step ``j`` of the block: each cell's held displacement (the integral of u over its part in contact)
+        grows by its mean covered length times the rigid displacement ``d_u`` (float, or (B, 1)) while it
+        sticks, and is held to its limit when it slides."""
+        lanes, cells, mean = self.band[j]
+        grown = held + self.width * d_u
+        if held.ndim == 1:
+            grown[cells] = held[cells] + mean * d_u
+        else:
+            grown[lanes, cells] = held[lanes, cells] + mean * d_u[lanes, 0]
+        limit = self.limit[j]
+        return np.minimum(np.maximum(grown, -limit), limit)
 
 
 def quasi_static(xi_a, cap, displacement, stiffness=1.0, elements=ELEMENTS):
@@ -164,10 +186,10 @@ def quasi_static(xi_a, cap, displacement, stiffness=1.0, elements=ELEMENTS):
         holds it; the force on the ball in :class:`MicroslipTangential` is its opposite).
     """
     xi_a, cap, displacement = (np.asarray(v, dtype=float) for v in (xi_a, cap, displacement))
-    length, mean_length, limit = _weights(xi_a[1:], cap[1:], elements, stiffness, xi_a[0])
+    block = _Block(xi_a[1:], cap[1:], stiffness, elements, xi_a[0])
     held, force = np.zeros(elements), np.zeros(xi_a.shape)
     for n, d_u in enumerate(np.diff(displacement)):
-        held = hold(held, mean_length[n], d_u, limit[n])
+        held = block.hold(n, held, float(d_u))
         force[n + 1] = stiffness * held.sum()
     return force
 
@@ -215,12 +237,11 @@ def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, held):
     half_dt2 = 0.5 * dt * dt
     for start in range(0, points - 1, BLOCK):  # the row's weights for a block of steps at once
         stop = min(start + BLOCK, points - 1)
-        _, mean_length, limit = _weights(xi_a[start + 1:stop + 1], cap[start + 1:stop + 1], elements, stiffness,
-                                         xi_a[start])
+        block = _Block(xi_a[start + 1:stop + 1], cap[start + 1:stop + 1], stiffness, elements, xi_a[start])
         forces, impulses = [], []
         for j, n in enumerate(range(start, stop)):
             d_u = dt * slip + half_dt2 * (f_now * inverse_mass + g_t)
-            held = hold(held, mean_length[j], d_u if one else d_u[:, None], limit[j])
+            held = block.hold(j, held, d_u if one else d_u[:, None])
             f_next = -stiffness * (float(held.sum()) if one else held.sum(axis=-1))
             phi_next = f_next * per_cap[n + 1] + no_cap[n + 1] * phi_now
             step_impulse = 0.5 * ((phi_now if n else phi_next) + phi_next) * impulse[n]
@@ -322,14 +343,35 @@ class MicroslipTangential:
         The resolution used.
     """
 
-    def __init__(self, normal, options, _resolution=None, _marched=None):
-        s = normal.scene
-        self.normal, self.scene = normal, s
-        self.elements, self.time_steps = _resolution or resolution(s, normal, options)
+    def __init__(self, normal, options):
+        self.elements, self.time_steps = resolution(normal.scene, normal, options)
         t, inputs = _inputs(normal, self.time_steps)
-        force, j_t = _marched if _marched is not None else march(*inputs, np.zeros(self.elements))[:2]
-        cap = inputs[1]
-        self.t, self._force, self._j = t, force, j_t
+        force, j_t, _ = march(*inputs, np.zeros(self.elements))
+        self._settle(normal, t, inputs[1], force, j_t)
+
+    @classmethod
+    def many(cls, normals, options) -> list:
+        """The motions over several solved normal motions at once: one march of the batched kernel, at the
+        finest resolution any of them needs (so each is at least as resolved as alone)."""
+        if len(normals) == 1:
+            return [cls(normals[0], options)]
+        sizes = [resolution(n.scene, n, options) for n in normals]
+        size = (max(e for e, _ in sizes), max(m for _, m in sizes))
+        sampled = [_inputs(normal, size[1]) for normal in normals]
+        stacked = [np.stack(parts, axis=-1) for parts in zip(*(inputs for _, inputs in sampled))]
+        force, j_t, _ = march(*stacked, np.zeros((len(normals), size[0])))
+        motions = []
+        for b, (normal, (t, inputs)) in enumerate(zip(normals, sampled)):
+            motion = cls.__new__(cls)
+            motion.elements, motion.time_steps = size
+            motion._settle(normal, t, inputs[1], force[:, b], j_t[:, b])
+            motions.append(motion)
+        return motions
+
+    def _settle(self, normal, t, cap, force, j_t):
+        """The motion from the march's tangential force and impulse at the step ends ``t`` (cap: mu P+ there)."""
+        s = self.scene = normal.scene
+        self.normal, self.t, self._force, self._j = normal, t, force, j_t
         with np.errstate(invalid="ignore", divide="ignore"):
             fraction = np.where(cap > 0, force / cap, np.nan)
         self._fraction = _fill_ends(fraction)  # F / (mu P+): at the ends, where the cap is 0, the neighbours'
@@ -344,19 +386,6 @@ class MicroslipTangential:
         self.t_roll = float(t[np.argmax(self.stuck)]) if self.stuck.any() else None
         self.regime = MICROSLIP if self.stuck.any() else SLIDING
         self.switches = int(flips.size)
-
-    @classmethod
-    def many(cls, normals, options) -> list:
-        """The motions over several solved normal motions at once: one march of the batched kernel, at the
-        finest resolution any of them needs (so each is at least as resolved as alone)."""
-        if len(normals) == 1:
-            return [cls(normals[0], options)]
-        sizes = [resolution(n.scene, n, options) for n in normals]
-        size = (max(e for e, _ in sizes), max(m for _, m in sizes))
-        columns = [_inputs(normal, size[1])[1] for normal in normals]
-        stacked = [np.stack(parts, axis=-1) for parts in zip(*columns)]
-        force, j_t, _ = march(*stacked, np.zeros((len(normals), size[0])))
-        return [cls(normal, options, size, (force[:, b], j_t[:, b])) for b, normal in enumerate(normals)]
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]
