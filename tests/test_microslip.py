@@ -15,7 +15,8 @@ import pytest
 
 from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.sweep.engine import sweep
-from sphereimpact.contact.tangential.microslip import ELEMENTS, TIME_STEPS, march, quasi_static
+from sphereimpact.contact.tangential.microslip import (ELEMENTS, TIME_STEPS, _Block, cell_weights, march,
+                                                       quasi_static)
 
 #: Kharaz et al.'s alumina sphere (see test_compliance.ALUMINA), exact tangential contact.
 ALUMINA = dict(mass=4000.0 * math.pi * 0.005 ** 3 / 6.0, diameter=0.005, speed=3.9, mu=0.092, model="hunt-crossley",
@@ -151,6 +152,33 @@ def test_batched_kernel_equals_one_contact_at_a_time():
         one = march(xi[:, b], cap[:, b], impulse[:, b], *(float(p[b]) for p in parameters), np.zeros(elements))
         np.testing.assert_allclose(one[0], force[:, b], rtol=1e-14, atol=1e-300)
         np.testing.assert_allclose(one[1], j_t[:, b], rtol=1e-14, atol=1e-300)
+
+
+@pytest.mark.parametrize("lanes", [None, 4], ids=["one contact", "four at once"])
+def test_the_edge_band_weighs_every_cell_as_the_dense_row_does(lanes):
+    """The march weighs only the cells the contact's edge crosses in a step (``_Block``); every other cell's limit
+    comes from the affine formula.  Against every cell weighed by :func:`cell_weights`, on contact radii that
+    jump several cells a step, shrink, stall, land on cell edges and reach 0: the limits and one step of the
+    row agree to round-off."""
+    rng = np.random.default_rng(3)
+    elements, steps = 16, 40
+    shape = (steps,) if lanes is None else (steps, lanes)
+    xi = rng.uniform(0.0, 1.0, shape)
+    xi[5] = xi[4]  # a stalled step
+    xi[7], xi[8], xi[-1] = 5.0 / elements, 0.0, 0.0  # a cell's edge, then no contact, then the end
+    before = np.full(shape[1:], 0.3)
+    cap, stiffness = rng.uniform(0.5, 2.0, shape), 2.0 if lanes is None else rng.uniform(1.0, 3.0, lanes)
+    block = _Block(xi, cap, stiffness, elements, before)
+    width = 1.0 / elements
+    left = np.arange(elements) * width
+    a0 = np.concatenate([before[None], xi[:-1]])
+    mean, share = cell_weights(a0[..., None], xi[..., None], left, width)
+    np.testing.assert_allclose(block.limit, (cap / np.asarray(stiffness))[..., None] * share, rtol=1e-12, atol=1e-15)
+    held = rng.uniform(-0.05, 0.05, (elements,) if lanes is None else (lanes, elements))
+    for j in range(steps):
+        d_u = 0.01 if lanes is None else rng.uniform(-0.01, 0.01, (lanes, 1))
+        dense = np.clip(held + mean[j] * d_u, -block.limit[j], block.limit[j])
+        np.testing.assert_allclose(block.hold(j, held, d_u), dense, rtol=1e-12, atol=1e-15)
 
 
 def test_resolution_options_and_refusals():
