@@ -7,6 +7,7 @@ builds its motion on one, whoever solved it.
 
 from __future__ import annotations
 
+import copy
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -59,6 +60,28 @@ class NormalMotion:
         s = self.scene
         t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         return s.mass * (s.v_normal * t - self.state(t)[0] + 0.5 * s.g_normal * t * t)
+
+    def for_scene(self, scene: Scene) -> NormalMotion:
+        """This motion as the motion of ``scene``, a scene with the same normal problem
+        (:attr:`~sphereimpact.impact.scene.Scene.normal_problem`): a shallow copy that reads ``scene``'s friction,
+        tangential contact and spin, which the normal motion itself does not depend on."""
+        self.__dict__.setdefault("_kept", {})  # made before the copy, so the copy keeps into the same one
+        motion = copy.copy(self)
+        motion.scene = scene
+        return motion
+
+    def kept(self, key, compute):
+        """``compute()``, a value derived from this normal motion alone (its samples on a grid, its force's
+        extremes), computed once and kept with the motion and its copies for other scenes (:meth:`for_scene`):
+        a shared normal motion is sampled once, however many scenes read it."""
+        kept = self.__dict__.setdefault("_kept", {})
+        if key not in kept:
+            kept[key] = compute()
+        return kept[key]
+
+    def forget(self) -> None:
+        """Drop what :meth:`kept` holds, so the next reads compute it again (a benchmark timing them)."""
+        self.__dict__.pop("_kept", None)
 
     @property
     def delta_m(self) -> float:

@@ -25,6 +25,7 @@ from scipy.optimize import least_squares
 
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import Ball, ball_columns, calibrated_ball
+from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
 from .measured import APPROACH, MEASURABLE, SOURCES, Measured, quantity
@@ -37,8 +38,9 @@ FREE = {
 }
 #: The files of a fit's folder (``sphereimpact fit --out DIR``, the pipeline's fits).
 FIT_FILES = ("ball.json", "fit.json", "residuals.csv", "fit.png")
-#: Relative step of the finite-difference Jacobian: the model is accurate to the sweep's target (1e-8), so a
-#: central difference over this step is accurate to about 1e-4 relative.
+#: Relative step of the forward-difference Jacobian.  The model is accurate to the sweep's target (1e-8), so a
+#: difference over this step carries about 1e-4 relative of its noise, as much as the forward difference's own
+#: error (half the step times the curvature): a central difference, twice the evaluations, would gain nothing.
 DIFF_STEP = 1e-4
 #: A parameter fitted in its logarithm stays within this factor of its start either way (a flat direction of
 #: the residuals, a parameter the data do not constrain, must not walk to overflow).
@@ -76,7 +78,8 @@ class FitResult:
         ``model_stderr`` (the model's standard error there, from the parameters' covariance).
     statistics : dict
         ``values`` (n), ``free`` (p), ``dof``, ``chi2`` and ``reduced_chi2`` of the weighted residuals, ``rms``
-        per quantity, the optimiser's ``evaluations`` and ``status`` message.
+        per quantity, ``evaluations`` of the model (each a sweep of the bounces, the Jacobians' included) and the
+        optimiser's ``status`` message.
     notes : list of str
         What the reader must know (a parameter not identifiable, weights estimated from the residuals).
     """
@@ -203,7 +206,11 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
         A parameter that cannot be freed, fewer measured values than free parameters, or a measured e_t of
         a normal impact.
     """
-    names = free_names(ball, free)
+    with reusing_normal_motions():  # the bounces' normal motions are solved once when only mu, kappa... are free
+        return _fit(measured, ball, free_names(ball, free), bootstrap, seed, target)
+
+
+def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int, target: float) -> FitResult:
     values = measured.values
     if len(values) <= len(names):
         raise ValueError(f"free: {len(names)} free parameters need more than {len(names)} measured values; "
@@ -218,10 +225,14 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
     lower, upper, logs = (np.array([limits[n][i] for n in names]) for i in range(3))
     logs = logs.astype(bool)
 
+    evaluations = 0  # of the model: the optimiser's, its Jacobians' and the bootstrap's
+
     def natural(theta):
         return np.where(logs, np.exp(theta), theta)
 
     def model(theta, bounces=None):
+        nonlocal evaluations
+        evaluations += 1
         trial = dict(zip(names, natural(theta)))
         try:
             current = with_values(ball, trial)
@@ -247,17 +258,13 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
     bounds = (np.where(logs, log_start - math.log(LOG_WINDOW), lower),
               np.where(logs, log_start + math.log(LOG_WINDOW), upper))
     start = _inside(np.where(logs, log_start, initial), *bounds)
-    evaluations = 0
 
     def solve(theta0, weights, vals=values, data=measured_values, bounces=None):
-        nonlocal evaluations
-
         def residual(theta):
             return (predictions(theta, vals, bounces) - data) / weights
 
-        result = least_squares(residual, theta0, bounds=bounds, method="trf", jac="3-point", diff_step=DIFF_STEP,
+        result = least_squares(residual, theta0, bounds=bounds, method="trf", jac="2-point", diff_step=DIFF_STEP,
                                x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=200)
-        evaluations += result.nfev
         return result
 
     result = solve(start, sigma)

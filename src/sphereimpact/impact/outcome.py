@@ -49,6 +49,13 @@ HISTORY_COLUMNS = {
 }
 
 
+def force_extremes(force, grid) -> tuple[float, float]:
+    """The smallest and largest normal force [N] over the contact: ``force(t)`` sampled on ``grid`` (which
+    brackets every extremum), each extremum then refined."""
+    forces = force(grid)
+    return extremum(force, grid, "min", forces)[1], extremum(force, grid, "max", forces)[1]
+
+
 @dataclass(frozen=True)
 class EndState:
     """What a solver computed of one impact, or of many (each field a float, or arrays of one length), in SI
@@ -239,15 +246,14 @@ class Outcome:
         """Read the outputs off a solved contact motion (reduced or planar), through :func:`outputs`.
 
         ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``, ``switches``,
-        ``grid``, ``stats``, ``force(t)`` and ``kinematics(t)``.
+        ``grid``, ``stats``, ``force(t)``, ``force_extremes()`` (:func:`force_extremes`) and ``kinematics(t)``.
         """
         s = motion.scene
         both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call: [0] at t_m, [1] at t_f
-        forces = motion.force(motion.grid)
+        force_min, force_max = motion.force_extremes()
         end = EndState.of_scene(
             s, t_m=motion.t_m, delta_m=float(both["delta"][0]), t_f=motion.t_f, vc_n=float(both["vc_n"][1]),
-            force_min=extremum(motion.force, motion.grid, "min", forces)[1],
-            force_max=extremum(motion.force, motion.grid, "max", forces)[1],
+            force_min=force_min, force_max=force_max,
             vc_t=float(both["vc_t"][1]), omega_f=float(both["omega"][1]), u_t=float(both["u_t"][1]),
             t_roll=math.nan if motion.t_roll is None else motion.t_roll, switches=int(motion.switches),
             regime=motion.regime)

@@ -24,6 +24,7 @@ from scipy.integrate import solve_ivp
 from ..errors import ImpactError
 from ..integrators.normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from ..integrators import ivp_method
+from .outcome import force_extremes
 from .scene import Scene, SolverOptions
 from ..contact.tangential import MAX_PHASES, phase_index
 from ..contact.tangential.rigid import RIGID
@@ -153,6 +154,10 @@ class PlanarMotion:
 
     def force(self, t):
         return self._contact(self._state(t))[2]
+
+    def force_extremes(self) -> tuple[float, float]:
+        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`)."""
+        return force_extremes(self.force, self.grid)
 
     def tangential_force(self, t):
         """Friction force on the ball along the flat [N] at t [s], as the segment's mode sets it."""

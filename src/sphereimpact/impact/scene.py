@@ -25,6 +25,9 @@ from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as
                      magnitude_problem, scale_problem)
 from .pair import PARTNER_FIELDS, reduced_body
 
+#: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
+#: ``parameters`` are read, the tangential model's are not.
+TANGENTIAL_ONLY = ("mu", "tangential", *TANGENTIAL_PARAMETERS, "spin", "parameters")
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
 
@@ -423,6 +426,16 @@ class Scene:
         """False for a normal impact without spin on a level or vertically approached flat: then there is no
         tangential state at all."""
         return self.incidence_deg != 0 or self.reduced.spin != 0 or self.g_tangent != 0
+
+    @property
+    def normal_problem(self) -> tuple:
+        """What the normal motion depends on, hashable: every field but friction, the tangential contact, the spin
+        and the tangential model's own parameters, which the normal motion does not read (the normal force law
+        sees delta and its rate alone).  Scenes with equal normal problems have the same normal motion
+        (:func:`sphereimpact.impact.solve.reusing_normal_motions` shares it)."""
+        law_own = {p.name for p in self.law.own_parameters}
+        return (tuple((f.name, getattr(self, f.name)) for f in fields(self) if f.name not in TANGENTIAL_ONLY)
+                + (tuple(sorted((name, value) for name, value in self.parameters.items() if name in law_own)),))
 
     @property
     def slip0(self) -> float:

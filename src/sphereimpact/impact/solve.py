@@ -15,6 +15,7 @@ import math
 import time
 import warnings
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import replace
 
 import numpy as np
@@ -23,13 +24,46 @@ from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
-from .outcome import Outcome
+from .outcome import Outcome, force_extremes
 from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS
 
 #: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
 BODIES = ("reduced", "planar")
+
+
+#: The normal motions shared inside :func:`reusing_normal_motions`, by normal problem and options (None outside).
+_SHARED: ContextVar[dict | None] = ContextVar("shared normal motions", default=None)
+
+
+@contextmanager
+def reusing_normal_motions():
+    """Inside this block :func:`simulate` and :func:`simulate_many` (and so the sweep's single impacts) solve each
+    normal problem once: scenes that differ only in friction, the tangential contact or the spin
+    (:attr:`~sphereimpact.impact.scene.Scene.normal_problem`) share one solved normal motion, which does not
+    depend on them.  Every outcome is bit for bit the one solved afresh.  A fit of friction or tangential
+    stiffness (:func:`sphereimpact.fit.fit`) runs in one, so its bounces' normal motions are solved once, not at
+    every evaluation of the model.  The motions are kept until the outermost block ends (tens of kB each)."""
+    shared = _SHARED.get()
+    token = _SHARED.set({} if shared is None else shared)
+    try:
+        yield
+    finally:
+        _SHARED.reset(token)
+
+
+def _normal(scene: Scene, options: SolverOptions) -> NormalMotion:
+    """``scene``'s normal motion: solved, or inside :func:`reusing_normal_motions` shared with the scenes of the
+    same normal problem."""
+    shared = _SHARED.get()
+    if shared is None:
+        return normal_motion(scene, options)
+    key = (scene.normal_problem, options)
+    motion = shared.get(key)
+    if motion is None:
+        motion = shared[key] = normal_motion(scene, options)
+    return motion if motion.scene is scene else motion.for_scene(scene)
 
 
 class ReducedMotion:
@@ -57,6 +91,12 @@ class ReducedMotion:
 
     def force(self, t):
         return self.normal.force(t)
+
+    def force_extremes(self) -> tuple[float, float]:
+        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`), kept with the
+        normal motion that sets them."""
+        normal = self.normal
+        return normal.kept("force extremes", lambda: force_extremes(normal.force, normal.grid))
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""
@@ -123,7 +163,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     start = time.perf_counter()
     with _beyond_double(scene):
         if body == "reduced":
-            motion = ReducedMotion(normal_motion(scene, options), options)
+            motion = ReducedMotion(_normal(scene, options), options)
         else:
             motion = motion_of(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)
@@ -191,7 +231,7 @@ def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = F
             continue
         start = time.perf_counter()
         with _beyond_double(scene):
-            batches.setdefault(model.name, []).append((i, normal_motion(scene, options), time.perf_counter() - start))
+            batches.setdefault(model.name, []).append((i, _normal(scene, options), time.perf_counter() - start))
     for name, members in batches.items():
         start = time.perf_counter()
         motions = TANGENTIALS[name].many([normal for _, normal, _ in members], options)

@@ -159,9 +159,10 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
         options = resolve_method(scene, default)
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)
+        # each timed call does all its work: nothing kept with the normal motion by the call before
         times = per_call_seconds({"normal": lambda: normal_motion(scene, options),
-                                  "tangential": lambda: ReducedMotion(normal, options),
-                                  "outcome": lambda: Outcome.from_motion(motion, 0.0),
+                                  "tangential": lambda: (normal.forget(), ReducedMotion(normal, options)),
+                                  "outcome": lambda: (normal.forget(), Outcome.from_motion(motion, 0.0)),
                                   "simulate": lambda: simulate(scene, default),
                                   "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
         rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"]}

@@ -285,19 +285,27 @@ def resolution(scene, normal, options) -> tuple[int, int]:
     return elements, steps
 
 
-def _inputs(normal, time_steps: int):
-    """The step ends t [s] and the arguments of :func:`march` but the held displacements, for one contact."""
-    s = normal.scene
+def _samples(normal, time_steps: int):
+    """What the march reads of the normal motion alone, on ``time_steps`` equal steps: the step ends t [s], the
+    contact radius over a_max [-], P+ [N] (zero at the ends: no area, no load), the impulse of P+ over each
+    step [N s], and a_max^2 / R = delta_m [m]."""
     t = np.linspace(0.0, normal.t_f, time_steps + 1)
     delta = np.maximum(normal.state(t)[0], 0.0)
     delta_m = max(normal.delta_m, float(delta.max()))
-    cap = s.mu * np.maximum(normal.force(t), 0.0)
-    cap[0] = cap[-1] = 0.0  # the contact's ends: no area, no load
-    positive = PositiveImpulse(normal)(t)
+    load = np.maximum(normal.force(t), 0.0)
+    load[0] = load[-1] = 0.0
+    return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal)(t)), delta_m
+
+
+def _inputs(normal, time_steps: int):
+    """The step ends t [s] and the arguments of :func:`march` but the held displacements, for one contact (the
+    normal motion's samples kept with it: a normal motion shared by scenes of other friction is sampled once)."""
+    s = normal.scene
+    t, xi_a, load, step_impulse, delta_m = normal.kept(("microslip", time_steps), lambda: _samples(normal, time_steps))
     stiffness = 2.0 * hertz_moduli(s)[1] * math.sqrt(s.radius * delta_m)
     inverse_mass = slip_per_impulse(s.mass, s.inertia_factor)
-    return t, (np.sqrt(delta / delta_m), cap, s.mu * np.diff(positive), float(t[1] - t[0]), stiffness,
-               inverse_mass, s.g_tangent, s.slip0)
+    return t, (xi_a, s.mu * load, s.mu * step_impulse, float(t[1] - t[0]), stiffness, inverse_mass, s.g_tangent,
+               s.slip0)
 
 
 def _fill_ends(values):
