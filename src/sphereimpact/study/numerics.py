@@ -7,6 +7,7 @@ import pandas as pd
 from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
+from ..numerics.bench_sweep import run as bench_sweep
 from ..numerics.bench import bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages
 from ..parsing import parse_range
 from ..numerics.stability import stability
@@ -57,6 +58,23 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     oblique = max(config["cases"], key=lambda case: config["cases"][case].get("angle", 0.0))
     profiled = scene_for(config, oblique, config["primary"]["model"], config["primary"]["separation"])
     profile_call(profiled).to_csv(profile_csv, **CSV)
+
+
+def write_bench_sweep(config: dict, csv_path: str) -> None:
+    """The sweep benchmark (:func:`~sphereimpact.numerics.bench_sweep.run`) with ``bench``'s settings; with
+    ``bench.fit``, also the fit of ``kharaz_fit``'s free parameters to the noise-free curve of Kharaz's ball (the
+    validation's, with ``kharaz_fit``'s tangential model) at the validation's incidences."""
+    from ..impact.ball import Ball
+    from .validation import experiment
+
+    bench, spec = config["bench"], config["kharaz_fit"]
+    fit_of = None
+    if bench["fit"]:
+        truth = Ball(experiment(config["validation"]).with_tangential(spec["tangential"]))
+        fit_of = (truth, {name: spec["start"][name] for name in spec["free"]},
+                  parse_range(config["validation"]["angles"]))
+    bench_sweep(csv_path, repeats=bench["repeats"], sample=bench["sample"], lanes=bench["lanes"],
+                million=bench["million"], laws=bench["laws"], fit_of=fit_of)
 
 
 def write_stability(config: dict, csv_path: str) -> None:
