@@ -11,9 +11,11 @@ against one contact at a time.
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from sphereimpact import Scene, SolverOptions, simulate
+from sphereimpact.impact.solve import simulate_many
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.contact.tangential.microslip import (ELEMENTS, TIME_STEPS, _Block, cell_weights, march,
                                                        quasi_static)
@@ -179,6 +181,21 @@ def test_the_edge_band_weighs_every_cell_as_the_dense_row_does(lanes):
         d_u = 0.01 if lanes is None else rng.uniform(-0.01, 0.01, (lanes, 1))
         dense = np.clip(held + mean[j] * d_u, -block.limit[j], block.limit[j])
         np.testing.assert_allclose(block.hold(j, held, d_u), dense, rtol=1e-12, atol=1e-15)
+
+
+def test_a_batch_mixing_resolutions_gives_each_contact_its_own():
+    """A stiff tangential contact needs more time steps than the default (kappa 100: 769); batched with a soft one,
+    each is marched at its own resolution, so both are what simulate gives them alone, batched and swept (one march
+    at the finer resolution moved the soft one's e_t by 9e-6)."""
+    soft, stiff = (Scene(angle=20.0, **{**ALUMINA, "shear_modulus": None, "kappa": k}) for k in (0.8, 100.0))
+    batched = simulate_many([soft, stiff, soft.with_(angle=35.0)])
+    for outcome in batched:
+        alone = simulate(outcome.scene)
+        assert outcome.motion.tangential.time_steps == alone.motion.tangential.time_steps
+        assert outcome.vc_t == pytest.approx(alone.vc_t, rel=1e-13) and outcome.omega_f == pytest.approx(alone.omega_f, rel=1e-13)
+    assert batched[1].motion.tangential.time_steps > TIME_STEPS == batched[0].motion.tangential.time_steps
+    swept = sweep(pd.DataFrame([outcome.scene.as_dict() for outcome in batched]).dropna(axis=1, how="all"))
+    np.testing.assert_allclose(swept["vc_t"], [outcome.vc_t for outcome in batched], rtol=1e-8)  # the sweep's target
 
 
 def test_resolution_options_and_refusals():

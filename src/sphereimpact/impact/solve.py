@@ -208,11 +208,10 @@ def _checked(outcome: Outcome, strict: bool) -> Outcome:
 
 def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = False) -> list[Outcome]:
     """Simulate several impacts (reduced body): :func:`simulate` on each, except that the scenes whose
-    tangential model declares a batched kernel (``TangentialModel.many``: ``microslip``) share one run of it.
+    tangential model declares a batched kernel (``TangentialModel.many``: ``microslip``) share runs of it.
 
-    Every outcome equals what :func:`simulate` gives its scene alone, but for those scenes' resolution: a
-    batch runs at the finest resolution any of its scenes needs.  ``wall_time`` is the batch's time shared
-    out equally.
+    Every outcome equals what :func:`simulate` gives its scene alone (to round-off: a batched kernel runs each
+    scene at its own resolution).  ``wall_time`` is the batch's time shared out equally.
 
     Raises
     ------

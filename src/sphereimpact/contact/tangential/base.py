@@ -106,7 +106,8 @@ class TangentialModel:
         paths.  None: a sweep solves its scenes with :func:`sphereimpact.impact.solve.simulate_many`.
     many : callable or None
         ``many(normals, options)``: the motions over several solved normal motions at once (a batched
-        kernel, cheaper than one at a time), as a list in their order; None: one at a time.
+        kernel, cheaper than one at a time), as a list in their order, each the motion ``motion`` gives it
+        alone (to round-off); None: one at a time.
     settings : tuple of Setting
         Its numerical settings (a resolution), read as ``options.setting(name)`` (None: not given).
     scale_free : bool

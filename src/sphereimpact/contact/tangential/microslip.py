@@ -359,21 +359,20 @@ class MicroslipTangential:
 
     @classmethod
     def many(cls, normals, options) -> list:
-        """The motions over several solved normal motions at once: one march of the batched kernel, at the
-        finest resolution any of them needs (so each is at least as resolved as alone)."""
-        if len(normals) == 1:
-            return [cls(normals[0], options)]
+        """The motions over several solved normal motions: those of one resolution share a march of the batched
+        kernel, so each is the motion :class:`MicroslipTangential` gives it alone (a march at a finer resolution
+        than its own would differ from that by the resolution's error, 1e-5 of e_t)."""
         sizes = [resolution(n.scene, n, options) for n in normals]
-        size = (max(e for e, _ in sizes), max(m for _, m in sizes))
-        sampled = [_inputs(normal, size[1]) for normal in normals]
-        stacked = [np.stack(parts, axis=-1) for parts in zip(*(inputs for _, inputs in sampled))]
-        force, j_t, _ = march(*stacked, np.zeros((len(normals), size[0])))
-        motions = []
-        for b, (normal, (t, inputs)) in enumerate(zip(normals, sampled)):
-            motion = cls.__new__(cls)
-            motion.elements, motion.time_steps = size
-            motion._settle(normal, t, inputs[1], force[:, b], j_t[:, b])
-            motions.append(motion)
+        motions = [None] * len(normals)
+        for size in dict.fromkeys(sizes):
+            members = [i for i, own in enumerate(sizes) if own == size]
+            sampled = [_inputs(normals[i], size[1]) for i in members]
+            stacked = [np.stack(parts, axis=-1) for parts in zip(*(inputs for _, inputs in sampled))]
+            force, j_t, _ = march(*stacked, np.zeros((len(members), size[0])))
+            for b, (i, (t, inputs)) in enumerate(zip(members, sampled)):
+                motion = motions[i] = cls.__new__(cls)
+                motion.elements, motion.time_steps = size
+                motion._settle(normals[i], t, inputs[1], force[:, b], j_t[:, b])
         return motions
 
     def _settle(self, normal, t, cap, force, j_t):
