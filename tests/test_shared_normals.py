@@ -124,3 +124,20 @@ def test_a_fit_solves_its_bounces_normal_motions_once(monkeypatch):
     result = fit(read_measured(bounces), Ball(truth.with_(mu=0.2, kappa=1.1)), ["mu", "kappa"])
     assert result.statistics["evaluations"] > 10 and len(calls) == len(bounces)
     assert result.parameters["mu"].value == pytest.approx(0.3, rel=1e-6)
+
+
+def test_a_sweep_over_spin_solves_each_normal_problem_once(monkeypatch):
+    """A compliant damped ball's spin x incidence map (the single path): one normal solve per incidence, every
+    row bit for bit simulate's at the sweep's options."""
+    from sphereimpact.sweep.paths import single_options
+
+    calls = []
+    monkeypatch.setattr(solve, "normal_motion", lambda scene, options: calls.append(scene) or normal_motion(scene, options))
+    table = pd.DataFrame({"incidence": np.repeat([10.0, 30.0, 60.0], 5), "spin": np.tile(np.linspace(-200, 200, 5), 3)})
+    table = table.assign(speed=3.0, model="hunt-crossley", modulus=2e7, chi=0.05, tangential="microslip", kappa=0.8)
+    swept = sweep(table)
+    assert set(swept["path"]) == {"single"} and len(calls) == 3
+    options = single_options(1e-8)
+    for row, (_, scene) in zip(swept.itertuples(), table.iterrows()):
+        alone = simulate(Scene(**scene.to_dict()), options)
+        assert (row.vc_t, row.omega_f, row.t_f) == (alone.vc_t, alone.omega_f, alone.t_f)

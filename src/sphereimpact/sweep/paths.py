@@ -24,7 +24,7 @@ from ..contact.tangential import TANGENTIALS
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
 from ..impact.outcome import NUMERIC_OUTPUTS
 from ..impact.scene import SolverOptions
-from ..impact.solve import simulate, simulate_many
+from ..impact.solve import reusing_normal_motions, simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, _compliant, incidence, scene_of
@@ -230,7 +230,15 @@ class SinglePath(SweepPath):
     @staticmethod
     def solve_scenes(scenes: list, rows, work: Work, what: str) -> list:
         """``simulate`` on each scene, :data:`SINGLES_CHUNK` per call (a batched tangential kernel runs them
-        together), progress after each; an ImpactError names the first failing one as ``what`` ``rows[i]``."""
+        together), progress after each; an ImpactError names the first failing one as ``what`` ``rows[i]``.
+
+        The scenes of one normal problem (a map over spin, friction or the tangential stiffness) are solved in one
+        call, sharing their normal motion (:func:`~sphereimpact.impact.solve.reusing_normal_motions`, which keeps
+        a call's motions only while it runs): each outcome is still the one ``simulate`` gives its scene alone."""
+        firsts: dict = {}
+        order = np.argsort([firsts.setdefault(scene.normal_problem, i) for i, scene in enumerate(scenes)],
+                           kind="stable")
+        scenes, rows = [scenes[i] for i in order], np.asarray(rows)[order]
         outs = []
         for start in range(0, len(scenes), SINGLES_CHUNK):
             chunk = scenes[start:start + SINGLES_CHUNK]
@@ -238,7 +246,8 @@ class SinglePath(SweepPath):
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
                 try:
-                    outs += simulate_many(chunk, work.options)
+                    with reusing_normal_motions():
+                        outs += simulate_many(chunk, work.options)
                 except ImpactError:
                     for i, scene in zip(rows[start:start + SINGLES_CHUNK], chunk):  # the first that fails alone
                         try:
@@ -248,7 +257,7 @@ class SinglePath(SweepPath):
                     raise
             if work.progress:
                 work.progress(start + len(chunk), len(scenes))
-        return outs
+        return [outs[k] for k in np.argsort(order)]
 
 
 # ---------------------------------------------------------------- scenes alike but for their scales
