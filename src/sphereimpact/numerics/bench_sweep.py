@@ -17,12 +17,14 @@ timed at the tightest.
 Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).  The
 engine's speed-up is measured on :data:`~sphereimpact.sweep.engine.FAST_OUTPUTS` (every output of ``simulate``
 but t_roll and the force extremes; the script computes less still), and the engine is also timed with every
-output, the default (``seconds_all``, and ``all_over_fast``, its time over the fast outputs').
+output, the default (``seconds_all``, and ``all_over_fast``, its time over the fast outputs'), except on the
+microslip map, whose paths compute every output anyway.  A fit's row (:func:`measure_fit`) times a fit instead.
 """
 
 from __future__ import annotations
 
 import logging
+import math
 import tracemalloc
 import warnings
 
@@ -77,19 +79,23 @@ def per_scene(solve, scenes: list[Scene], refs: list[dict], error: float) -> dic
 
 
 def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sample_size: int = 60,
-            seed: int = 0, repeats: int = 3, contenders=None) -> dict:
+            seed: int = 0, repeats: int = 3, contenders=None, every_output: bool = True, memory: bool = True) -> dict:
     """One benchmark row for the sweep ``scenes`` (see the module docstring), against ``contenders`` (default
-    :data:`CONTENDERS`; the hand-written baseline has the rigid contact only).
+    :data:`CONTENDERS`; the hand-written baseline has the rigid contact only).  ``every_output`` False skips timing
+    the engine with every output (a sweep whose paths compute them all anyway: ``seconds_all`` left empty);
+    ``memory`` False skips tracing its peak memory (a sweep of many small allocations, which tracing slows
+    tenfold: ``peak_memory_mb`` left empty).
 
     Random scenes include compressions beyond the radius: the sweep's table flags them, so the
     per-scene references and contenders do not warn about each one.
     """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BeyondRadiusWarning)
-        return _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders or CONTENDERS)
+        return _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders or CONTENDERS,
+                        every_output, memory)
 
 
-def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders) -> dict:
+def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders, every_output, memory) -> dict:
     log.info("sweep bench: %s (%d scenes)", name, len(scenes))
     table = sweep(scenes, outputs=FAST_OUTPUTS)
     pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)), replace=False))
@@ -101,18 +107,21 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contender
     error = _worst(outputs, refs, sample)
     chosen = {label: per_scene(solve, sample, refs, max(error, TOLERANCES[-1])) for label, solve in contenders.items()}
     # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
-    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS), "engine_all": lambda: sweep(scenes)} | {
+    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS)} | (
+        {"engine_all": lambda: sweep(scenes)} if every_output else {}) | {
         label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
         for label, solve in contenders.items()}
     seconds = interleaved_seconds(calls, repeats)
-    tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
-    sweep(scenes, outputs=FAST_OUTPUTS)
-    peak = tracemalloc.get_traced_memory()[1]
-    tracemalloc.stop()
+    peak = math.nan
+    if memory:
+        tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
+        sweep(scenes, outputs=FAST_OUTPUTS)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
     throughput = n / seconds["engine"]
+    every = seconds.get("engine_all", math.nan)
     row = {"sweep": name, "scenes": n, "seconds": seconds["engine"], "throughput": throughput, "worst_error": error,
-           "repeats": repeats, "sample": len(sample), "seconds_all": seconds["engine_all"],
-           "all_over_fast": seconds["engine_all"] / seconds["engine"]}
+           "repeats": repeats, "sample": len(sample), "seconds_all": every, "all_over_fast": every / seconds["engine"]}
     for label, got in chosen.items():
         per = seconds[label] / len(sample)
         row |= {f"{label}_rtol": got["rtol"], f"{label}_error": got["error"], f"{label}_reached": got["reached"],
@@ -135,6 +144,8 @@ def readme_sweep() -> pd.DataFrame:
 #: The targets [s] of the exact microslip contact's issue: "a 10^5-scene microslip angle x speed map in seconds"
 #: (read as under 10 s) and "a fit of the 140-point Kharaz curve in under 10 s".
 MICROSLIP_MAP_TARGET_SECONDS = FIT_TARGET_SECONDS = 10.0
+#: Complete fits timed at most (a fit takes seconds and is deterministic; the engine rows take ``repeats``).
+FIT_REPEATS = 3
 
 
 def measure_fit(name: str, truth: Ball, start: dict, incidences, repeats: int = 3) -> dict:
@@ -207,7 +218,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         # the exact elastic microslip contact over a map of one ball: one simulate per incidence, scaled
         rows.append(measure("10^5 scenes, hertz, microslip, angle x speed (similar scenes)",
                             grid(angle=np.linspace(1, 85, 316), speed=np.linspace(0.5, 30, 316)).assign(
-                                **MICROSLIP_MAP), None, contenders={"simulate": CONTENDERS["simulate"]}, **options)
+                                **MICROSLIP_MAP), None, contenders={"simulate": CONTENDERS["simulate"]},
+                            every_output=False, memory=False, **options)
                     | {"target_seconds": MICROSLIP_MAP_TARGET_SECONDS})
         rows.append(measure("10^6 scenes, modified, angle x speed",
                             grid(angle=np.linspace(0, 89, 1000), speed=np.linspace(0.5, 30, 1000)), 1000, **options))
@@ -216,7 +228,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
     if fit_of is not None:
         truth, start, incidences = fit_of
         rows.append(measure_fit(f"fit of {', '.join(start)} to a {len(incidences)}-incidence Kharaz curve "
-                                f"({truth.scene.model}, {truth.scene.tangential})", truth, start, incidences, repeats))
+                                f"({truth.scene.model}, {truth.scene.tangential})", truth, start, incidences,
+                                min(repeats, FIT_REPEATS)))
     frame = pd.DataFrame(rows)
     frame.to_csv(csv_path, index=False, float_format="%.4g")
     return frame

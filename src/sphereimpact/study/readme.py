@@ -111,7 +111,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         if "target_seconds" in sweeps and pd.notna(r.target_seconds):
             goal = f"under {_seconds(r.target_seconds)}"
         rows.append((r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{r.throughput:.3g}", speedup,
-                     f"{r.worst_error:.1e}", contender, goal, _seconds(r.seconds_all), f"{r.all_over_fast:.2g}"))
+                     f"{r.worst_error:.1e}", contender, goal, _seconds(r.seconds_all),
+                     "" if pd.isna(r.all_over_fast) else f"{r.all_over_fast:.2g}"))
     many = _table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
                    "target", "time, every output", "every / fast"), rows)
     fit_rows = [(r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{int(r.evaluations)}", f"{r.throughput:.3g}",
@@ -120,9 +121,9 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "Fitting (`results/bench_sweep.csv`): `sphereimpact.fit.fit` of the free parameters, from the start of "
         "`kharaz_fit` in the config, to the noise-free e_t, spin and rebound angle of Kharaz's ball (the "
         "validation's, e_n given) at the validation's incidences, each bounce solved by `simulate`; timed as "
-        "the median of complete fits, each solving its bounces' normal motions afresh (once per fit: they do not "
-        "depend on μ or κ). Error: the fitted parameters' largest relative difference from those that made the "
-        "curve.",
+        f"the median of {int(fits['repeats'].iloc[0]) if len(fits) else 0} complete fits, each solving its "
+        "bounces' normal motions afresh (once per fit: they do not depend on μ or κ). Error: the fitted "
+        "parameters' largest relative difference from those that made the curve.",
         _table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
                fit_rows)] if fit_rows else [])
     repeats = int(sweeps["repeats"].iloc[0])
@@ -145,8 +146,9 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
         f"the median of {repeats} complete runs; speed-up = the script's time per scene × the engine's "
         "impacts per second. The engine is timed on the outputs the script computes too (`--outputs fast`), and "
-        "with every output, the default (t_roll and the force's extremes besides). The script has the rigid "
-        "contact only: the exact microslip map is measured against `simulate`, one scene at a time.",
+        "with every output, the default (t_roll and the force's extremes besides; not on the microslip map, whose "
+        "paths compute every output anyway). The script has the rigid contact only: the exact microslip map is "
+        "measured against `simulate`, one scene at a time.",
         many,
         *fitting,
         f"Timings vary from run to run and machine to machine: CI fails when a fresh run's timed cell differs "
@@ -269,6 +271,9 @@ def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
 
 
 def _seconds(value: float) -> str:
+    """A time [s] as text, in ms below a second; empty where it was not measured."""
+    if math.isnan(value):
+        return ""
     return f"{value * 1e3:.3g} ms" if value < 1 else f"{value:.3g} s"
 
 
