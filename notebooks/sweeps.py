@@ -137,7 +137,7 @@ display(Markdown(f"Undamped half period π√(m/k) = {half * 1e3:.4g} ms; contac
 bench
 
 # %%
-fits = bench["evaluations"].notna()
+fits = bench["evaluations"].notna() if "evaluations" in bench else pd.Series(False, index=bench.index)
 scripted = bench["speedup_over_handwritten"].notna()
 for _, row in bench[scripted].iterrows():
     goal = "" if pd.isna(row.target_speedup) else (
