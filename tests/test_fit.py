@@ -166,6 +166,7 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
                                                                 rel=1e-12)
     refused = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--out", str(tmp_path / "fitted"))
     assert refused.returncode == 2 and "exists; pass --force" in refused.stderr and "Traceback" not in refused.stderr
-    bad = _cli("fit", str(csv), "--free", "colour")
+    bad = _cli("fit", str(csv), "--free", "colour", "--out", str(tmp_path / "never"))
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "'colour' cannot be fitted" in bad.stderr
+    assert not (tmp_path / "never").exists()  # the folder is made once the fit succeeds
     assert math.isfinite(printed["value"])

@@ -711,9 +711,11 @@ def _fit(args) -> None:
             raise ValueError(f"out is a file, not a folder: {args.out!r}")
         if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
             raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
-        os.makedirs(args.out, exist_ok=True)
-        for name in FIT_FILES:
-            check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
+        if os.path.isdir(args.out):
+            for name in FIT_FILES:
+                check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
+        else:  # made once the fit has succeeded, so a failed one leaves nothing behind: its parent must take it
+            check_out(os.path.abspath(args.out) + ".json", True, (".json",))
     ball = _ball(args)
     approach = {name: getattr(args, name) for name in APPROACH if name in args.given}
     if ball is None:
