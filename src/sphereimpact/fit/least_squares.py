@@ -24,11 +24,11 @@ import pandas as pd
 from scipy.optimize import least_squares
 
 from ..contact.tangential import TANGENTIALS
-from ..impact.ball import Ball, ball_columns, calibrated_ball
+from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
-from .measured import APPROACH, MEASURABLE, SOURCES, Measured, quantity
+from .measured import MEASURABLE, SOURCES, Measured, quantity
 
 #: Parameters a fit may free -> (lower bound, upper bound, fitted in its logarithm).
 FREE = {

@@ -16,11 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ..impact.ball import APPROACH
 from ..impact.outcome import NUMERIC_OUTPUTS, OUTPUT_UNITS
 from ..sweep.scenes import incidence
 
-#: Columns of a measured table that describe the approach of its bounce.
-APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
 #: Measured quantities that are not outputs of ``simulate`` but follow from them and the approach: the
 #: tangential coefficient of restitution of the centre, v_t' / v_t [-], and the rebound spin's magnitude.
 DERIVED = {"e_t": "-", "abs_omega_f": "rad/s"}

@@ -32,8 +32,9 @@ from .scene import Scene, SolverOptions
 FAR = 2.0
 #: The ball file's format, written into every file and checked on reading.
 FORMAT = "sphereimpact-ball/1"
-#: Scene fields that describe the approach (not the ball, its contact or the surface).
-APPROACH = ("angle", "speed", "spin", "incidence", "angle_to_surface")
+#: Scene fields that describe the approach (not the ball, its contact or the surface); a measured bounce's
+#: approach columns, in this order (:mod:`sphereimpact.fit.measured`).
+APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
 
 
 @dataclass(frozen=True)
