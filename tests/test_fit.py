@@ -170,3 +170,15 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "'colour' cannot be fitted" in bad.stderr
     assert not (tmp_path / "never").exists()  # the folder is made once the fit succeeds
     assert math.isfinite(printed["value"])
+
+
+def test_the_fit_benchmark_gives_back_the_parameters_of_its_noise_free_curve():
+    """``measure_fit`` (the fit's row of results/bench_sweep.csv) on a small curve: the fitted mu and kappa come back
+    to the sweep's accuracy, and the row says how many evaluations the fit took."""
+    from sphereimpact.numerics.bench_sweep import FIT_TARGET_SECONDS, measure_fit
+
+    truth = Ball(Scene(model="hunt-crossley", modulus=2e7, chi=0.05, mu=0.3, tangential="microslip", kappa=0.8,
+                       speed=3.0))
+    row = measure_fit("small curve", truth, {"mu": 0.2, "kappa": 1.1}, np.linspace(5.0, 60.0, 8), repeats=1)
+    assert row["worst_error"] < 1e-6 and row["scenes"] == 8 and row["target_seconds"] == FIT_TARGET_SECONDS
+    assert row["evaluations"] > 5 and row["throughput"] == pytest.approx(row["evaluations"] * 8 / row["seconds"])
