@@ -23,6 +23,7 @@ from ..contact.materials import dundurs_beta, effective_moduli
 from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
 from ..impact.solve import simulate_many
+from .tables import text_table
 
 #: The tests' inputs and their sources.
 DEFINITION = Path(__file__).with_name("chung_ooi.yaml")
@@ -354,8 +355,7 @@ def readme_block(folder) -> str:
         cases = read_table(folder / f"test{number}.csv").drop_duplicates("case")
         beta = ", ".join(f"{b:.2f}" for b in cases["dundurs_beta"])
         rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", beta, rules))
-    table = "\n".join(["| test | what | reference against its check (largest relative difference) | Dundurs' β "
-                       "(neglected) | DEM rules' largest relative deviation from the exact contact |", "|---|---|---|---|---|"]
-                      + [f"| {' | '.join(row)} |" for row in rows])
+    table = text_table(("test", "what", "reference against its check (largest relative difference)",
+                        "Dundurs' β (neglected)", "DEM rules' largest relative deviation from the exact contact"), rows)
     return ("Chung & Ooi's benchmark tests, exact (`results/chung_ooi/`, rule `chung_ooi`; inputs and sources in "
             "`src/sphereimpact/study/chung_ooi.yaml`):\n\n" + table + "\n")

@@ -24,7 +24,7 @@ from pathlib import Path
 import pandas as pd
 
 from ..numerics.reference import FINE_DIGITS
-from .tables import markdown_table
+from .tables import text_table
 from .workflow import job_seconds
 
 #: Blocks of the README, in order.
@@ -40,12 +40,6 @@ TIMED = ("simulate [ms]", "script [ms]", "simulate / script", "time", "impacts/s
 _BEGIN = re.compile(r"<!-- BEGIN GENERATED (\w+)[^>]*-->\n")
 _UNITS = {"delta_m": (1e3, "mm"), "t_m": (1e3, "ms"), "t_f": (1e3, "ms"), "ve_t": (1.0, "m/s"),
           "ve_n": (1.0, "m/s"), "cor": (1.0, ""), "omega_f": (1.0, "rad/s")}
-
-
-def _table(headers, rows) -> str:
-    """Rows of cells already written as text, as the project's Markdown table (no trailing newline)."""
-    frame = pd.DataFrame(rows, columns=headers)
-    return markdown_table(frame, {h: (h, None) for h in headers}).rstrip("\n")
 
 
 def _shown(quantity: str, value: float, digits: int) -> str:
@@ -72,7 +66,7 @@ def replication_block(config: dict, replication_csv: str, findings_md: str) -> s
             "digit; **agree**: within one unit; **discrepancy**: further. "
             f"Totals: {', '.join(f'{counts.get(s, 0)} {s}' for s in ('match', 'agree', 'discrepancy'))}.")
     findings = Path(findings_md).read_text(encoding="utf-8").strip()
-    return "\n\n".join([head, _table(("printed value", "chapter", "reproduced", "status"), rows),
+    return "\n\n".join([head, text_table(("printed value", "chapter", "reproduced", "status"), rows),
                         "What the replication measures about the chapter's claims (`results/replication.md`):",
                         findings]) + "\n"
 
@@ -88,12 +82,12 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         rows.append((name, sim["method"], f"{sim['time'] * 1e3:.3g}", f"{hand['time'] * 1e3:.3g}",
                      f"{sim['time_ratio']:.2f}", f"{sim['error']:.1e}",
                      f"{hand['error']:.1e} at rtol {hand['rtol']:.0e}{reached}"))
-    one = _table(("scene", "simulate's method", "simulate [ms]", "script [ms]", "simulate / script",
+    one = text_table(("scene", "simulate's method", "simulate [ms]", "script [ms]", "simulate / script",
                   "error, simulate", "error, script"), rows)
     exact = single[~single["scene"].isin(scripted["scene"])]
     rows = [(r.scene, r.contender, f"{r.time * 1e3:.3g}", f"{r.time_ratio:.2f}", f"{r.error:.1e}")
             for r in exact.itertuples()]
-    tangential = _table(("scene", "contender", "time per impact [ms]", "time ratio", "error"), rows)
+    tangential = text_table(("scene", "contender", "time per impact [ms]", "time ratio", "error"), rows)
     table = pd.read_csv(bench_sweep_csv)
     fitted = table["evaluations"].notna() if "evaluations" in table else pd.Series(False, index=table.index)
     sweeps, fits = table[~fitted], table[fitted]
@@ -113,7 +107,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         rows.append((r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{r.throughput:.3g}", speedup,
                      f"{r.worst_error:.1e}", contender, goal, _seconds(r.seconds_all),
                      "" if pd.isna(r.all_over_fast) else f"{r.all_over_fast:.2g}"))
-    many = _table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
+    many = text_table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
                    "target", "time, every output", "every / fast"), rows)
     fit_rows = [(r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{int(r.evaluations)}", f"{r.throughput:.3g}",
                  f"{r.worst_error:.1e}", f"under {_seconds(r.target_seconds)}") for r in fits.itertuples()]
@@ -124,7 +118,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         f"the median of {int(fits['repeats'].iloc[0]) if len(fits) else 0} complete fits, each solving its "
         "bounces' normal motions afresh (once per fit: they do not depend on μ or κ). Error: the fitted "
         "parameters' largest relative difference from those that made the curve.",
-        _table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
+        text_table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
                fit_rows)] if fit_rows else [])
     repeats = int(sweeps["repeats"].iloc[0])
     return "\n\n".join([
@@ -171,7 +165,7 @@ def validation_block(summary_csv: str, residual_csv: str) -> str:
              cell(f"{r.rebound_angle_rms_deg:.2f}°", r, "rebound_angle"), f"{r.targets_met} of {r.targets}")
             for r in summary.itertuples()]
     first = summary.iloc[0]
-    measures = _table((
+    measures = text_table((
         "tangential contact", f"e_t RMS, ≥ {low:g}° (≤ {first.e_t_target:g})",
         f"e_t RMS, all angles (≤ {first.e_t_all_target:g})", f"worst e_t point (≤ {first.e_t_point_target:g})",
         f"worst spin residual (≤ {100 * first.spin_target:g} %)",
@@ -184,7 +178,7 @@ def validation_block(summary_csv: str, residual_csv: str) -> str:
                        & (table["tangential"] != "rigid")]
         rows.append((r.quantity, f"{r.incidence_deg:g}°", f"{r.measured:.4g}", f"{r.predicted:.4g} ({100 * r.relative:+.0f} %)",
                      "; ".join(f"{o.tangential} {o.predicted:.4g} ({100 * o.relative:+.0f} %)" for o in others.itertuples())))
-    points = _table(("quantity", "incidence", "measured", "rigid", "compliant"), rows)
+    points = text_table(("quantity", "incidence", "measured", "rigid", "compliant"), rows)
     return "\n\n".join([
         f"Kharaz, Gorham & Salman (2001), 5 mm alumina on glass at 3.9 m/s (`results/validation_summary.csv`): "
         f"Hunt–Crossley normal contact calibrated to e_n, tangential stiffness κ = 4G*/E* = {first.kappa:.4f} from "
@@ -215,7 +209,7 @@ def fit_block(fit_json: str) -> str:
         f"the `{reference['tangential']}` tangential contact, e_n given (the normal damping calibrated to it), "
         f"χ²/dof {stats['reduced_chi2']:.3g} with each quantity weighted by its own residual scatter; residual RMS "
         f"{rms}.",
-        _table(("parameter", "fitted", "standard error", "identifiable", "the paper / the materials"), rows),
+        text_table(("parameter", "fitted", "standard error", "identifiable", "the paper / the materials"), rows),
     ]) + "\n"
 
 
@@ -266,7 +260,7 @@ def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
         "sum of its jobs' wall times. Two jobs run at once but the timed ones (benchmarks, work-precision), "
         "which run alone, so the run itself takes between half this sum and all of it, plus Snakemake's own "
         "start-up.",
-        _table(("part of the pipeline", "rules", "jobs", "time"), lines),
+        text_table(("part of the pipeline", "rules", "jobs", "time"), lines),
     ]) + "\n"
 
 

@@ -58,6 +58,11 @@ def markdown_table(frame: pd.DataFrame, columns: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def text_table(headers, rows) -> str:
+    """Rows of cells already written as text, as a :func:`markdown_table` under ``headers`` (no trailing newline)."""
+    return markdown_table(pd.DataFrame(rows, columns=list(headers)), {h: (h, None) for h in headers}).rstrip("\n")
+
+
 def write_summary(json_paths, csv_path: str, md_path: str) -> None:
     """Write ``summary.csv`` (SI, full precision) and ``summary.md`` (readable units)."""
     frame = summary_frame(load_runs(json_paths))
