@@ -135,6 +135,13 @@ def _chunked(rows: np.ndarray, chunk_size: int, solve: Callable[[np.ndarray], di
 # ---------------------------------------------------------------- the single-impact path and its rule
 
 
+def _columns(outcomes: list) -> dict:
+    """The outcomes' :data:`NUMERIC_OUTPUTS` as float arrays (NaN where an output is None) and their ``regime``."""
+    out = {key: np.array([np.nan if getattr(one, key) is None else getattr(one, key) for one in outcomes], dtype=float)
+           for key in NUMERIC_OUTPUTS}
+    return out | {"regime": np.array([one.regime for one in outcomes], dtype=object)}
+
+
 def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
     """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
     compliant tangential contact with tangential motion (its tangential motion is integrated)."""
@@ -222,10 +229,8 @@ class SinglePath(SweepPath):
     @staticmethod
     def _solve(rows: np.ndarray, work: Work) -> dict:
         """Every output of ``simulate`` on each row (:meth:`solve_scenes`)."""
-        outs = SinglePath.solve_scenes([scene_of(work.frame.iloc[i].to_dict()) for i in rows], rows, work, "sweep row")
-        out = {key: np.array([np.nan if getattr(one, key) is None else getattr(one, key) for one in outs], dtype=float)
-               for key in NUMERIC_OUTPUTS}
-        return out | {"regime": np.array([one.regime for one in outs], dtype=object)}
+        return _columns(SinglePath.solve_scenes([scene_of(work.frame.iloc[i].to_dict()) for i in rows], rows, work,
+                                                "sweep row"))
 
     @staticmethod
     def solve_scenes(scenes: list, rows, work: Work, what: str) -> list:
@@ -352,11 +357,10 @@ class SimilarPath(SweepPath):
         position = np.searchsorted(rows, np.concatenate([members[key] for key in keys]))
         which[position] = np.repeat(np.arange(len(keys)), [len(members[key]) for key in keys])
         theirs, own = _scales(work.frame, work.numbers, rows), _scales(work.span_frame, work.span, firsts[which])
-        out = {}
-        for name in NUMERIC_OUTPUTS:
-            value = np.array([np.nan if getattr(one, name) is None else getattr(one, name) for one in solved])[which]
-            out[name] = value * (theirs[SCALES[name]] / own[SCALES[name]]) if name in SCALES else value
-        return out | {"regime": np.array([one.regime for one in solved], dtype=object)[which]}
+        out = {name: values[which] for name, values in _columns(solved).items()}
+        for name, scale in SCALES.items():
+            out[name] = out[name] * (theirs[scale] / own[scale])
+        return out
 
 
 # ---------------------------------------------------------------- laws without a batched kernel
