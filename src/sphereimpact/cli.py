@@ -436,6 +436,15 @@ def check_out(path: str, force: bool, extensions=None, what: str = "out") -> Non
         raise ValueError(f"{what}: {path!r} exists; pass --force to overwrite it")
 
 
+def check_out_folder(path: str) -> None:
+    """Refuse an output folder that is a file or whose parent does not exist, before any work (ValueError naming
+    it); its files are checked by :func:`check_out`."""
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise ValueError(f"out is a file, not a folder: {path!r}")
+    if not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+        raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(path))!r} does not exist")
+
+
 def _each_range(args, read) -> dict:
     """``read(text)`` of every ranged parameter given, a ValueError naming the parameter that fails."""
     out = {}
@@ -707,10 +716,7 @@ def _fit(args) -> None:
     if not (math.isfinite(args.target) and 1e-12 <= args.target <= 1e-3):
         raise ValueError(f"target must be a finite number in [1e-12, 1e-3]; got {args.target!r}")
     if args.out is not None:
-        if os.path.exists(args.out) and not os.path.isdir(args.out):
-            raise ValueError(f"out is a file, not a folder: {args.out!r}")
-        if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
-            raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
+        check_out_folder(args.out)
         if os.path.isdir(args.out):
             for name in FIT_FILES:
                 check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
@@ -762,10 +768,7 @@ def _benchmark(args) -> None:
         numbers = None if args.tests is None else [int(n) for n in args.tests.split(",") if n.strip()]
     except ValueError:
         raise ValueError(f"tests must be comma-separated test numbers, e.g. 1,4; got {args.tests!r}") from None
-    if os.path.exists(args.out) and not os.path.isdir(args.out):
-        raise ValueError(f"out is a file, not a folder: {args.out!r}")
-    if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
-        raise ValueError(f"out: folder {os.path.dirname(os.path.abspath(args.out))!r} does not exist")
+    check_out_folder(args.out)
     numbers = chosen_tests(numbers)
     os.makedirs(args.out, exist_ok=True)
     for number in numbers:
