@@ -18,7 +18,7 @@ import pandas as pd
 
 from ..impact.ball import APPROACH
 from ..impact.outcome import NUMERIC_OUTPUTS, OUTPUT_UNITS
-from ..sweep.scenes import incidence
+from ..sweep.scenes import approach_speeds
 
 #: Measured quantities that are not outputs of ``simulate`` but follow from them and the approach: the
 #: tangential coefficient of restitution of the centre, v_t' / v_t [-], and the rebound spin's magnitude.
@@ -129,8 +129,7 @@ def quantity(name: str, outputs: pd.DataFrame) -> np.ndarray:
     """The model's value of a measured quantity at each bounce, from a sweep's ``outputs`` of the bounces (its
     rows carry each scene's approach)."""
     if name == "e_t":
-        theta = np.radians(incidence(outputs))
-        return outputs["vc_t"].to_numpy() / (outputs["speed"].to_numpy() * np.sin(theta))
+        return outputs["vc_t"].to_numpy() / approach_speeds(outputs)[1]
     if name == "abs_omega_f":
         return np.abs(outputs["omega_f"].to_numpy())
     return outputs[name].to_numpy(dtype=float)

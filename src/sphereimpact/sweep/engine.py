@@ -26,7 +26,8 @@ from ..contact.tangential import TANGENTIALS
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Work, single_options
-from .scenes import SCENE_COLUMNS, Numbers, _objects, grid, incidence, numbers, rows, scene_of, scene_table
+from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, grid, incidence, numbers, rows, scene_of,
+                     scene_table)
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
@@ -222,8 +223,7 @@ class _Rows:
 def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
     """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s]: what a tangential
     model's :class:`~sphereimpact.contact.tangential.SweptTangential` reads."""
-    angle = incidence(part)
-    v_t = np.where(angle == 0, 0.0, part["speed"].to_numpy() * np.sin(np.radians(angle)))
+    v_t = approach_speeds(part)[1]
     columns = {name: part[name].to_numpy() for name in part.columns if name not in ("model", "separation", "tangential")}
     return SimpleNamespace(**columns, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
 

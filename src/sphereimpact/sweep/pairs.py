@@ -16,7 +16,7 @@ from ..impact.inputs import check_columns
 from ..impact.outcome import SCALAR_OUTPUTS
 from ..impact.pair import PARTNER_FIELDS, PARTNER_OUTPUTS, pair_velocities, reduced_body
 from ..impact.scene import Scene
-from .scenes import given_table, incidence
+from .scenes import approach_speeds, given_table
 
 #: The ball's columns the reduction replaces, with the Scene's defaults.
 BODY = {name: Scene.__dataclass_fields__[name].default for name in ("mass", "diameter", "inertia_factor", "spin")}
@@ -98,9 +98,7 @@ def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFram
     reduced_span = None if span is None else reduced_table(given_table(span).reset_index(drop=True))[0]
     result = sweep(reduced, span=reduced_span, outputs=solved_for, **options)
     pair = ~np.isnan(partner["partner_mass"])
-    angle = np.radians(incidence(result))
-    v_n = result["speed"].to_numpy() * np.cos(angle)
-    v_t = np.where(angle == 0, 0.0, result["speed"].to_numpy() * np.sin(angle))
+    v_n, v_t = approach_speeds(result)
     velocities = pair_velocities({name: result[name].to_numpy() for name in MAPPED}, body["mass"],
                                  0.5 * body["diameter"], body["inertia_factor"], body["spin"],
                                  partner["partner_mass"], 0.5 * partner["partner_diameter"],

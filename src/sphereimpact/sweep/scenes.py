@@ -163,6 +163,15 @@ def incidence(frame: pd.DataFrame) -> np.ndarray:
     return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, frame["angle"].to_numpy()))
 
 
+def approach_speeds(frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """Each scene's approach along the normal and along the flat [m/s]: v cos(theta) and v sin(theta), the latter
+    exactly 0 at normal incidence, theta its :func:`incidence` (as :attr:`sphereimpact.Scene.v_normal` and
+    :attr:`sphereimpact.Scene.v_tangent`)."""
+    theta = np.radians(incidence(frame))
+    speed = frame["speed"].to_numpy()
+    return speed * np.cos(theta), np.where(theta == 0, 0.0, speed * np.sin(theta))
+
+
 def law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
     """The columns of scenes of one law that its vectorised functions read: mass, radius, v_normal and its
     parameters (the ``p`` of :class:`~sphereimpact.contact.laws.ContactLaw`'s functions)."""
