@@ -21,6 +21,23 @@ PARTNER_OUTPUTS = ("partner_vc_t", "partner_vc_n", "partner_omega_f")
 PARTNER_UNITS = {"partner_vc_t": "m/s", "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
 
 
+def missing_partner(name: str) -> str:
+    """The refusal of a partner sphere given without ``name`` (its mass or its diameter)."""
+    return (f"{name} is required with a partner sphere (give both partner_mass [kg] and partner_diameter [m], or "
+            "neither for the rigid flat)")
+
+
+def stray_partner(name: str) -> str:
+    """The refusal of the partner's ``name`` (inertia factor or spin) given without a partner sphere."""
+    return f"{name} describes a partner sphere: give partner_mass and partner_diameter too"
+
+
+def partner_gravity(value) -> str:
+    """The refusal of gravity ``value`` with a partner sphere."""
+    return (f"gravity must be 0 with a partner sphere (two free bodies: gravity does not press the contact); got "
+            f"{value!r}")
+
+
 def reduced_body(mass, radius, inertia_factor, spin, partner_mass, partner_radius, partner_inertia_factor,
                  partner_spin):
     """The one sphere whose impact on a flat is the pair's relative motion: (m* [kg], R* [m], alpha* [-],

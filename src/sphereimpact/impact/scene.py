@@ -23,7 +23,7 @@ from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, 
                                   kappa_from_shear_modulus)
 from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, law_parameters,
                      magnitude_problem, scale_problem)
-from .pair import PARTNER_FIELDS, reduced_body
+from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body, stray_partner
 
 #: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
 #: ``parameters`` are read, the tangential model's are not.
@@ -197,15 +197,12 @@ class Scene:
         if self.partner_mass is None and self.partner_diameter is None:
             for name in PARTNER_FIELDS[2:]:
                 if getattr(self, name) != Scene.__dataclass_fields__[name].default:
-                    raise ValueError(f"{name} describes a partner sphere: give partner_mass and partner_diameter too")
+                    raise ValueError(stray_partner(name))
             return False
         if self.partner_mass is None or self.partner_diameter is None:
-            missing = "partner_mass" if self.partner_mass is None else "partner_diameter"
-            raise ValueError(f"{missing} is required with a partner sphere (give both partner_mass [kg] and "
-                             "partner_diameter [m], or neither for the rigid flat)")
+            raise ValueError(missing_partner("partner_mass" if self.partner_mass is None else "partner_diameter"))
         if self.gravity != 0:
-            raise ValueError(f"gravity must be 0 with a partner sphere (two free bodies: gravity does not press the "
-                             f"contact); got {self.gravity!r}")
+            raise ValueError(partner_gravity(self.gravity))
         return True
 
     def _take_reduced(self) -> None:

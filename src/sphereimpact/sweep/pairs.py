@@ -14,7 +14,8 @@ import pandas as pd
 
 from ..impact.inputs import check_columns
 from ..impact.outcome import SCALAR_OUTPUTS
-from ..impact.pair import PARTNER_FIELDS, PARTNER_OUTPUTS, pair_velocities, reduced_body
+from ..impact.pair import (PARTNER_FIELDS, PARTNER_OUTPUTS, missing_partner, pair_velocities, partner_gravity,
+                           reduced_body, stray_partner)
 from ..impact.scene import Scene
 from .scenes import approach_speeds, given_table
 
@@ -41,21 +42,18 @@ def partner_columns(frame: pd.DataFrame) -> dict:
     for name, other in (("partner_mass", diameter), ("partner_diameter", mass)):
         lacking = np.isnan(columns[name]) & ~np.isnan(other)
         if lacking.any():
-            raise ValueError(f"{name} is required with a partner sphere (give both partner_mass [kg] and "
-                             f"partner_diameter [m], or neither for the rigid flat) (row {int(np.flatnonzero(lacking)[0])})")
+            raise ValueError(f"{missing_partner(name)} (row {int(np.flatnonzero(lacking)[0])})")
     for name in PARTNER_FIELDS[2:]:
         default = Scene.__dataclass_fields__[name].default
         stray = ~pair & ~np.isnan(columns[name]) & (columns[name] != default)
         if stray.any():
-            raise ValueError(f"{name} describes a partner sphere: give partner_mass and partner_diameter too "
-                             f"(row {int(np.flatnonzero(stray)[0])})")
+            raise ValueError(f"{stray_partner(name)} (row {int(np.flatnonzero(stray)[0])})")
         columns[name] = np.where(np.isnan(columns[name]), default, columns[name])
     if "gravity" in frame:
         pulled = pair & (np.asarray(frame["gravity"], dtype=float) != 0)
         if pulled.any():
             i = int(np.flatnonzero(pulled)[0])
-            raise ValueError(f"gravity must be 0 with a partner sphere (two free bodies: gravity does not press the "
-                             f"contact); got {frame['gravity'].iloc[i]!r} (row {i})")
+            raise ValueError(f"{partner_gravity(frame['gravity'].iloc[i])} (row {i})")
     return columns
 
 
