@@ -262,6 +262,13 @@ class Outcome:
         values["beyond_radius"] = bool(values["beyond_radius"])
         return cls(**values, wall_time=wall_time, scene=s, motion=motion, **motion.stats)
 
+    @property
+    def e_t(self) -> float:
+        """The centre's tangential coefficient of restitution vc_t / v_t [-] (what Kharaz et al. and Chung & Ooi
+        report); NaN at normal incidence, where v_t = 0."""
+        v_t = self.scene.v_tangent
+        return self.vc_t / v_t if v_t > 0 else math.nan
+
     def to_dict(self) -> dict:
         """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS` (and, with a partner sphere,
         :data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS`)."""

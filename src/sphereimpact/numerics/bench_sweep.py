@@ -162,7 +162,7 @@ def measure_fit(name: str, truth: Ball, start: dict, incidences, repeats: int = 
     scene = truth.scene
     bounces = [simulate(scene.with_(incidence=float(theta))) for theta in incidences]
     table = pd.DataFrame({"speed": scene.speed, "incidence": np.asarray(incidences, dtype=float),
-                          "e_t": [b.vc_t / b.scene.v_tangent for b in bounces],
+                          "e_t": [b.e_t for b in bounces],
                           "abs_omega_f": [abs(b.omega_f) for b in bounces],
                           "rebound_angle": [b.rebound_angle for b in bounces]})
     measured, ball, free = read_measured(table, source=name), with_values(truth, start), list(start)

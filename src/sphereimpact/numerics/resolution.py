@@ -28,7 +28,7 @@ TARGET = 1e-4
 
 def _outputs(scene: Scene, elements: int, time_steps: int) -> tuple[float, float]:
     out = simulate(scene, SolverOptions(settings={"elements": elements, "time_steps": time_steps}))
-    return out.vc_t / scene.v_tangent, out.omega_f
+    return out.e_t, out.omega_f
 
 
 def resolution_study(scenes: dict[str, Scene], elements, time_steps, reference: tuple[int, int],

@@ -152,14 +152,7 @@ def solve(table: pd.DataFrame) -> pd.DataFrame:
     outcomes = simulate_many(table["scene"].tolist())
     out = table.drop(columns="scene").copy()
     for key in OUTPUTS:
-        values = []
-        for scene, outcome in zip(table["scene"], outcomes):
-            if key == "e_t":
-                values.append(outcome.vc_t / scene.v_tangent if scene.v_tangent > 0 else math.nan)
-            else:
-                value = getattr(outcome, key)
-                values.append(math.nan if value is None else float(value))
-        out[key] = values
+        out[key] = [math.nan if getattr(outcome, key) is None else float(getattr(outcome, key)) for outcome in outcomes]
     forms = [hertz(scene) if scene.model == "hertz" else dict.fromkeys(CLOSED_FORMS, math.nan) for scene in table["scene"]]
     return pd.concat([out, pd.DataFrame(forms, index=out.index)], axis=1)
 

@@ -36,7 +36,7 @@ log = logging.getLogger(__name__)
 
 #: The digitised quantities and how a simulated outcome gives each (scene, outcome) -> value.
 QUANTITIES = {
-    "e_t": lambda scene, out: out.vc_t / scene.v_tangent,
+    "e_t": lambda scene, out: out.e_t,
     "omega_rad_s": lambda scene, out: abs(out.omega_f),
     "rebound_angle_deg": lambda scene, out: out.rebound_angle,
 }
