@@ -2,8 +2,9 @@
 
 A plug-in is any importable Python module that calls ``LAWS.register``, ``TANGENTIALS.register`` or
 ``INTEGRATORS.register`` at import.  Each door loads the plug-ins it is told of before it reads a model's
-name: the command line's ``--plugin MODULE``, the study config's ``plugins`` list (and the ball file a
-study writes, which names them), or an ``import`` in one's own Python code.
+name: the command line's ``--plugin MODULE``, the study config's ``plugins`` list, or an ``import`` in one's own
+Python code.  A ball file names the plug-ins its models need but is never a door: reading it imports nothing
+(:func:`~sphereimpact.impact.ball.load_ball` refuses a plug-in the user did not load).
 """
 
 from __future__ import annotations

@@ -5,4 +5,5 @@ from sphereimpact.study.workflow import job_log
 with job_log(snakemake.log[0], "speed figure and maps"):
     out = snakemake.output
     curves_and_maps(snakemake.input.speed, snakemake.input.maps, snakemake.input.ball, snakemake.params.config["study"],
-                    {"speed": out.speed, "spin_map": out.spin_map, "rebound_map": out.rebound_map})
+                    {"speed": out.speed, "spin_map": out.spin_map, "rebound_map": out.rebound_map},
+                    snakemake.params.config.get("plugins", ()))

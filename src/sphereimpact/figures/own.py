@@ -51,9 +51,10 @@ def map_figure(csv_path: str, study: str, key: str, label: str, outputs) -> None
         save(fig, outputs)
 
 
-def curves_and_maps(speed_csv: str, maps_csv: str, ball_json: str, study: str, outputs: dict) -> None:
-    """The study's speed figure and its two maps (``outputs``: speed, spin_map, rebound_map -> path)."""
-    measured = load_ball(ball_json).measurement
+def curves_and_maps(speed_csv: str, maps_csv: str, ball_json: str, study: str, outputs: dict, plugins=()) -> None:
+    """The study's speed figure and its two maps (``outputs``: speed, spin_map, rebound_map -> path); ``plugins``:
+    the study's, which its ball file may name."""
+    measured = load_ball(ball_json, plugins).measurement
     speed_figure(speed_csv, study, [outputs["speed"]], None if measured is None else measured.speed)
     map_figure(maps_csv, study, "omega_f", "rebound spin [rad/s]", [outputs["spin_map"]])
     map_figure(maps_csv, study, "rebound_angle_to_surface", "rebound angle of the centre to the surface [deg]",

@@ -16,12 +16,13 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .. import plugins
+from .. import plugins as plugin_modules
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate
 from .inputs import as_number
@@ -99,7 +100,8 @@ class Ball:
     options : SolverOptions
         The settings of its tangential model (``SolverOptions.settings``), the integrator's defaults.
     plugins : tuple of str
-        The plug-in modules whose models it uses (imported again by :func:`load_ball`).
+        The plug-in modules whose models it uses: :func:`load_ball` requires them loaded by the user, never
+        importing them itself (a data file runs no code).
     source : str
         Where its numbers come from, for the reader.
     """
@@ -209,13 +211,18 @@ def save_ball(ball: Ball, path) -> None:
     Path(path).write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
 
 
-def load_ball(path) -> Ball:
-    """The ball :func:`save_ball` wrote (its plug-ins imported first).
+def load_ball(path, plugins=()) -> Ball:
+    """The ball :func:`save_ball` wrote.
+
+    A ball file names the plug-ins whose models it uses but never imports them: a data file from someone else
+    must not run code.  Each must be among ``plugins`` (the modules the user names: ``--plugin``, a study
+    config's ``plugins``), which are imported here, or already imported.
 
     Raises
     ------
     ValueError
-        A file that is not a ball file of this format, or whose scene the package refuses (naming the file).
+        A file that is not a ball file of this format, a plug-in it names that the user did not load, or a scene
+        the package refuses (naming the file).
     """
     try:
         record = json.loads(Path(path).read_text(encoding="utf-8"))
@@ -226,8 +233,16 @@ def load_ball(path) -> Ball:
     if not isinstance(record, dict) or record.get("format") != FORMAT:
         raise ValueError(f"ball: {str(path)!r} is not a ball file (format {FORMAT!r}: written by --save-ball, "
                          "save_ball or a study's ball.json)")
+    named = record.get("plugins", [])
+    if not isinstance(named, list) or not all(isinstance(name, str) for name in named):
+        raise ValueError(f"ball: {str(path)!r}: plugins must be a list of module names; got {named!r}")
+    loaded = set(plugin_modules.load(plugins))
+    missing = [name for name in named if name not in loaded and name not in sys.modules]
+    if missing:
+        raise ValueError(f"ball: {str(path)!r} uses the plug-in {missing[0]!r}, which is not loaded; a ball file "
+                         f"never imports code: load it yourself (--plugin {missing[0]}, the study config's plugins, "
+                         f"or import {missing[0]}) if you trust it")
     try:
-        plugins.load(record.get("plugins", []))
         scene = Scene(**record["scene"])
         measured = record.get("measurement")
         measurement = None if measured is None else Measurement(measured["cor"], measured["cor_speed"],
@@ -237,4 +252,4 @@ def load_ball(path) -> Ball:
     except (KeyError, TypeError, ValueError) as err:
         raise ValueError(f"ball: {str(path)!r}: {err}") from None
     return Ball(scene, measurement, dict(record.get("fitted", {})), dict(record.get("relations", {})), options,
-                tuple(record.get("plugins", [])), record.get("source", ""))
+                tuple(named), record.get("source", ""))

@@ -50,7 +50,7 @@ def read_history(path) -> pd.DataFrame:
 def write_bounces(config: dict, ball_json: str, outcomes_csv: str, histories: dict) -> None:
     """Each bounce's outputs (one row each: its approach and every scalar output) and its time history
     (``histories``: bounce -> CSV path, units in the header)."""
-    ball, rows = load_ball(ball_json), []
+    ball, rows = load_ball(ball_json, config.get("plugins", ())), []
     for name, spec in config["bounces"].items():
         scene = bounce_scene(ball.scene, spec)
         out = simulate(scene, ball.options)
@@ -64,7 +64,7 @@ def write_bounces(config: dict, ball_json: str, outcomes_csv: str, histories: di
 
 def write_speed_curve(config: dict, ball_json: str, csv_path: str) -> None:
     """COR, contact time, peak force and maximum compression of normal impacts across ``ranges.speeds``."""
-    ball = load_ball(ball_json)
+    ball = load_ball(ball_json, config.get("plugins", ()))
     speeds = parse_range(config["ranges"]["speeds"])
     table = sweep(grid(speed=speeds, angle_to_surface=[90.0]).assign(**ball_columns(ball)), outputs=CURVE_OUTPUTS,
                   settings=ball.options.settings)
@@ -73,7 +73,7 @@ def write_speed_curve(config: dict, ball_json: str, csv_path: str) -> None:
 
 def write_maps(config: dict, ball_json: str, csv_path: str) -> None:
     """Spin, rebound velocity and angles over angle to the surface x speed (``ranges``), at ``map_spin``."""
-    ball, ranges = load_ball(ball_json), config["ranges"]
+    ball, ranges = load_ball(ball_json, config.get("plugins", ())), config["ranges"]
     scenes = grid(angle_to_surface=parse_range(ranges["map_angles"]), speed=parse_range(ranges["map_speeds"]))
     table = sweep(scenes.assign(spin=ranges["map_spin"], **ball_columns(ball)), outputs=MAP_OUTPUTS,
                   settings=ball.options.settings)
@@ -121,7 +121,7 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
     its caption, a line for every bounce far from the calibration's speed, and what the study's jobs took
     (``benchmarks``: Snakemake's benchmark files of its jobs, the page's own aside); with a ``fit`` section, the
     fit (``fit``: its ``fit.json`` and its figure's path relative to the page)."""
-    ball, outcomes = load_ball(ball_json), read_history(outcomes_csv)
+    ball, outcomes = load_ball(ball_json, config.get("plugins", ())), read_history(outcomes_csv)
     scene, speed, maps = ball.scene, pd.read_csv(speed_csv), pd.read_csv(maps_csv)
     measured = ball.measurement
     shown = ["bounce", "speed", "angle_to_surface", "spin", "cor", "t_f", "force_max", "vc_t", "vc_n", "omega_f",

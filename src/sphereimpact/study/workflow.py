@@ -55,12 +55,12 @@ RULE_KEYS = {
     "validation_figures": ("compliance",),
     "own_fit": ("study", "plugins", "ball_file", "ball", "surface", "contact", "fit"),
     "own_ball": ("study", "plugins", "ball_file", "ball", "surface", "contact"),
-    "own_bounces": ("study", "bounces", "samples"),
-    "own_speed": ("study", "ranges"),
-    "own_maps": ("study", "ranges"),
+    "own_bounces": ("study", "plugins", "bounces", "samples"),  # plugins: the ball file's, which it never imports
+    "own_speed": ("study", "plugins", "ranges"),
+    "own_maps": ("study", "plugins", "ranges"),
     "own_bounce_figure": ("study",),
-    "own_figures": ("study",),
-    "own_page": ("study", "contact", "bounces", "fit"),
+    "own_figures": ("study", "plugins"),
+    "own_page": ("study", "plugins", "contact", "bounces", "fit"),
 }
 
 
