@@ -151,7 +151,8 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
     that `simulate --ball` then uses; a bad option is one line and exit 2."""
     csv = tmp_path / "bounces.csv"
     bounces(2).to_csv(csv, index=False)
-    run = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--mu", "0.1", "--json",
+    truth = ["--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5"]  # TRUTH's ball, described
+    run = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--mu", "0.1", *truth, "--json",
                "--out", str(tmp_path / "fitted"))
     assert run.returncode == 0, run.stderr
     printed = json.loads(run.stdout)["parameters"]["mu"]
@@ -164,9 +165,9 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
     again = _cli("simulate", "--ball", str(tmp_path / "fitted/ball.json"), "--incidence", "40", "--json")
     assert json.loads(again.stdout)["omega_f"] == pytest.approx(simulate(ball.scene.with_(incidence=40.0)).omega_f,
                                                                 rel=1e-12)
-    refused = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--out", str(tmp_path / "fitted"))
+    refused = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", *truth, "--out", str(tmp_path / "fitted"))
     assert refused.returncode == 2 and "exists; pass --force" in refused.stderr and "Traceback" not in refused.stderr
-    bad = _cli("fit", str(csv), "--free", "colour", "--out", str(tmp_path / "never"))
+    bad = _cli("fit", str(csv), "--free", "colour", *truth, "--out", str(tmp_path / "never"))
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "'colour' cannot be fitted" in bad.stderr
     assert not (tmp_path / "never").exists()  # the folder is made once the fit succeeds
     assert math.isfinite(printed["value"])

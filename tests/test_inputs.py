@@ -146,6 +146,8 @@ def test_a_tiny_ball_is_answered_by_both_paths(tmp_path):
 
 _SHIPPED = yaml.safe_load(open(Path(__file__).resolve().parents[1] / "config/config.yaml"))
 #: Config (merged over config/config.yaml's values where it matters), expected message fragment.
+#: An own study's ball (a golf ball), which every own study describes.
+BALL = {"mass": 0.0459, "diameter": 0.0427}
 CONFIGS = [
     ({"validation": _SHIPPED["validation"] | {"tangential": ["rigid", "soft"]}},
      "config key validation.tangential: 'soft' is not a registered tangential model"),
@@ -174,14 +176,19 @@ CONFIGS = [
     ({"study": "x" * 300}, "config key study: 'xxxxxxxx"),
     # issue 35: an own study's fit section, checked before any job
     ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "hertz", "modulus": 1.0e+7},
-      "fit": {"data": "no/such.csv", "free": ["mu"]}},
+      "ball": BALL, "fit": {"data": "no/such.csv", "free": ["mu"]}},
      "config key fit.data: measured: cannot read 'no/such.csv'"),
     ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "hertz", "modulus": 1.0e+7},
-      "fit": {"data": "data/kharaz2001.csv", "free": ["kappa"]}},
+      "ball": BALL, "fit": {"data": "data/kharaz2001.csv", "free": ["kappa"]}},
      "config key fit.free: free: 'kappa' is not a parameter of the 'rigid' tangential contact"),
-    ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"modulus": 1e8},
+    ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"modulus": 1e8}, "ball": BALL,
       "fit": {"data": "data/kharaz2001.csv", "free": ["spin"]}},
      "config key fit.free: free: 'spin' cannot be fitted; the parameters a fit may free are mu, kappa"),
+    # issue 42: an own study describes its ball; none is assumed
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "contact": {"modulus": 1e8}},
+     "config key ball (or contact): describe your ball: give ball.mass, ball.diameter (or a ball_file)"),
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "modified"}, "ball": BALL},
+     "config key ball (or contact): describe your ball: give contact.k or contact.contact_time, contact.b or contact.cor"),
     ({"kharaz_fit": {"free": ["mu", "mu"]}}, "config key kharaz_fit.free: ['mu', 'mu'] has non-unique elements"),
 ]
 
@@ -257,7 +264,9 @@ def test_a_compression_beyond_the_radius_is_flagged_warned_or_refused(capsys):
     assert run(["simulate", "--speed", "1e4", "--json"]) == 0
     captured = capsys.readouterr()
     assert '"beyond_radius": true' in captured.out
-    assert captured.err.startswith("sphereimpact: warning: maximum compression") and captured.err.count("\n") == 1
+    lines = captured.err.splitlines()  # the warning, then the note that the ball is the chapter's
+    assert lines[0].startswith("sphereimpact: warning: maximum compression") and len(lines) == 2
+    assert lines[1].startswith("sphereimpact: note: the chapter's ball where the options are silent (mass 0.145 kg")
 
 
 def test_a_scene_inside_the_model_is_not_flagged():
@@ -441,7 +450,8 @@ def test_f14_a_tangential_model_that_makes_energy_is_flagged_and_warned(tmp_path
     assert run(["simulate", *argv, "--json"]) == 0
     out, err = capsys.readouterr()
     assert json.loads(out)["energy_gained"] and json.loads(out)["work_t"] > 0
-    assert err.count("\n") == 1 and "warning: tangential 'mindlin-displacement' made energy" in err
+    warned = [line for line in err.splitlines() if "warning" in line]
+    assert len(warned) == 1 and "warning: tangential 'mindlin-displacement' made energy" in warned[0]
     with pytest.warns(EnergyGainWarning):
         simulate(Scene(model="hertz", modulus=1e7, tangential="mindlin-displacement", kappa=0.99, incidence=20.0,
                        mu=0.65, speed=5.0))

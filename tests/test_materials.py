@@ -58,7 +58,7 @@ def test_a_study_config_takes_the_materials():
     from sphereimpact.study.own import study_ball
 
     schema = yaml.safe_load((Path(__file__).parents[1] / "config/schema.yaml").read_text())
-    config = with_defaults(schema, {"study": "alumina", "contact": {
+    config = with_defaults(schema, {"study": "alumina", "ball": {"mass": 2.1e-4, "diameter": 5e-3}, "contact": {
         "model": "hertz", "tangential": "mindlin",
         "materials": {"ball": {"E": 380e9, "nu": 0.23}, "surface": {"E": 70e9, "nu": 0.25}}}})
     scene = study_ball(config).scene

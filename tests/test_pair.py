@@ -195,7 +195,7 @@ def test_own_study_surface_takes_a_partner():
     from sphereimpact.study.own import study_ball
 
     schema = yaml.safe_load((Path(__file__).parents[1] / "config/schema.yaml").read_text())
-    config = with_defaults(schema, {"study": "pairs", "surface": {"mu": 0.2, "gravity": 0.0,
+    config = with_defaults(schema, {"study": "pairs", "ball": {"mass": 0.145, "diameter": 0.063}, "surface": {"mu": 0.2, "gravity": 0.0,
                                                       "partner": {"mass": 0.2, "diameter": 0.05, "spin": 3.0}},
                         "contact": {"model": "hertz", "modulus": 1e8}})
     scene = study_ball(config).scene
@@ -220,5 +220,6 @@ def test_fit_recovers_friction_from_bounces_on_a_partner(tmp_path, capsys):
     result = fit(read_measured(path), Ball(Scene(mu=0.3, **pair)), ["mu"])
     assert result.parameters["mu"].value == pytest.approx(0.1, rel=1e-7)
     assert run(["fit", str(path), "--free", "mu", "--mu", "0.3", "--partner-mass", "0.3", "--partner-diameter", "0.1",
-                "--partner-spin", "5", "--json"]) == 0
+                "--partner-spin", "5", "--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5",
+                "--speed", "3", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["parameters"]["mu"]["value"] == pytest.approx(0.1, rel=1e-7)

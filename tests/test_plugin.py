@@ -461,7 +461,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
 
     work = project_copy(tmp_path)
     config = tmp_path / "plug.yaml"
-    config.write_text("study: plug\nplugins: [plugin_model]\n"
+    config.write_text("study: plug\nplugins: [plugin_model]\nball: {mass: 0.145, diameter: 0.063}\n"
                       "contact: {model: kelvin-voigt, k: 60000.0, b: 10.5, tangential: share-slide,\n"
                       "          parameters: {slide_share: 0.5}, settings: {trapezoid_steps: 16}}\n"
                       "bounces: {oblique: {speed: 3.0, incidence: 30.0}}\n"
@@ -473,7 +473,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     assert ball["plugins"] == ["plugin_model"] and ball["settings"] == {"trapezoid_steps": 16}
     assert ball["scene"]["parameters"] == {"slide_share": 0.5}
     options = SolverOptions(settings={"trapezoid_steps": 16})
-    scene = Scene(model="kelvin-voigt", b=10.5, gravity=9.80665, tangential="share-slide",
+    scene = Scene(model="kelvin-voigt", b=10.5, tangential="share-slide",  # gravity 0, the one default
                   parameters={"slide_share": 0.5})
     from sphereimpact.study.own_outputs import read_history
 
@@ -509,10 +509,11 @@ def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share
     result = fit(read_measured(path), ball, ["slide_share"])
     assert result.parameters["slide_share"].value == pytest.approx(0.6, rel=1e-7)
     assert result.ball.scene.slide_share == pytest.approx(0.6, rel=1e-7)
+    chapter = ["--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5"]  # the ball of Scene()
     assert run(["fit", str(path), "--plugin", "plugin_model", "--tangential", "share-slide", "--slide-share", "0.3",
-                "--free", "slide_share", "--json"]) == 0
+                "--free", "slide_share", *chapter, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["parameters"]["slide_share"]["value"] == pytest.approx(0.6, rel=1e-7)
-    assert run(["fit", str(path), "--free", "slide_share"]) == 2
+    assert run(["fit", str(path), "--free", "slide_share", *chapter]) == 2
     assert "'slide_share' cannot be fitted" in capsys.readouterr().err
 
 

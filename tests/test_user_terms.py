@@ -6,11 +6,15 @@ import json
 import sys
 import textwrap
 
+from pathlib import Path
+
 import pytest
 
 from sphereimpact import Scene, load_ball, save_ball
 from sphereimpact.cli import run
 from sphereimpact.impact.ball import Ball
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture
@@ -62,3 +66,89 @@ def test_plugins_in_a_ball_file_must_be_a_list_of_names(tmp_path):
     path.write_text(json.dumps(record | {"plugins": "trap_module"}))
     with pytest.raises(ValueError, match="plugins must be a list of module names"):
         load_ball(path)
+
+
+KHARAZ = "data/kharaz2001.csv"
+#: Kharaz's alumina ball, as the data file's header states it (5 mm, 4000 kg/m^3, E 380 GPa on glass) at 3.9 m/s.
+ALUMINA = ["--mass", "2.618e-4", "--diameter", "0.005", "--model", "hertz", "--modulus", "1.5e11"]
+
+
+def test_fit_refuses_a_ball_it_was_not_given(capsys):
+    """Before: the Kharaz data were fitted as the chapter's 145 g, 63 mm ball at 3 m/s, exit 0, no word."""
+    assert run(["fit", KHARAZ, "--free", "mu"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "give --mass, --diameter, --k or --contact-time, --b or --cor (or --ball FILE)" in err
+    assert run(["fit", KHARAZ, "--free", "mu", *ALUMINA]) == 2  # the ball, but not the bounces' speed
+    assert "has no speed column: give the bounces' approach speed along the path with --speed" in capsys.readouterr().err
+    assert run(["fit", KHARAZ, "--free", "mu", *ALUMINA, "--speed", "3.9", "--json"]) == 0
+
+
+def test_fit_out_must_name_a_folder(tmp_path, monkeypatch, capsys):
+    """Before: --out "" wrote ball.json, fit.json, residuals.csv and fit.png into the current folder."""
+    monkeypatch.chdir(tmp_path)
+    assert run(["fit", str(ROOT / KHARAZ), "--free", "mu", *ALUMINA, "--speed", "3.9", "--out", ""]) == 2
+    assert "out: give a folder's name" in capsys.readouterr().err and not list(tmp_path.iterdir())
+
+
+def test_simulate_says_when_it_runs_the_chapters_ball(capsys):
+    assert run(["simulate", "--json"]) == 0
+    assert ("note: the chapter's ball where the options are silent (mass 0.145 kg, diameter 0.063 m, k 60000 N/m, "
+            "b 10.5 N s/m)") in capsys.readouterr().err
+    assert run(["simulate", "--json", "--mass", "0.05", "--diameter", "0.04", "--model", "hunt-crossley",
+                "--modulus", "1e7"]) == 0
+    assert "note" not in capsys.readouterr().err
+
+
+def long_table(tmp_path, rows, columns="quantity,incidence_deg,value"):
+    path = tmp_path / "long.csv"
+    path.write_text(columns + "\n" + "\n".join(rows) + "\n")
+    return path
+
+
+def test_the_long_layout_reads_every_column_or_refuses_it(tmp_path):
+    """Before: a speed or sigma column was read as if absent, and a typo'd or empty value dropped ("fitted to 23
+    measured values of 24"), while the wide layout refused the same typo."""
+    from sphereimpact.fit import read_measured
+
+    read = read_measured(long_table(tmp_path, ["e_t,30,0.6,0.02,3.9", "omega_rad_s,30,150,5,3.5"],
+                                   "quantity,incidence_deg,value,sigma,speed"))
+    assert read.bounces["speed"].tolist() == [3.9, 3.5]
+    assert read.values[["quantity", "value", "sigma"]].values.tolist() == [["e_t", 0.6, 0.02], ["abs_omega_f", 150.0, 5.0]]
+    for rows, message in ((["e_t,30,0.6", "e_t,40,O.7"], "column 'value' row 1: 'O.7' is not a finite number"),
+                          (["e_t,30,0.6", "e_t,40,"], "column 'value' row 1: an empty cell"),
+                          (["e_t,30,0.6", "e_t,,0.7"], "column 'incidence_deg' row 1"),
+                          (["spin_rate,30,0.6"], "unknown quantity 'spin_rate'")):
+        with pytest.raises(ValueError, match=message):
+            read_measured(long_table(tmp_path, rows))
+    with pytest.raises(ValueError, match="column 'mass' is not one of the long layout's"):
+        read_measured(long_table(tmp_path, ["e_t,30,0.6,0.1"], "quantity,incidence_deg,value,mass"))
+
+
+def test_the_long_layouts_speed_reaches_the_fit(tmp_path):
+    """The same bounces at another speed fit to another mu: the speed column is the bounces', not the options'."""
+    from sphereimpact.fit import fit, read_measured
+    from sphereimpact.impact.ball import Ball
+
+    ball = Ball(Scene(model="hertz", modulus=1.5e11, mass=2.618e-4, diameter=0.005, mu=0.1))
+    rows = ["e_t,50,0.85,,{v}", "e_t,60,0.9,,{v}", "e_t,70,0.93,,{v}"]
+    fits = [fit(read_measured(long_table(tmp_path, [r.format(v=v) for r in rows],
+                                         "quantity,incidence_deg,value,sigma,speed")), ball, ["mu"])
+            for v in (2.0, 3.9)]
+    assert fits[0].residuals["speed"].tolist() == [2.0] * 3 and fits[1].residuals["speed"].tolist() == [3.9] * 3
+
+
+def test_one_gravity_default_at_every_door():
+    """Before: a study's surface defaulted to 9.80665 m/s^2, simulate, fit and Scene to 0: the same bounces fitted
+    to mu 0.5426 in a study and 0.5444 on the command line."""
+    import yaml
+
+    from sphereimpact.cli import _parser
+    from sphereimpact.study.config import with_defaults
+    from sphereimpact.study.own import study_ball
+
+    schema = yaml.safe_load((ROOT / "config/schema.yaml").read_text())
+    config = with_defaults(schema, {"study": "mine", "ball": {"mass": 0.05, "diameter": 0.04},
+                                    "contact": {"modulus": 1e7}, "bounces": {"drop": {"speed": 5.0}}})
+    cli = {name: _parser().parse_args([name, *extra]).gravity
+           for name, extra in (("simulate", []), ("fit", ["x.csv", "--free", "mu"]))}
+    assert study_ball(config).scene.gravity == Scene().gravity == cli["simulate"] == cli["fit"] == 0.0

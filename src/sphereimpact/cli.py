@@ -18,7 +18,8 @@ from dataclasses import replace
 import numpy as np
 
 from . import __version__, plugins
-from .impact.ball import APPROACH, FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball, save_ball
+from .impact.ball import (APPROACH, FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball,
+                          save_ball, undescribed)
 from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from .integrators import method_names
@@ -439,6 +440,8 @@ def check_out(path: str, force: bool, extensions=None, what: str = "out") -> Non
 def check_out_folder(path: str) -> None:
     """Refuse an output folder that is a file or whose parent does not exist, before any work (ValueError naming
     it); its files are checked by :func:`check_out`."""
+    if not path.strip():  # "" would be the current folder, whose files the caller never named
+        raise ValueError(f"out: give a folder's name; got {path!r}")
     if os.path.exists(path) and not os.path.isdir(path):
         raise ValueError(f"out is a file, not a folder: {path!r}")
     if not os.path.isdir(os.path.dirname(os.path.abspath(path))):
@@ -684,6 +687,10 @@ def _simulate(args) -> None:
     for warning in caught:  # one line each, like the errors
         refused = " (--strict refuses it)" if warning.category is BeyondRadiusWarning else ""
         sys.stderr.write(f"sphereimpact: warning: {warning.message}{refused}\n")
+    chapter = [] if ball is not None else undescribed(args.given, args.model)
+    if chapter:  # said once the impact is solved: an error stays one line
+        sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
+                         f"({_defaults(scene, chapter)}); describe yours with {_as_options(chapter)}\n")
     if args.history is not None or args.plot is not None:
         history = outcome.history(args.samples)
         if args.history is not None:
@@ -703,11 +710,30 @@ def _simulate(args) -> None:
         sys.stdout.write(_readable(outputs, units) + "\n")
 
 
+def _as_options(names) -> str:
+    """Parts of a description (:func:`~sphereimpact.impact.ball.undescribed`) as the options that give them."""
+    return ", ".join(" or ".join("--" + word.replace("_", "-") for word in name.split(" or ")) for name in names)
+
+
+def _defaults(scene: Scene, names) -> str:
+    """The values ``scene`` took for the undescribed parts ``names``, with their units."""
+    units = {"mass": "kg", "diameter": "m", "k": "N/m", "b": "N s/m"}
+    shown = [name.split(" or ")[0] for name in names]
+    return ", ".join(f"{name} {getattr(scene, name):g} {units.get(name, '')}".rstrip() for name in shown)
+
+
 def _fit(args) -> None:
     """``sphereimpact fit``: the ball from the options, the bounces from MEASURED, the fit printed (and
-    written with --out)."""
+    written with --out).  The ball is the user's: described by the options or a ball file, never the chapter's
+    by default; so is the bounces' speed, from MEASURED or --speed."""
     from .fit import fit, read_measured
     from .study.fitting import finite, write_fit
+
+    if args.ball is None:
+        missing = undescribed(args.given, args.model)
+        if missing:
+            raise ValueError(f"fit: describe the ball you measured: give {_as_options(missing)} (or --ball FILE); "
+                             "only simulate takes the chapter's ball by default")
 
     if not 0 <= args.bootstrap <= 10_000:
         raise ValueError(f"bootstrap must be an integer in [0, 10000]; got {args.bootstrap}")
@@ -730,7 +756,11 @@ def _fit(args) -> None:
     elif approach or _partner(args):
         ball = replace(ball, scene=ball_scene(ball, **approach).with_(**_partner(args)))
     free = [name.strip() for name in args.free.split(",") if name.strip()]
-    result = fit(read_measured(args.measured), ball, free, args.bootstrap, args.seed, args.target)
+    measured = read_measured(args.measured)
+    if "speed" not in measured.bounces and "speed" not in args.given:
+        raise ValueError(f"fit: {args.measured!r} has no speed column: give the bounces' approach speed along the "
+                         "path with --speed [m/s]")
+    result = fit(measured, ball, free, args.bootstrap, args.seed, args.target)
     if args.out is not None:
         write_fit(result, args.out)
     if args.json:

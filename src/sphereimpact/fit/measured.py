@@ -5,7 +5,8 @@ Two layouts are read.  A *wide* table has one bounce per row: columns named like
 outputs named like ``simulate``'s (``vc_t``, ``vc_n``, ``omega_f``, ``cor``, ``rebound_angle``, ...; SI, contact
 frame) or the derived :data:`DERIVED` ones, any subset, each with an optional uncertainty column
 ``sigma_<output>`` (one standard deviation, same units).  The *long* layout of the shipped Kharaz et al. (2001)
-data has columns ``quantity, incidence_deg, value``; its quantities are mapped by :data:`LONG_QUANTITIES`.
+data has columns ``quantity, incidence_deg, value`` (and optionally ``sigma``, ``speed``, ``spin``); its quantities
+are mapped by :data:`LONG_QUANTITIES`.
 An approach column a table does not give takes the fitted ball's value.
 """
 
@@ -27,6 +28,10 @@ DERIVED = {"e_t": "-", "abs_omega_f": "rad/s"}
 MEASURABLE = {name: OUTPUT_UNITS[name] for name in NUMERIC_OUTPUTS} | DERIVED
 #: The long layout's quantities (Kharaz's digitised curves) -> the quantity they measure.
 LONG_QUANTITIES = {"e_t": "e_t", "omega_rad_s": "abs_omega_f", "rebound_angle_deg": "rebound_angle"}
+#: The long layout's columns, and those it may add: each value's standard uncertainty (its quantity's unit) and
+#: the bounce's approach speed [m/s] and spin [rad/s].
+LONG_COLUMNS = ("quantity", "incidence_deg", "value")
+LONG_OPTIONAL = ("sigma", "speed", "spin")
 
 
 @dataclass(frozen=True)
@@ -85,15 +90,40 @@ def read_measured(data, source: str = "") -> Measured:
 
 
 def _wide_from_long(frame: pd.DataFrame, source: str) -> pd.DataFrame:
-    """The long layout (quantity, incidence_deg, value) as a wide table: one bounce per measured value."""
-    unknown = sorted(set(frame["quantity"]) - set(LONG_QUANTITIES))
+    """The long layout (quantity, incidence_deg, value; optionally sigma, speed, spin) as a wide table: one bounce
+    per measured value.  Every cell is read or refused, as in the wide layout: a column of neither kind, a value
+    or an incidence that is not a finite number (an empty cell included)."""
+    unknown = [c for c in frame.columns if c not in (*LONG_COLUMNS, *LONG_OPTIONAL)]
     if unknown:
-        raise ValueError(f"measured: {source}: unknown quantity {unknown[0]!r} in the long layout; expected "
+        raise ValueError(f"measured: {source}: column {unknown[0]!r} is not one of the long layout's "
+                         f"({', '.join((*LONG_COLUMNS, *LONG_OPTIONAL))})")
+    names = frame["quantity"]
+    strange = [q for q in dict.fromkeys(names) if q not in LONG_QUANTITIES]
+    if strange:
+        raise ValueError(f"measured: {source}: unknown quantity {strange[0]!r} in the long layout; expected "
                          f"{', '.join(LONG_QUANTITIES)}")
-    wide = pd.DataFrame({"incidence": pd.to_numeric(frame["incidence_deg"], errors="coerce")})
+    numbers = {}
+    for column in (c for c in frame.columns if c != "quantity"):
+        values = pd.to_numeric(frame[column], errors="coerce")
+        bad = ~np.isfinite(values) & (frame[column].notna() if column == "sigma" else True)
+        if bad.any():
+            row = int(np.flatnonzero(bad)[0])
+            cell = frame[column].iloc[row]
+            shown = "an empty cell" if pd.isna(cell) else f"{cell!r} is not a finite number"
+            raise ValueError(f"measured: {source}: column {column!r} row {row}: {shown}"
+                             + ("" if column == "sigma" else " (every measured value needs it)"))
+        numbers[column] = values
+    wide = pd.DataFrame({"incidence": numbers["incidence_deg"]})
+    for column in ("speed", "spin"):
+        if column in numbers:
+            wide[column] = numbers[column]
     for name, quantity in LONG_QUANTITIES.items():
-        wide[quantity] = np.where(frame["quantity"] == name, pd.to_numeric(frame["value"], errors="coerce"), np.nan)
-    return wide[[c for c in wide.columns if c == "incidence" or wide[c].notna().any()]]
+        rows = names == name
+        if rows.any():
+            wide[quantity] = np.where(rows, numbers["value"], np.nan)
+            if "sigma" in numbers:
+                wide[f"sigma_{quantity}"] = np.where(rows, numbers["sigma"], np.nan)
+    return wide
 
 
 def _checked(frame: pd.DataFrame, source: str) -> list[str]:

@@ -127,6 +127,41 @@ class Ball:
                 "there, extrapolates")
 
 
+#: What describes a ball's stiffness or damping besides the law's own parameter: a measured contact time (k), the
+#: bodies' materials (the modulus), a measured COR (the damping).
+STIFFNESS_GIVEN = ("k", "modulus", "contact_time", "ball_material")
+
+
+def undescribed(given, model: str) -> list[str]:
+    """The parts of a ball's description that ``given`` lacks, where the package's default is the chapter's ball:
+    its mass and diameter (145 g, 63 mm), the stiffness and the damping of a law whose defaults are the chapter's
+    (k = 60000 N/m, b = 10.5 N s/m).  A door that takes the user's own ball (``fit``, ``sweep``, a study) refuses
+    it without them; ``simulate`` alone runs the chapter's ball and says so.
+
+    Parameters
+    ----------
+    given : collection of str
+        The names the user gave: Scene fields, ``cor``, ``contact_time``, ``ball_material``.
+    model : str
+        The normal force law's name.
+
+    Returns
+    -------
+    list of str
+        Each missing part as the option that gives it (``mass``, ``diameter``, ``k or modulus or contact_time``,
+        ``b or cor``); empty when the ball is described.
+    """
+    law, given = LAWS.law(model), set(given)
+    missing = [name for name in ("mass", "diameter") if name not in given]
+    if "k" in law.parameter_names and law.parameter("k").default is not None and not given & set(STIFFNESS_GIVEN):
+        missing.append(" or ".join(name for name in STIFFNESS_GIVEN if name in law.parameter_names or name == "contact_time"
+                                   or (name == "ball_material" and "modulus" in law.parameter_names)))
+    damping = law.damping
+    if damping is not None and law.parameter(damping).default and not given & {damping, "cor"}:
+        missing.append(f"{damping} or cor")
+    return missing
+
+
 def starting_stiffness(model: str, mass: float, contact_time: float, speed: float) -> float:
     """A stiffness k whose contact lasts about ``contact_time`` [s] at ``speed`` [m/s], to start a fit from:
     t = pi sqrt(m / k) for a linear spring, t = 2.94 (5 m / (4 k))^(2/5) v^(-1/5) for a Hertz one."""

@@ -13,7 +13,7 @@ the fitted ball).  It never reads or writes the chapter's files.
 from __future__ import annotations
 
 from .. import plugins
-from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated
+from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated, undescribed
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..memory import check_size
 from ..parsing import parse_range, range_count
@@ -129,6 +129,14 @@ def own_errors(config: dict) -> list[str]:
         if contact.get("model") not in LAWS:
             errors.append(f"config key contact.model: {contact.get('model')!r} is not a registered law "
                           f"({', '.join(LAWS)})")
+            return errors
+        given = {*config["ball"], *contact, *(["ball_material"] if "materials" in contact else [])}
+        missing = undescribed(given, contact["model"])
+        if missing:
+            keys = {"mass": "ball.mass", "diameter": "ball.diameter", "ball_material": "contact.materials"}
+            errors.append("config key ball (or contact): describe your ball: give " + ", ".join(
+                " or ".join(keys.get(part, f"contact.{part}") for part in name.split(" or ")) for name in missing)
+                + " (or a ball_file); no ball is assumed")
             return errors
         if ("contact_time" in contact or "cor_relation" in contact and contact["cor_relation"] != "exact"
                 or "cor_speed" in contact) and "cor" not in contact:
