@@ -100,6 +100,12 @@ class ContactLaw:
         P_hat is analytic in x >= 0 and y (a recurrence on its series exists): then the Taylor method
         (:mod:`sphereimpact.ode.series`) integrates it.  None: the law has no series, and ``auto`` takes the
         Runge-Kutta integrator.
+    passive : bool
+        True when the law never does net positive work on the ball over a contact (its damping dissipates for
+        every allowed parameter, its spring is conservative): a weightless impact then rebounds no faster than it
+        came, COR <= 1, and :class:`~sphereimpact.impact.outcome.Outcome` bounds the rebound by the approach
+        (the integrators' error alone crossed it: COR 1 + 1e-10 for an undamped contact).  False (the
+        default, a plug-in's unless it declares it): no bound is applied.
     per_compression : callable or None
         ``per_compression(x, y, numbers) -> Q``: P_hat / x, continued through x = 0, for a law whose force
         has a forced zero at first touch and separation (eq. 4.2): its sign is the force's inside the contact,
@@ -124,6 +130,7 @@ class ContactLaw:
     rate: Callable | None = None
     series: Callable | None = None
     per_compression: Callable | None = None
+    passive: bool = False
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]

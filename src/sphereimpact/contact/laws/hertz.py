@@ -84,7 +84,7 @@ LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_continued, hertz_frequency,
     family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
-    scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate))
+    scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate, passive=True))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
@@ -93,4 +93,4 @@ LAWS.register(ContactLaw(
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,
     scalar=hunt_crossley_scalar,
-    rate=hunt_crossley_rate))
+    rate=hunt_crossley_rate, passive=True))
