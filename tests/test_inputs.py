@@ -121,14 +121,14 @@ def test_fraction_and_negative_values_are_read(capsys):
 
 def test_bare_gravity_means_the_same_in_simulate_and_sweep(tmp_path, capsys):
     out = tmp_path / "g.csv"
-    assert run(["sweep", "--angle", "30", "--gravity", "--out", str(out)]) == 0
+    assert run(["sweep", "--chapter-ball", "--angle", "30", "--gravity", "--out", str(out)]) == 0
     row = pd.read_csv(out).iloc[0]
     assert row["gravity"] == STANDARD_GRAVITY
     assert row["t_f"] == pytest.approx(simulate(Scene(angle=30.0, gravity=STANDARD_GRAVITY)).t_f, rel=1e-8)
 
 
 def test_force_overwrites(paths):
-    assert run(["sweep", "--angle", "0", "--out", paths["EXISTING"], "--force"]) == 0
+    assert run(["sweep", "--chapter-ball", "--angle", "0", "--out", paths["EXISTING"], "--force"]) == 0
     assert len(pd.read_csv(paths["EXISTING"])) == 1
 
 
@@ -138,7 +138,7 @@ def test_a_tiny_ball_is_answered_by_both_paths(tmp_path):
         one = simulate(Scene(diameter=1e-300, angle=60.0))
     assert one.beyond_radius
     out = tmp_path / "tiny.csv"
-    assert run(["sweep", "--diameter", "1e-300", "--angle", "60", "--out", str(out)]) == 0
+    assert run(["sweep", "--chapter-ball", "--diameter", "1e-300", "--angle", "60", "--out", str(out)]) == 0
     row = pd.read_csv(out).iloc[0]
     assert math.isfinite(one.omega_f) and row["omega_f"] == pytest.approx(one.omega_f, rel=1e-8)
     assert row["ve_t"] == pytest.approx(one.ve_t, rel=1e-8)
@@ -395,7 +395,7 @@ def _json(capsys, argv):
 
 def _swept(tmp_path, argv):
     out = tmp_path / "swept.csv"
-    assert run(["sweep", *argv, "--out", str(out), "--force"]) == 0
+    assert run(["sweep", "--chapter-ball", *argv, "--out", str(out), "--force"]) == 0
     return pd.read_csv(out)
 
 

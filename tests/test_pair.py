@@ -178,7 +178,7 @@ def test_command_line_simulates_and_sweeps_a_pair(tmp_path, capsys):
     for key in ("vc_t", "vc_n", "omega_f", "partner_vc_t", "partner_vc_n", "partner_omega_f", "cor"):
         assert printed[key] == pytest.approx(expected[key], rel=1e-14), key
     out = tmp_path / "pairs.csv"
-    assert run(["sweep", *argv, "--angle", "10:30:20", "--out", str(out)]) == 0
+    assert run(["sweep", "--chapter-ball", *argv, "--angle", "10:30:20", "--out", str(out)]) == 0
     table = pd.read_csv(out)
     assert table["angle"].tolist() == [10.0, 30.0]
     assert table["partner_omega_f"].iloc[1] == pytest.approx(expected["partner_omega_f"], rel=1e-7)

@@ -222,7 +222,7 @@ def test_parse_range():
 
 def test_cli_sweep_writes_one_row_per_scene(tmp_path):
     out = tmp_path / "s.csv"
-    assert run(["sweep", "--angle", "0:60:30", "--speed", "1:3:2", "--out", str(out)]) == 0
+    assert run(["sweep", "--chapter-ball", "--angle", "0:60:30", "--speed", "1:3:2", "--out", str(out)]) == 0
     table = pd.read_csv(out)
     assert len(table) == 6 and list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS, "path"]
     one = simulate(Scene(angle=30.0, speed=3.0))
@@ -236,7 +236,7 @@ def test_cli_sweep_writes_one_row_per_scene(tmp_path):
     (["--target", "1"], "target must be"),
 ])
 def test_cli_sweep_bad_input_exits_2(args, message, tmp_path, capsys):
-    assert run(["sweep", *args, "--out", str(tmp_path / "s.csv")]) == 2
+    assert run(["sweep", "--chapter-ball", *args, "--out", str(tmp_path / "s.csv")]) == 2
     assert message in capsys.readouterr().err
 
 
@@ -286,7 +286,7 @@ def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
     assert set(flags) == set(LAWS)  # a new built-in law gets a row here
     for law, extra in flags.items():
         out = tmp_path / f"{law}.csv"
-        assert run(["sweep", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra, "--out", str(out)]) == 0
+        assert run(["sweep", "--chapter-ball", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra, "--out", str(out)]) == 0
         assert capsys.readouterr().err.startswith("sphereimpact sweep: 6 scenes in")
         table = pd.read_csv(out)
         for row in table.iloc[[1, 5]].to_dict("records"):
@@ -303,7 +303,7 @@ def test_the_command_line_calibrates_each_ball_once(tmp_path):
     from sphereimpact.sweep.calibrate import calibrate_table
 
     out = tmp_path / "cor.csv"
-    assert run(["sweep", "--angle", "0:60:30", "--speed", "2:6:2", "--mass", "0.1:0.2:0.1", "--model",
+    assert run(["sweep", "--chapter-ball", "--angle", "0:60:30", "--speed", "2:6:2", "--mass", "0.1:0.2:0.1", "--model",
                 "hunt-crossley", "--modulus", "1e7", "--cor", "0.8", "--cor-speed", "3", "--out", str(out)]) == 0
     table = pd.read_csv(out)
     for mass, rows in table.groupby("mass"):
@@ -313,13 +313,13 @@ def test_the_command_line_calibrates_each_ball_once(tmp_path):
     api = calibrate_table(grid(angle=[0.0, 30.0], mass=[0.1, 0.2]).assign(model="hunt-crossley", modulus=1e7),
                           Measurement(0.8, 3.0))
     assert sorted(api["chi"].unique()) == pytest.approx(sorted(table["chi"].unique()), rel=1e-12)
-    assert run(["sweep", "--speed", "1:3:1", "--model", "hunt-crossley", "--modulus", "1e7", "--cor", "0.8",
+    assert run(["sweep", "--chapter-ball", "--speed", "1:3:1", "--model", "hunt-crossley", "--modulus", "1e7", "--cor", "0.8",
                 "--out", str(tmp_path / "x.csv")]) == 2  # several speeds: which one was measured?
 
 
 def test_lists_mean_every_combination_in_the_api_and_on_the_command_line(tmp_path):
     out = tmp_path / "grid.csv"
-    assert run(["sweep", "--angle", "30:45:15", "--speed", "3:20:17", "--out", str(out)]) == 0
+    assert run(["sweep", "--chapter-ball", "--angle", "30:45:15", "--speed", "3:20:17", "--out", str(out)]) == 0
     cli = pd.read_csv(out)
     api = sweep({"angle": [30.0, 45.0], "speed": [3.0, 20.0]})
     assert len(api) == len(cli) == 4

@@ -197,3 +197,21 @@ def test_a_contact_time_calibration_of_a_nearly_elastic_ball_meets_its_contact_t
                            mass=0.145, diameter=0.063)
     out = simulate(ball.scene, SolverOptions(method="closed"))
     assert out.t_f == pytest.approx(5e-3, rel=1e-9) and out.cor == pytest.approx(0.9999999, rel=1e-9)
+
+
+def test_sweep_refuses_a_ball_it_was_not_given(tmp_path, capsys):
+    """Before: a sweep without a ball swept the chapter's, silently.  --chapter-ball asks for it; simulate says it."""
+    out = tmp_path / "s.csv"
+    assert run(["sweep", "--angle", "30", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "sweep: describe your ball: give --mass, --diameter, --k or --contact-time" in err
+    assert not out.exists()
+    assert run(["sweep", "--angle", "30", "--model", "hunt-crossley", "--modulus", "1e7", "--out", str(out)]) == 2
+    assert "give --mass, --diameter (or --ball FILE" in capsys.readouterr().err
+    assert run(["sweep", "--chapter-ball", "--angle", "30", "--out", str(out)]) == 0 and out.exists()
+    assert run(["simulate", "--chapter-ball", "--angle", "30", "--json"]) == 0
+    assert "note" not in capsys.readouterr().err
+    ball = tmp_path / "ball.json"
+    save_ball(Ball(Scene()), ball)
+    assert run(["simulate", "--ball", str(ball), "--chapter-ball"]) == 2
+    assert "--chapter-ball: the ball file" in capsys.readouterr().err

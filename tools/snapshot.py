@@ -116,7 +116,7 @@ def record(out: Path, results: Path) -> None:
     (out / "sweeps").mkdir()
     for i, args in enumerate(SWEEP):
         target = out / "sweeps" / f"sweep{i}.csv"
-        run = _cli(["sweep", *args, "--out", str(target)])
+        run = _cli(["sweep", "--chapter-ball", *args, "--out", str(target)])
         if run.returncode != 0:
             target.write_text(f"exit {run.returncode}\n{run.stderr}")
         else:

@@ -79,6 +79,10 @@ APPROACH_HELP = {
     "angle_to_surface": "the ball's path as its angle to the surface [deg], in (0, 90] (90 - incidence), on a "
                         "level flat",
 }
+#: Help for --chapter-ball, shared by simulate, fit and sweep.
+CHAPTER_BALL_HELP = ("the chapter's ball where the options are silent: mass 0.145 kg, diameter 0.063 m and, for its "
+                     "linear laws, k 60000 N/m and b 10.5 N s/m (simulate takes them by default and says so; sweep "
+                     "and fit refuse a ball that is not described)")
 #: Help for the partner sphere, shared by simulate, fit and sweep.
 PARTNER_HELP = {
     "partner_mass": "strike a partner sphere at rest instead of the flat: its mass [kg], > 0 (with "
@@ -214,6 +218,7 @@ def _scene_options(parser: argparse.ArgumentParser) -> None:
     add("--ball", default=None, metavar="FILE",
         help="the ball, its contact and surface from a ball file (--save-ball, a study's ball.json); give only "
              "the approach, the surface (--mu, --gravity) and the solver's options")
+    add("--chapter-ball", action="store_true", help=CHAPTER_BALL_HELP)
     tangential_help = _tangential_help()
     add("--tangential", choices=tuple(TANGENTIALS), default=_D.tangential, help=tangential_help["tangential"])
     for name in TANGENTIAL_PARAMETERS:
@@ -321,6 +326,7 @@ def _parser() -> argparse.ArgumentParser:
     swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
                      help="with --cor: fit the stiffness k too, so that the contact time is S [s] (k and --modulus "
                           "are then not given)")
+    swp.add_argument("--chapter-ball", action="store_true", help=CHAPTER_BALL_HELP)
     swp.add_argument("--ball", default=None, metavar="FILE",
                      help="the ball, its contact and surface from a ball file (simulate --save-ball, a study's "
                           "ball.json); give only the approach's ranges, the surface's (--mu, --gravity) and options")
@@ -492,6 +498,7 @@ def _sweep(args) -> None:
     if problem:
         raise ValueError(problem)
     check_columns({"model": [args.model], "separation": [args.separation]})
+    _described(args, "sweep")
     settings, measurement = _settings(args), None
     if args.ball is not None:
         ball = _ball(args)
@@ -624,7 +631,7 @@ def _ball(args) -> Ball | None:
     """The ball of ``--ball FILE``, or the one ``--cor`` (``--cor-speed``, ``--contact-time``) calibrates from the
     other flags; None when neither is given.  With a ball file, a flag that describes the ball is refused."""
     if args.ball is not None:
-        describing = {"mass", "diameter", "inertia_factor", "model", "separation", "tangential", *TANGENTIAL_PARAMETERS,
+        describing = {"chapter_ball", "mass", "diameter", "inertia_factor", "model", "separation", "tangential", *TANGENTIAL_PARAMETERS,
                       *_law_flags(), *own_parameters(), *CALIBRATION, *MATERIAL_HELP}
         clash = sorted(name for name in args.given if name in describing)
         if clash:
@@ -687,7 +694,7 @@ def _simulate(args) -> None:
     for warning in caught:  # one line each, like the errors
         refused = " (--strict refuses it)" if warning.category is BeyondRadiusWarning else ""
         sys.stderr.write(f"sphereimpact: warning: {warning.message}{refused}\n")
-    chapter = [] if ball is not None else undescribed(args.given, args.model)
+    chapter = [] if ball is not None or args.chapter_ball else undescribed(args.given, args.model)
     if chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
                          f"({_defaults(scene, chapter)}); describe yours with {_as_options(chapter)}\n")
@@ -710,6 +717,16 @@ def _simulate(args) -> None:
         sys.stdout.write(_readable(outputs, units) + "\n")
 
 
+def _described(args, command: str) -> None:
+    """Refuse a ball that ``command``'s options do not describe (ValueError naming what is missing): only
+    simulate takes the chapter's ball unasked; --ball FILE and --chapter-ball describe it too."""
+    missing = [] if args.ball is not None or args.chapter_ball else undescribed(args.given, args.model)
+    if missing:
+        whose = "the ball you measured" if command == "fit" else "your ball"
+        raise ValueError(f"{command}: describe {whose}: give {_as_options(missing)} (or --ball FILE, or "
+                         "--chapter-ball for the chapter's); only simulate takes the chapter's ball unasked")
+
+
 def _as_options(names) -> str:
     """Parts of a description (:func:`~sphereimpact.impact.ball.undescribed`) as the options that give them."""
     return ", ".join(" or ".join("--" + word.replace("_", "-") for word in name.split(" or ")) for name in names)
@@ -729,11 +746,7 @@ def _fit(args) -> None:
     from .fit import fit, read_measured
     from .study.fitting import finite, write_fit
 
-    if args.ball is None:
-        missing = undescribed(args.given, args.model)
-        if missing:
-            raise ValueError(f"fit: describe the ball you measured: give {_as_options(missing)} (or --ball FILE); "
-                             "only simulate takes the chapter's ball by default")
+    _described(args, "fit")
 
     if not 0 <= args.bootstrap <= 10_000:
         raise ValueError(f"bootstrap must be an integer in [0, 10000]; got {args.bootstrap}")
