@@ -215,3 +215,61 @@ def test_sweep_refuses_a_ball_it_was_not_given(tmp_path, capsys):
     save_ball(Ball(Scene()), ball)
     assert run(["simulate", "--ball", str(ball), "--chapter-ball"]) == 2
     assert "--chapter-ball: the ball file" in capsys.readouterr().err
+
+
+def test_a_failed_ball_write_keeps_the_old_ball(tmp_path, monkeypatch):
+    """Before: save_ball wrote in place, so --save-ball --force that failed left a truncated ball."""
+    path = tmp_path / "ball.json"
+    save_ball(Ball(Scene(mass=0.05)), path)
+    old = path.read_text()
+
+    def full_disk(self, text, encoding=None):
+        Path.open(self, "w").write(text[:20])  # part of it, then the disk is full
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Path, "write_text", full_disk)
+    with pytest.raises(OSError):
+        save_ball(Ball(Scene(mass=0.07)), path)
+    monkeypatch.undo()
+    assert path.read_text() == old and [p.name for p in tmp_path.iterdir()] == ["ball.json"]
+
+
+def test_a_failed_fit_keeps_the_old_fit_folder_whole(tmp_path, monkeypatch):
+    """Before: fit --out DIR --force replaced ball.json and fit.json, then failed on the figure: a folder whose ball
+    came from one fit and whose residuals and figure from another."""
+    import sphereimpact.study.fitting as fitting
+    from sphereimpact.fit import FIT_FILES, fit, read_measured
+    from sphereimpact.impact.ball import Ball as BallFile
+
+    ball = BallFile(Scene(model="hertz", modulus=1.5e11, mass=2.618e-4, diameter=0.005, speed=3.9, mu=0.1))
+    result = fit(read_measured(ROOT / KHARAZ), ball, ["mu"])
+    folder = tmp_path / "fitted"
+    fitting.write_fit(result, folder)
+    before = {name: (folder / name).read_bytes() for name in FIT_FILES}
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("the figure failed")
+
+    monkeypatch.setattr(fitting, "fit_figure", broken)
+    with pytest.raises(RuntimeError):
+        fitting.write_fit(fit(read_measured(ROOT / KHARAZ), ball.__class__(ball.scene.with_(mu=0.3)), ["mu"]), folder)
+    assert {name: (folder / name).read_bytes() for name in FIT_FILES} == before
+    assert sorted(p.name for p in folder.iterdir()) == sorted(FIT_FILES)
+
+
+def test_a_failed_reference_write_keeps_the_old_file(tmp_path, monkeypatch):
+    import pandas as pd
+
+    from sphereimpact.study.chung_ooi import write_table
+
+    path = tmp_path / "test1.csv"
+    path.write_text("old\n")
+
+    def killed(self, where, **kwargs):
+        Path(where).write_text("par")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", killed)
+    with pytest.raises(KeyboardInterrupt):
+        write_table(pd.DataFrame({"mu": [0.1]}), path)
+    assert path.read_text() == "old\n" and [p.name for p in tmp_path.iterdir()] == ["test1.csv"]

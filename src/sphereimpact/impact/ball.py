@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import plugins as plugin_modules
+from ..files import write_text
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate
 from .inputs import as_number
@@ -243,7 +244,7 @@ def save_ball(ball: Ball, path) -> None:
                   "cor": ball.measurement.cor, "cor_speed": ball.measurement.speed,
                   "contact_time": ball.measurement.contact_time, "relation": ball.measurement.relation},
               "fitted": ball.fitted, **({"relations": ball.relations} if ball.relations else {})}
-    Path(path).write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+    write_text(path, json.dumps(record, indent=2) + "\n")  # whole or not at all: --force never truncates a ball
 
 
 def load_ball(path, plugins=()) -> Ball:

@@ -19,6 +19,7 @@ import pandas as pd
 import yaml
 
 from ..contact.laws import LAWS
+from ..files import replacing
 from ..contact.materials import dundurs_beta, effective_moduli
 from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
@@ -207,8 +208,9 @@ def header(units: dict) -> dict:
 def write_table(table: pd.DataFrame, path) -> None:
     """A reference table as CSV, each column headed ``name [unit]``, numbers to 12 significant digits."""
     units = INPUTS | OUTPUTS | CLOSED_FORMS
-    table.rename(columns=header({name: units[name] for name in table.columns if name in units})).to_csv(
-        path, index=False, float_format="%.12g", lineterminator="\n")
+    with replacing(path) as partial:  # a reference file is whole or the old one
+        table.rename(columns=header({name: units[name] for name in table.columns if name in units})).to_csv(
+            partial, index=False, float_format="%.12g", lineterminator="\n")
 
 
 def read_table(path) -> pd.DataFrame:

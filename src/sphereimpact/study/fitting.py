@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import json
 import math
+from contextlib import ExitStack
 from pathlib import Path
 
 from ..fit import FIT_FILES, fit, read_measured, with_values
 from ..figures.fit import fit_figure
+from ..files import replacing
 from ..impact.ball import Ball, save_ball
 from ..sweep.io import write_table
 
@@ -33,14 +35,16 @@ def write_fit(result, folder, extra: dict | None = None) -> None:
     keys of ``extra`` besides), the residual table and the figure of data against model."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    ball, summary, residuals, figure = (folder / name for name in FIT_FILES)
-    save_ball(result.ball, ball)
-    summary.write_text(json.dumps(finite(result.as_dict() | (extra or {})), indent=2) + "\n", encoding="utf-8")
-    write_table(result.residuals, str(residuals), units=RESIDUAL_UNITS)
     stats = result.statistics
     title = (", ".join(f"{n} = {p.value:.4g} ± {p.stderr:.2g}" for n, p in result.parameters.items())
              + f"\n{stats['values']} measured values, χ²/dof = {stats['reduced_chi2']:.3g}")
-    fit_figure(result.residuals, title, [str(figure)])
+    with ExitStack() as stack:  # all four written beside, then renamed together: one fit's files or the old ones
+        ball, summary, residuals, figure = (stack.enter_context(replacing(folder / name)) for name in FIT_FILES)
+        save_ball(result.ball, ball)
+        Path(summary).write_text(json.dumps(finite(result.as_dict() | (extra or {})), indent=2) + "\n",
+                                 encoding="utf-8")
+        write_table(result.residuals, residuals, units=RESIDUAL_UNITS)
+        fit_figure(result.residuals, title, [figure])
 
 
 def kharaz_fit(config: dict, data_csv: str, folder: str) -> None:

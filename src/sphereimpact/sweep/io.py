@@ -8,12 +8,13 @@ bit-identical to the one written; pyarrow's CSV writer does that about ten times
 from __future__ import annotations
 
 import json
-import os
 
 import pandas as pd
 import pyarrow as pa
 import pyarrow.csv as pa_csv
 import pyarrow.parquet as pq
+
+from ..files import replacing
 
 #: Output formats by file extension.
 EXTENSIONS = (".csv", ".parquet")
@@ -33,9 +34,7 @@ def write_table(table: pd.DataFrame, path: str, units: dict | None = None) -> No
     """
     if not path.endswith(EXTENSIONS):
         raise ValueError(f"out must end in {' or '.join(EXTENSIONS)}; got {path!r}")
-    folder, name = os.path.split(os.path.abspath(path))
-    partial = os.path.join(folder, f".{name}.{os.getpid()}.partial")
-    try:  # written beside it, then renamed over it: a run killed while writing leaves the old file whole
+    with replacing(path) as partial:  # written beside it, then renamed: a killed run leaves the old file whole
         if path.endswith(".csv"):
             if units:
                 table = table.rename(columns={c: f"{c} [{units[c]}]" for c in table.columns if units.get(c)})
@@ -45,8 +44,3 @@ def write_table(table: pd.DataFrame, path: str, units: dict | None = None) -> No
             if units:
                 arrow = arrow.replace_schema_metadata({**(arrow.schema.metadata or {}), b"units": json.dumps(units)})
             pq.write_table(arrow, partial)
-        os.replace(partial, path)
-    except BaseException:
-        if os.path.exists(partial):
-            os.unlink(partial)
-        raise
