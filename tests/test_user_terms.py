@@ -3,6 +3,7 @@ code, a failed write keeps the old file, and the answers that broke the model's 
 Each test failed before its fix."""
 
 import json
+import re
 import sys
 import textwrap
 
@@ -273,3 +274,37 @@ def test_a_failed_reference_write_keeps_the_old_file(tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         write_table(pd.DataFrame({"mu": [0.1]}), path)
     assert path.read_text() == "old\n" and [p.name for p in tmp_path.iterdir()] == ["test1.csv"]
+
+
+def test_a_partner_rows_ball_is_checked_as_given_whatever_the_other_rows_leave_empty():
+    """Before: with an empty cell elsewhere in the column, the pair sweep checked the reduced sphere's value: a ball
+    of -0.5 kg on a 0.3 kg partner reduces to +0.75 kg and was answered; an inertia factor 5 was named as 1.05."""
+    import numpy as np
+    import pandas as pd
+
+    from sphereimpact.sweep import sweep
+
+    pair = dict(angle=30.0, speed=3.0, partner_mass=0.3, partner_diameter=0.1)
+    for name, bad, shown in (("mass", -0.5, "got -0.5 (row 0)"), ("diameter", -0.063, "got -0.063 (row 0)"),
+                             ("inertia_factor", 5.0, "got 5.0 (row 0)")):
+        with pytest.raises(ValueError, match=rf"{name} must be .*{re.escape(shown)}"):
+            sweep(pd.DataFrame([pair | {name: bad}, pair | {name: np.nan}]), outputs=["cor"])
+
+
+def test_an_empty_gravity_cell_on_a_partner_row_is_the_default():
+    """Before: refused as if given ("gravity must be 0 with a partner sphere; got nan").  Each row is simulate's."""
+    import numpy as np
+    import pandas as pd
+
+    from sphereimpact import simulate
+    from sphereimpact.sweep import sweep
+
+    rows = [dict(angle=30.0, speed=3.0, gravity=9.80665, partner_mass=np.nan, partner_diameter=np.nan),
+            dict(angle=30.0, speed=3.0, gravity=np.nan, partner_mass=0.3, partner_diameter=0.1)]
+    table = sweep(pd.DataFrame(rows), outputs=["cor", "vc_t", "omega_f", "partner_vc_n"])
+    flat = simulate(Scene(angle=30.0, gravity=9.80665))
+    partner = simulate(Scene(angle=30.0, partner_mass=0.3, partner_diameter=0.1))
+    for row, out in ((0, flat), (1, partner)):
+        for key in ("cor", "vc_t", "omega_f"):
+            assert table[key].iloc[row] == pytest.approx(getattr(out, key), rel=1e-7, abs=1e-9), (row, key)
+    assert table["partner_vc_n"].iloc[1] == pytest.approx(partner.partner_vc_n, rel=1e-7)

@@ -50,7 +50,8 @@ def partner_columns(frame: pd.DataFrame) -> dict:
             raise ValueError(f"{stray_partner(name)} (row {int(np.flatnonzero(stray)[0])})")
         columns[name] = np.where(np.isnan(columns[name]), default, columns[name])
     if "gravity" in frame:
-        pulled = pair & (np.asarray(frame["gravity"], dtype=float) != 0)
+        gravity = np.asarray(frame["gravity"], dtype=float)
+        pulled = pair & ~np.isnan(gravity) & (gravity != 0)  # an empty cell is the default, 0
         if pulled.any():
             i = int(np.flatnonzero(pulled)[0])
             raise ValueError(f"{partner_gravity(frame['gravity'].iloc[i])} (row {i})")
@@ -61,11 +62,14 @@ def _body(frame: pd.DataFrame) -> dict:
     """The ball's mass, diameter, inertia factor and spin per row, checked (ValueError naming the parameter and
     the row), defaulted where not given."""
     n = len(frame)
-    check_columns({name: frame[name].to_numpy() for name in BODY if name in frame and frame[name].notna().all()})
+    given = {name: frame[name].to_numpy() for name in BODY if name in frame}
+    check_columns({name: values for name, values in given.items() if not pd.isna(values).any()})
     out = {}
     for name, default in BODY.items():
-        values = np.asarray(frame[name], dtype=float) if name in frame else np.full(n, default)
-        out[name] = np.where(np.isnan(values), default, values)
+        values = given[name] if name in given else np.full(n, default)
+        filled = np.where(pd.isna(values), default, values)  # an empty cell is the default; every given one checked
+        check_columns({name: filled})  # before the reduction, which can turn a negative mass positive
+        out[name] = np.asarray(filled, dtype=float)
     return out
 
 
