@@ -195,7 +195,8 @@ def test_own_study_surface_takes_a_partner():
     from sphereimpact.study.own import study_ball
 
     schema = yaml.safe_load((Path(__file__).parents[1] / "config/schema.yaml").read_text())
-    config = with_defaults(schema, {"study": "pairs", "ball": {"mass": 0.145, "diameter": 0.063}, "surface": {"mu": 0.2, "gravity": 0.0,
+    config = with_defaults(schema, {"study": "pairs", "ball": {"mass": 0.145, "diameter": 0.063},
+                                    "surface": {"mu": 0.2, "gravity": 0.0,
                                                       "partner": {"mass": 0.2, "diameter": 0.05, "spin": 3.0}},
                         "contact": {"model": "hertz", "modulus": 1e8}})
     scene = study_ball(config).scene

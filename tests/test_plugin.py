@@ -435,7 +435,8 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_command_line(s
     assert cli.returncode == 0, cli.stderr
     assert json.loads(cli.stdout)["omega_f"] == api.omega_f
     out = tmp_path / "share.csv"
-    swept = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--chapter-ball", "--plugin", "plugin_model", "--angle",
+    swept = subprocess.run([sys.executable, "-m", "sphereimpact", "sweep", "--chapter-ball", "--plugin", "plugin_model",
+                            "--angle",
                             "20:40:20", "--tangential", "share-slide", "--slide-share", "0.25:0.5:0.25",
                             "--trapezoid-steps", "16", "--out", str(out)], capture_output=True, text=True, env=env)
     assert swept.returncode == 0, swept.stderr

@@ -286,7 +286,8 @@ def test_every_registered_law_sweeps_from_the_command_line(tmp_path, capsys):
     assert set(flags) == set(LAWS)  # a new built-in law gets a row here
     for law, extra in flags.items():
         out = tmp_path / f"{law}.csv"
-        assert run(["sweep", "--chapter-ball", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra, "--out", str(out)]) == 0
+        assert run(["sweep", "--chapter-ball", "--angle", "0:60:30", "--speed", "1:5:4", "--model", law, *extra,
+                    "--out", str(out)]) == 0
         assert capsys.readouterr().err.startswith("sphereimpact sweep: 6 scenes in")
         table = pd.read_csv(out)
         for row in table.iloc[[1, 5]].to_dict("records"):

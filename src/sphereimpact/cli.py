@@ -631,7 +631,8 @@ def _ball(args) -> Ball | None:
     """The ball of ``--ball FILE``, or the one ``--cor`` (``--cor-speed``, ``--contact-time``) calibrates from the
     other flags; None when neither is given.  With a ball file, a flag that describes the ball is refused."""
     if args.ball is not None:
-        describing = {"chapter_ball", "mass", "diameter", "inertia_factor", "model", "separation", "tangential", *TANGENTIAL_PARAMETERS,
+        describing = {"chapter_ball", "mass", "diameter", "inertia_factor", "model", "separation", "tangential",
+                      *TANGENTIAL_PARAMETERS,
                       *_law_flags(), *own_parameters(), *CALIBRATION, *MATERIAL_HELP}
         clash = sorted(name for name in args.given if name in describing)
         if clash:
