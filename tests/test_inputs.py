@@ -264,9 +264,9 @@ def test_a_compression_beyond_the_radius_is_flagged_warned_or_refused(capsys):
     assert run(["simulate", "--speed", "1e4", "--json"]) == 0
     captured = capsys.readouterr()
     assert '"beyond_radius": true' in captured.out
-    lines = captured.err.splitlines()  # the warning, then the note that the ball is the chapter's
-    assert lines[0].startswith("sphereimpact: warning: maximum compression") and len(lines) == 2
-    assert lines[1].startswith("sphereimpact: note: the chapter's ball where the options are silent (mass 0.145 kg")
+    lines = sorted(captured.err.splitlines())  # the note that the ball is the chapter's, and the warning
+    assert lines[1].startswith("sphereimpact: warning: maximum compression") and len(lines) == 2
+    assert lines[0].startswith("sphereimpact: note: the chapter's ball where the options are silent (mass 0.145 kg")
 
 
 def test_a_scene_inside_the_model_is_not_flagged():
@@ -296,10 +296,12 @@ def test_extreme_inputs_are_answered_or_refused_in_bounded_time():
     import warnings
 
     from sphereimpact import ImpactError, Scene, simulate
+    from sphereimpact.errors import UnitWarning
     from sphereimpact.sweep.engine import sweep
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # a RuntimeWarning would fail the test
+        warnings.simplefilter("ignore", UnitWarning)  # 1e-300 kg is no ball: said (tests/test_user_terms.py), not checked here
         tiny = sweep({"angle": [60.0], "mass": [1e-300]})
         one = simulate(Scene(angle=60, mass=1e-300))
         assert tiny["cor"].iloc[0] == pytest.approx(one.cor, rel=1e-8)

@@ -78,7 +78,7 @@ def test_fit_refuses_a_ball_it_was_not_given(capsys):
     """Before: the Kharaz data were fitted as the chapter's 145 g, 63 mm ball at 3 m/s, exit 0, no word."""
     assert run(["fit", KHARAZ, "--free", "mu"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "give --mass, --diameter, --k or --contact-time, --b or --cor (or --ball FILE)" in err
+    assert err.count("\n") == 1 and "give --mass, --diameter, --k or --contact-time, --b or --cor (or --ball FILE" in err
     assert run(["fit", KHARAZ, "--free", "mu", *ALUMINA]) == 2  # the ball, but not the bounces' speed
     assert "has no speed column: give the bounces' approach speed along the path with --speed" in capsys.readouterr().err
     assert run(["fit", KHARAZ, "--free", "mu", *ALUMINA, "--speed", "3.9", "--json"]) == 0
@@ -308,3 +308,54 @@ def test_an_empty_gravity_cell_on_a_partner_row_is_the_default():
         for key in ("cor", "vc_t", "omega_f"):
             assert table[key].iloc[row] == pytest.approx(getattr(out, key), rel=1e-7, abs=1e-9), (row, key)
     assert table["partner_vc_n"].iloc[1] == pytest.approx(partner.partner_vc_n, rel=1e-7)
+
+
+def test_a_ball_no_ball_resembles_is_flagged_with_its_likely_unit_slip(capsys):
+    """Before: --mass 45.9 --diameter 42.7 (grams and millimetres typed as SI) ran silently, a 0.585 m compression."""
+    import pandas as pd
+
+    from sphereimpact.errors import UnitWarning
+    from sphereimpact.sweep import sweep
+
+    with pytest.warns(UnitWarning, match=r"density is 0.00113 kg/m\^3 .*: is the diameter in millimetres\?") as said:
+        Scene(mass=45.9, diameter=42.7)
+    with pytest.warns(UnitWarning, match=r"density is 1.13e\+06 kg/m\^3 .*: is the mass in grams\?"):
+        Scene(mass=45.9, diameter=0.0427)
+    with pytest.warns(UnitWarning, match="partner sphere's mean density"):
+        Scene(partner_mass=300.0, partner_diameter=0.1)
+    with pytest.warns(UnitWarning, match=r"\(2 of 3 rows, the first row 1\)") as swept:
+        sweep(pd.DataFrame({"mass": [0.0459, 45.9, 45.9], "diameter": [0.0427, 42.7, 42.7]}), outputs=["cor"])
+    assert len([w for w in swept if w.category is UnitWarning]) == 1  # once for the table, not once per row
+    assert run(["simulate", "--mass", "45.9", "--diameter", "42.7", "--model", "hertz", "--modulus", "1e8"]) == 0
+    assert f"sphereimpact: warning: {said[0].message}" in capsys.readouterr().err  # the API's words, one line
+
+
+def test_the_api_warns_where_the_command_line_does(tmp_path, capsys):
+    """Before: a calibrated law used at 0.25 x its measurement's speed, and a sweep whose tangential model made
+    energy, were said by the command line alone."""
+    import pandas as pd
+
+    from sphereimpact import Measurement, ball_scene, calibrated_ball
+    from sphereimpact.errors import EnergyGainWarning, ExtrapolationWarning
+    from sphereimpact.sweep import sweep
+    from sphereimpact.sweep.calibrate import calibrate_table
+
+    golf = calibrated_ball(Measurement(0.78, 40.0), model="hunt-crossley", modulus=1e8, mass=0.0459, diameter=0.0427)
+    with pytest.warns(ExtrapolationWarning, match="is 0.25 times the 40 m/s at which the COR 0.78 was measured") as said:
+        ball_scene(golf, speed=10.0)
+    path = tmp_path / "golf.json"
+    save_ball(golf, path)
+    assert run(["simulate", "--ball", str(path), "--speed", "10"]) == 0
+    assert f"sphereimpact: warning: {said[0].message}" in capsys.readouterr().err
+    table = pd.DataFrame({"speed": [10.0, 40.0], "model": "hunt-crossley", "modulus": 1e8, "mass": 0.0459,
+                          "diameter": 0.0427})
+    with pytest.warns(ExtrapolationWarning, match="1 of 2 scenes have a normal speed more than 2 times"):
+        calibrate_table(table, Measurement(0.78, 40.0))
+    energetic = {"incidence": [20.0, 40.0], "speed": 5.0, "model": "hertz", "modulus": 1e7,  # test_f14's scene
+                 "tangential": "mindlin-displacement", "kappa": 0.99, "mu": 0.65}
+    with pytest.warns(EnergyGainWarning, match=r"in 1 of 2 scenes the tangential model made energy") as gained:
+        sweep(energetic)
+    out = tmp_path / "e.csv"
+    args = ["sweep", "--chapter-ball", "--incidence", "20:40:20", "--speed", "5", "--model", "hertz", "--modulus", "1e7",
+            "--tangential", "mindlin-displacement", "--kappa", "0.99", "--mu", "0.65", "--out", str(out)]
+    assert run(args) == 0 and f"sphereimpact: warning: {gained[0].message}" in capsys.readouterr().err

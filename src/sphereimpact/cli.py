@@ -18,10 +18,10 @@ from dataclasses import replace
 import numpy as np
 
 from . import __version__, plugins
-from .impact.ball import (APPROACH, FAR, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball,
+from .impact.ball import (APPROACH, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball,
                           save_ball, undescribed)
 from .impact.calibrate import RELATIONS
-from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
+from .errors import BeyondRadiusWarning, ImpactError, SphereImpactWarning
 from .integrators import method_names
 from .contact.laws import LAWS, PARAMETER_NAMES
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
@@ -470,7 +470,7 @@ def _each_range(args, read) -> dict:
 def _sweep(args) -> None:
     import time
 
-    from .sweep.calibrate import calibrate_table
+    from .sweep.calibrate import calibrate_table, warn_if_extrapolating
     from .memory import check_size
     from .parsing import parse_range
     from .sweep.engine import FAST_OUTPUTS, grid, outputs_wanted, sweep
@@ -529,34 +529,15 @@ def _sweep(args) -> None:
         measurement = Measurement(args.cor, speeds[0] if args.cor_speed is None else args.cor_speed,
                                   args.contact_time, args.cor_relation)
         table = calibrate_table(table, measurement)
+    elif measurement is not None:  # a ball file's: calibrate_table says it for --cor
+        warn_if_extrapolating(table, measurement)
     tty = sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
                    progress=_Progress(start) if tty else None, settings=settings)
-    if "energy_gained" in result and result["energy_gained"].any():
-        gained = result["energy_gained"].to_numpy()
-        sys.stderr.write(f"sphereimpact: warning: in {int(gained.sum())} of {len(result)} scenes the tangential model "
-                         f"made energy (column energy_gained; work_t up to +{result['work_t'].to_numpy()[gained].max():.3g} J): "
-                         "an artefact of the model, not of the ball\n")
-    if measurement is not None:
-        speeds = _normal_speeds(result)
-        far = int(np.count_nonzero(measurement.extrapolates(speeds)))
-        if far:
-            factor = speeds / measurement.speed
-            sys.stderr.write(f"sphereimpact: warning: {far} of {len(result)} scenes have a normal speed more than "
-                             f"{FAR:g} times from the {measurement.speed:.3g} m/s at which the COR {measurement.cor:g} "
-                             f"was measured ({factor.min():.3g} to {factor.max():.3g} times): the calibrated law "
-                             "extrapolates there\n")
     write_table(result, args.out)
     seconds = time.perf_counter() - start
     sys.stderr.write(f"{chr(13) if tty else ''}sphereimpact sweep: {len(result)} scenes in {seconds:.3g} s -> "
                      f"{args.out}\n")
-
-
-def _normal_speeds(table) -> np.ndarray:
-    """Each row's normal approach speed v cos(incidence) [m/s]."""
-    from .sweep.engine import incidence
-
-    return table["speed"].to_numpy() * np.cos(np.radians(incidence(table)))
 
 
 def _outputs(text: str | None, fast) -> list | None:
@@ -667,9 +648,6 @@ def _simulate(args) -> None:
         surface = {name: getattr(args, name) for name in SURFACE if name in args.given}
         scene = ball_scene(ball, **{k: v for k, v in approach.items() if v is not None}).with_(**surface,
                                                                                                **_partner(args))
-        far = ball.far_from_measurement(scene)
-        if far:
-            sys.stderr.write(f"sphereimpact: warning: {far}\n")
         if args.ball is None and args.cor_speed is None and scene.incidence_deg != 0:
             sys.stderr.write(f"sphereimpact: note: --cor calibrated the law at this scene's normal speed "
                              f"{scene.v_normal:.6g} m/s; give --cor-speed, the normal speed of the measurement\n")
@@ -687,14 +665,8 @@ def _simulate(args) -> None:
         save_ball(replace(ball, options=SolverOptions(settings=options.settings)) if ball is not None
                   else Ball(scene, options=SolverOptions(settings=options.settings), plugins=tuple(args.plugin or ())),
                   args.save_ball)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", BeyondRadiusWarning)
-        warnings.simplefilter("always", EnergyGainWarning)
-        outcome = simulate(scene, options, body=args.body, strict=args.strict)
-        outputs = outcome.to_dict() | fitted
-    for warning in caught:  # one line each, like the errors
-        refused = " (--strict refuses it)" if warning.category is BeyondRadiusWarning else ""
-        sys.stderr.write(f"sphereimpact: warning: {warning.message}{refused}\n")
+    outcome = simulate(scene, options, body=args.body, strict=args.strict)
+    outputs = outcome.to_dict() | fitted
     chapter = [] if ball is not None or args.chapter_ball else undescribed(args.given, args.model)
     if chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
@@ -828,11 +800,14 @@ def run(argv=None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        plugins.load(_plugin_names(argv))  # before the parser, whose choices and flags the registries give
-        parser = _parser()
-        args = parser.parse_args(_values_as_one_token(argv, parser))
-        args.given = _given(argv, parser, args.command)
-        {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
+        with warnings.catch_warnings(record=True) as caught:  # what the API warns, said once the command succeeds
+            warnings.simplefilter("always", SphereImpactWarning)
+            plugins.load(_plugin_names(argv))  # before the parser, whose choices and flags the registries give
+            parser = _parser()
+            args = parser.parse_args(_values_as_one_token(argv, parser))
+            args.given = _given(argv, parser, args.command)
+            {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
+        _say(caught, getattr(args, "strict", False))
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
     except MemoryError:
@@ -842,6 +817,20 @@ def run(argv=None) -> int:
     except OSError as err:
         return _fail(1, f"{err.strerror or err}: {err.filename or ''}".rstrip(": "))
     return 0
+
+
+def _say(caught, strict: bool) -> None:
+    """The API's warnings as one line each on standard error (each said once), others as Python shows them."""
+    said = set()
+    for warning in caught:
+        if not issubclass(warning.category, SphereImpactWarning):
+            warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
+            continue
+        refused = " (--strict refuses it)" if warning.category is BeyondRadiusWarning and not strict else ""
+        line = f"sphereimpact: warning: {warning.message}{refused}\n"
+        if line not in said:
+            said.add(line)
+            sys.stderr.write(line)
 
 
 def _given(argv: list[str], parser: argparse.ArgumentParser, command: str) -> set:

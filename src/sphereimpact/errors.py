@@ -12,12 +12,25 @@ class ImpactError(RuntimeError):
     """The impact has no valid outcome (e.g. the ball never separates) or an event was missed."""
 
 
-class BeyondRadiusWarning(UserWarning):
+class SphereImpactWarning(UserWarning):
+    """What the reader of a result must know; every door says it (the command line prints each as one line,
+    ``sphereimpact: warning: ...``; the API warns with the subclass below)."""
+
+
+class BeyondRadiusWarning(SphereImpactWarning):
     """The maximum compression exceeds the ball's radius: the result lies outside the model."""
 
 
-class EnergyGainWarning(UserWarning):
+class EnergyGainWarning(SphereImpactWarning):
     """The tangential contact model did positive work on the ball: it made energy, outside passive physics."""
+
+
+class ExtrapolationWarning(SphereImpactWarning):
+    """A law calibrated to a measured COR is used at a normal speed far from the measurement's."""
+
+
+class UnitWarning(SphereImpactWarning):
+    """An input no real ball has, most likely a unit slip (grams typed for kilograms, millimetres for metres)."""
 
 
 class StepBudgetError(RuntimeError):

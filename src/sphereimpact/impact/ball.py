@@ -17,12 +17,14 @@ from __future__ import annotations
 import json
 import math
 import sys
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from .. import plugins as plugin_modules
+from ..errors import ExtrapolationWarning
 from ..files import write_text
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate
@@ -213,13 +215,18 @@ def calibrated_ball(measurement: Measurement, options: SolverOptions | None = No
 
 def ball_scene(ball: Ball, **approach) -> Scene:
     """The ball in the bounce ``approach`` (some of angle, speed, spin, incidence, angle_to_surface; the rest of
-    the approach as the Scene's defaults: a vertical drop on a level flat, no spin)."""
+    the approach as the Scene's defaults: a vertical drop on a level flat, no spin); an
+    :class:`~sphereimpact.errors.ExtrapolationWarning` where its normal speed is far from the measurement's."""
     unknown = [name for name in approach if name not in APPROACH]
     if unknown:
         raise ValueError(f"{unknown[0]} is not part of the approach ({', '.join(APPROACH)}); the ball file sets "
                          "the rest")
     defaults = {name: Scene.__dataclass_fields__[name].default for name in APPROACH}
-    return ball.scene.with_(**(defaults | approach))
+    scene = ball.scene.with_(**(defaults | approach))
+    far = ball.far_from_measurement(scene)
+    if far:
+        warnings.warn(far, ExtrapolationWarning, stacklevel=2)
+    return scene
 
 
 def ball_columns(ball: Ball, exclude=()) -> dict:

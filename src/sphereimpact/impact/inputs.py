@@ -84,6 +84,29 @@ def _check(name: str, value, allowed: str, ok) -> float:
 SQUARE_LIMIT = math.sqrt(np.finfo(float).max)
 
 
+#: Mean densities [kg/m^3] beyond which no ball lies (an inflatable beach ball is above the lower bound, osmium
+#: below the upper): outside them a mass or diameter was most likely typed in grams or millimetres.
+DENSITY_RANGE = (10.0, 25_000.0)
+
+
+def density_problem(mass, diameter, body: str = "ball") -> str | None:
+    """One line naming the likely unit slip when the mean density m / (pi D^3 / 6) (arrays, or numbers: the first
+    bad row named) lies outside :data:`DENSITY_RANGE`, else None.  A warning, not a refusal: a test body may be
+    odd on purpose."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        m, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, diameter)))
+        rho = m / (math.pi / 6.0 * d ** 3)
+        low, high = DENSITY_RANGE
+        bad = np.isfinite(rho) & ((rho < low) | (rho > high))
+    if not bad.any():
+        return None
+    i = int(np.flatnonzero(bad)[0])
+    slip = "is the mass in grams?" if rho[i] > high else "is the diameter in millimetres?"
+    rows = f" ({int(bad.sum())} of {m.size} rows, the first row {i})" if m.size > 1 else ""
+    return (f"the {body}'s mean density is {rho[i]:.3g} kg/m^3 (mass {m[i]:.4g} kg, diameter {d[i]:.4g} m), outside "
+            f"any ball's {low:g} to {high:g} kg/m^3{rows}: {slip}")
+
+
 def magnitude_problem(mass, speed, diameter) -> str | None:
     """Why squares of these (arrays, or numbers) would overflow double precision, naming the parameters and
     the first bad row, or None.  The outputs hold v^2, R^2, m v^2 and I = alpha m R^2 (energies, spin):

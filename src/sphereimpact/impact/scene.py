@@ -9,6 +9,7 @@ parameter and its allowed range, so a bad input can never reach the solver.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, fields, replace
 from functools import cached_property
@@ -16,13 +17,14 @@ from functools import cached_property
 import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..errors import UnitWarning
 from ..contact.declared import settings as declared_settings
 from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
                                   kappa_from_shear_modulus)
-from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, law_parameters,
-                     magnitude_problem, scale_problem)
+from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, density_problem,
+                     law_parameters, magnitude_problem, scale_problem)
 from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body, stray_partner
 
 #: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
@@ -167,6 +169,9 @@ class Scene:
         problem = magnitude_problem(self.mass, self.speed, self.diameter)
         if problem:
             raise ValueError(problem)
+        slip = density_problem(self.mass, self.diameter)
+        if slip:  # stack: __post_init__, __init__, the caller
+            warnings.warn(slip, UnitWarning, stacklevel=3)
         self._check_path()
         if self._check_partner():
             self._take_reduced()
@@ -203,6 +208,9 @@ class Scene:
             raise ValueError(missing_partner("partner_mass" if self.partner_mass is None else "partner_diameter"))
         if self.gravity != 0:
             raise ValueError(partner_gravity(self.gravity))
+        slip = density_problem(self.partner_mass, self.partner_diameter, "partner sphere")
+        if slip:
+            warnings.warn(slip, UnitWarning, stacklevel=4)
         return True
 
     def _take_reduced(self) -> None:
@@ -212,7 +220,10 @@ class Scene:
             self.mass, self.radius, self.inertia_factor, self.spin, self.partner_mass, 0.5 * self.partner_diameter,
             self.partner_inertia_factor, self.partner_spin)
         own = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in PARTNER_FIELDS}
-        reduced = Scene(**own | dict(mass=m_star, diameter=2.0 * r_star, inertia_factor=alpha_star, spin=spin_star))
+        with warnings.catch_warnings():  # the reduced sphere is no ball: its density is not checked (each body's is)
+            warnings.simplefilter("ignore", UnitWarning)
+            reduced = Scene(**own | dict(mass=m_star, diameter=2.0 * r_star, inertia_factor=alpha_star,
+                                         spin=spin_star))
         for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, "separation", "parameters"):
             object.__setattr__(self, name, getattr(reduced, name))
         self.__dict__["_reduced"] = reduced

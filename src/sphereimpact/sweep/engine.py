@@ -16,10 +16,13 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
+import warnings
+
 import numpy as np
 import pandas as pd
 
-from ..errors import ImpactError
+from ..errors import EnergyGainWarning, ImpactError, UnitWarning
+from ..impact.inputs import density_problem
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_energy, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..contact.tangential import TANGENTIALS
@@ -105,6 +108,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_table(scenes)
     n = len(frame)
+    slip = density_problem(frame["mass"].to_numpy(), frame["diameter"].to_numpy())
+    if slip:  # once for the table (a row's Scene does not repeat it)
+        warnings.warn(slip, UnitWarning, stacklevel=2)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key in NUMERIC_OUTPUTS}
     regime, path = _objects(n, "none"), _objects(n, "")
     options = single_options(target, settings)
@@ -152,6 +158,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                           frame["inertia_factor"].to_numpy() * mass * radius * radius, frame["spin"].to_numpy())
     if not todo.any():  # (rows no path took, with ``paths``, keep NaN)
         result["switches"] = result["switches"].astype(np.int64)
+    if gained.any():
+        warnings.warn(f"in {int(gained.sum())} of {n} scenes the tangential model made energy (column energy_gained; "
+                      f"work_t up to +{result['work_t'][gained].max():.3g} J): an artefact of the model, not of the "
+                      "ball", EnergyGainWarning, stacklevel=2)
     outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond,
                                      "energy_gained": gained})
     return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]],
