@@ -359,3 +359,26 @@ def test_the_api_warns_where_the_command_line_does(tmp_path, capsys):
     args = ["sweep", "--chapter-ball", "--incidence", "20:40:20", "--speed", "5", "--model", "hertz", "--modulus", "1e7",
             "--tangential", "mindlin-displacement", "--kappa", "0.99", "--mu", "0.65", "--out", str(out)]
     assert run(args) == 0 and f"sphereimpact: warning: {gained[0].message}" in capsys.readouterr().err
+
+
+CHATTER = [dict(angle=2.0, mu=mu, kappa=kappa, spin=spin) for mu, kappa, spin in
+           ((0.2, 0.3, -50.0), (0.2, 0.3, 50.0), (0.5, 0.8, 50.0), (0.2, 0.3, 0.0), (0.5, 0.8, 0.0))]
+
+
+@pytest.mark.parametrize("spec", CHATTER, ids=[f"mu{s['mu']}-kappa{s['kappa']}-spin{s['spin']}" for s in CHATTER])
+def test_a_linear_spring_at_a_force_that_closes_at_separation_does_not_chatter(spec):
+    """Before: eq. 4.2 (b 40) under the penetration criterion, whose force closes to zero at separation, found a stick
+    root 3 ulp before t_f and alternated zero-length phases there: simulate refused ('more than 54 stick-slip
+    switches') at one rtol and answered at the next, with a regime that flipped; the sweep refused the table."""
+    from sphereimpact import SolverOptions, simulate
+    from sphereimpact.sweep import sweep
+
+    scene = Scene(model="modified", b=40.0, separation="penetration", tangential="linear", **spec)
+    outs = [simulate(scene, SolverOptions(rtol=rtol, atol=rtol)) for rtol in (1e-8, 1e-10, 1e-12)]
+    assert len({(out.regime, out.switches) for out in outs}) == 1
+    for out in outs[:2]:
+        assert out.vc_t == pytest.approx(outs[2].vc_t, rel=1e-6) and out.omega_f == pytest.approx(outs[2].omega_f, rel=1e-6)
+    row = sweep({key: [value] for key, value in spec.items()} | dict(model="modified", b=40.0, separation="penetration",
+                                                                     tangential="linear"))
+    one = simulate(scene)
+    assert row["regime"][0] == one.regime and row["vc_t"][0] == pytest.approx(one.vc_t, rel=1e-7)
