@@ -6,7 +6,9 @@ import math
 import os
 
 #: Memory a sweep holds per scene [bytes]: its input and output tables and the engine's working arrays
-#: (measured: a 10^6-scene one-ball sweep peaks at about 505 MB).
+#: (measured: a 10^6-scene one-ball sweep peaks at about 505 MB).  Every path holds this per row and its working
+#: memory per chunk, never per row: the single path (gravity on a slope, compliant contacts) keeps one chunk's
+#: solved motions at a time (about 630 bytes a scene beyond a fixed 8 MB, measured on 3,000 and 10,000 scenes).
 BYTES_PER_SCENE = 600
 
 

@@ -23,7 +23,7 @@ from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIALS
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
 from ..impact.outcome import NUMERIC_OUTPUTS
-from ..impact.scene import SolverOptions
+from ..impact.scene import TANGENTIAL_ONLY, SolverOptions
 from ..impact.solve import reusing_normal_motions, simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
@@ -228,41 +228,47 @@ class SinglePath(SweepPath):
 
     @staticmethod
     def _solve(rows: np.ndarray, work: Work) -> dict:
-        """Every output of ``simulate`` on each row (:meth:`solve_scenes`)."""
-        return _columns(SinglePath.solve_scenes([scene_of(work.frame.iloc[i].to_dict()) for i in rows], rows, work,
-                                                "sweep row"))
+        """Every output of ``simulate`` on each row (:meth:`solve_rows`)."""
+        return SinglePath.solve_rows(work.frame, rows, work, "sweep row")
 
     @staticmethod
-    def solve_scenes(scenes: list, rows, work: Work, what: str) -> list:
-        """``simulate`` on each scene, :data:`SINGLES_CHUNK` per call (a batched tangential kernel runs them
-        together), progress after each; an ImpactError names the first failing one as ``what`` ``rows[i]``.
+    def solve_rows(frame: pd.DataFrame, rows, work: Work, what: str) -> dict:
+        """``simulate`` on each of ``frame``'s ``rows``, :data:`SINGLES_CHUNK` per call (a batched tangential kernel
+        runs them together), progress after each; their outputs as columns (:func:`_columns`), in ``rows``' order.
+        An ImpactError names the first failing one as ``what`` ``rows[i]``.
 
-        The scenes of one normal problem (a map over spin, friction or the tangential stiffness) are solved in one
-        call, sharing their normal motion (:func:`~sphereimpact.impact.solve.reusing_normal_motions`, which keeps
-        a call's motions only while it runs): each outcome is still the one ``simulate`` gives its scene alone."""
-        firsts: dict = {}
-        order = np.argsort([firsts.setdefault(scene.normal_problem, i) for i, scene in enumerate(scenes)],
-                           kind="stable")
-        scenes, rows = [scenes[i] for i in order], np.asarray(rows)[order]
-        outs = []
-        for start in range(0, len(scenes), SINGLES_CHUNK):
-            chunk = scenes[start:start + SINGLES_CHUNK]
+        Memory is bounded by the chunk, not the rows: a chunk's scenes and outcomes (a solved motion keeps its
+        dense output, tens of kB) are dropped once their outputs are read.  The rows of one normal problem (a map
+        over spin, friction or the tangential stiffness; grouped by the table's columns but those the normal motion
+        does not read) are solved in one call, sharing their normal motion
+        (:func:`~sphereimpact.impact.solve.reusing_normal_motions`, which keeps a call's motions only while it
+        runs): each outcome is still the one ``simulate`` gives its scene alone."""
+        rows = np.asarray(rows)
+        normal = [name for name in frame.columns if name not in TANGENTIAL_ONLY]
+        problem = frame.iloc[rows].groupby(normal, dropna=False, sort=False).ngroup().to_numpy()
+        order = np.argsort(problem, kind="stable")  # each problem's rows together, in order of first appearance
+        out: dict = {}
+        for start in range(0, len(rows), SINGLES_CHUNK):
+            chunk = rows[order[start:start + SINGLES_CHUNK]]
+            scenes = [scene_of(frame.iloc[i].to_dict()) for i in chunk]
             with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
                 try:
                     with reusing_normal_motions():
-                        outs += simulate_many(chunk, work.options)
+                        columns = _columns(simulate_many(scenes, work.options))
                 except ImpactError:
-                    for i, scene in zip(rows[start:start + SINGLES_CHUNK], chunk):  # the first that fails alone
+                    for i, scene in zip(chunk, scenes):  # the first that fails alone
                         try:
                             simulate(scene, work.options)
                         except ImpactError as err:
                             raise ImpactError(f"{what} {i}: {err}") from None
                     raise
+            for key, values in columns.items():
+                out.setdefault(key, np.empty(len(rows), dtype=values.dtype))[order[start:start + SINGLES_CHUNK]] = values
             if work.progress:
-                work.progress(start + len(chunk), len(scenes))
-        return [outs[k] for k in np.argsort(order)]
+                work.progress(start + len(chunk), len(rows))
+        return out
 
 
 # ---------------------------------------------------------------- scenes alike but for their scales
@@ -351,13 +357,12 @@ class SimilarPath(SweepPath):
         its outputs scaled to every member."""
         keys = list(members)
         firsts = np.array([first[key] for key in keys])
-        scenes = [scene_of(work.span_frame.iloc[i].to_dict()) for i in firsts]
-        solved = SinglePath.solve_scenes(scenes, firsts, work, "sweep span row")
+        solved = SinglePath.solve_rows(work.span_frame, firsts, work, "sweep span row")
         which = np.empty(rows.size, dtype=np.int64)  # each row's problem, as an index into keys
         position = np.searchsorted(rows, np.concatenate([members[key] for key in keys]))
         which[position] = np.repeat(np.arange(len(keys)), [len(members[key]) for key in keys])
         theirs, own = _scales(work.frame, work.numbers, rows), _scales(work.span_frame, work.span, firsts[which])
-        out = {name: values[which] for name, values in _columns(solved).items()}
+        out = {name: values[which] for name, values in solved.items()}
         for name, scale in SCALES.items():
             out[name] = out[name] * (theirs[scale] / own[scale])
         return out
