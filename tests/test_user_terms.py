@@ -416,3 +416,47 @@ def test_the_single_path_keeps_one_chunk_of_outcomes_at_a_time(monkeypatch):
     for i in (0, len(table) - 1):
         one = simulate(Scene(angle=float(table["angle"][i]), gravity=9.80665))
         assert out["vc_t"][i] == pytest.approx(one.vc_t, rel=1e-7) and out["omega_f"][i] == pytest.approx(one.omega_f, rel=1e-7)
+
+
+def alumina(mu: float) -> Ball:
+    """Kharaz's alumina ball on glass at 3.9 m/s (as the data file's header states it)."""
+    return Ball(Scene(model="hertz", modulus=1.5e11, mass=2.618e-4, diameter=0.005, speed=3.9, mu=mu))
+
+
+def test_a_fit_started_where_every_bounce_grips_finds_friction_from_another_start():
+    """Before: started at mu 1, where every Kharaz bounce grips and no output depends on mu, the fit stopped there and
+    called mu 'not identifiable ... the measured values do not depend on it'."""
+    from sphereimpact.fit import fit, read_measured
+
+    data = read_measured(ROOT / KHARAZ)
+    good, flat = fit(data, alumina(0.1), ["mu"]), fit(data, alumina(1.0), ["mu"])
+    assert flat.parameters["mu"].identifiable
+    assert flat.parameters["mu"].value == pytest.approx(good.parameters["mu"].value, rel=1e-6)
+    assert flat.statistics["start"] == {"mu": 1.0}
+    assert any(note.startswith("the data did not depend on every parameter at the start (mu = 1); also started from")
+               for note in flat.notes)
+    assert not any("started from" in note for note in good.notes)  # a good start costs nothing more
+
+
+def test_a_fit_says_what_its_chi2_means_and_flags_data_no_ball_gives(tmp_path, capsys):
+    """Before: COR 2 (no passive contact gives it) fitted to chi2/dof 1, printed as a quality; with sigmas from the
+    scatter chi2/dof is 1 by construction."""
+    import pandas as pd
+
+    from sphereimpact.fit import fit, read_measured
+
+    impossible = pd.DataFrame({"speed": 3.0, "incidence": 0.0, "cor": [2.0, 2.1, 1.9, 2.0]})
+    result = fit(read_measured(impossible), Ball(Scene(model="kelvin-voigt", k=6e4, b=10.5)), ["b"])
+    assert result.statistics["weights"] == "scatter"
+    assert any(note.startswith("4 of 4 measured cor lie outside what the model can give ([0, 1] for a passive contact")
+               for note in result.notes)
+    path = tmp_path / "impossible.csv"
+    impossible.to_csv(path, index=False)
+    assert run(["fit", str(path), "--free", "b", "--chapter-ball", "--model", "kelvin-voigt"]) == 0
+    out = capsys.readouterr().out
+    assert "near 1 by construction" in out and "no parameter reaches them" in out
+    stated = pd.DataFrame({"speed": 3.0, "incidence": 0.0, "cor": [0.9, 0.91, 0.89, 0.9], "sigma_cor": 0.001})
+    misfit = fit(read_measured(stated), Ball(Scene(model="linear-hunt-crossley", k=6e4, chi=0.05)), ["chi"])
+    assert misfit.statistics["weights"] == "given"
+    assert any(note.startswith("the model misses the data beyond their stated uncertainties: chi2/dof 66.7")
+               for note in misfit.notes)

@@ -759,7 +759,9 @@ def _fit(args) -> None:
         boot = "" if math.isnan(p.bootstrap_stderr) else f"  (bootstrap {p.bootstrap_stderr:.3g})"
         flag = "" if p.identifiable else "  not identifiable"
         lines.append(f"{name:<16}{p.value:>16.8g} ± {p.stderr:<12.3g}{boot}{flag}")
-    lines.append(f"chi2 / dof       {stats['reduced_chi2']:.4g} ({stats['dof']} degrees of freedom)")
+    construction = ("; near 1 by construction: every uncertainty was estimated from the residual scatter, so this is "
+                    "no test of the fit") if stats["weights"] == "scatter" else ""
+    lines.append(f"chi2 / dof       {stats['reduced_chi2']:.4g} ({stats['dof']} degrees of freedom{construction})")
     lines += [f"rms {q:<12}{v:>16.6g} {MEASURABLE[q]}" for q, v in stats["rms"].items()]
     lines += [f"note: {note}" for note in result.notes]
     sys.stdout.write("\n".join(lines) + "\n")

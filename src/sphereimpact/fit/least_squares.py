@@ -22,6 +22,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
+from scipy.stats import chi2 as chi2_distribution
+from scipy.stats import f as f_distribution
 
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball
@@ -269,6 +271,10 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
 
     result = solve(start, sigma)
     notes = []
+    if _covariance(result.jac)[1].any():  # a flat direction: the start may lie where the data do not depend on it
+        result, note = _restarted(result, solve, sigma, names, initial, bounds, logs, natural)
+        notes.append(note)
+    notes += _unreachable(values, ball)
     if not given.all():  # weights of the unmeasured sigmas from each quantity's residual scatter
         r = predictions(result.x) - measured_values
         sigma = np.where(given, sigma, _scatter(values, r, len(names), sigma))
@@ -298,9 +304,14 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     weighted = residuals["residual"].to_numpy() / sigma
     chi2, dof = float(weighted @ weighted), len(values) - len(names)
     rms = {q: float(np.sqrt(np.mean(part ** 2))) for q, part in residuals.groupby("quantity")["residual"]}
+    weights = "given" if given.all() else "scatter" if not given.any() else "mixed"
     statistics = {"values": len(values), "bounces": len(measured.bounces), "free": len(names), "dof": dof,
-                  "chi2": chi2, "reduced_chi2": chi2 / dof, "rms": rms, "evaluations": int(evaluations),
-                  "status": result.message}
+                  "chi2": chi2, "reduced_chi2": chi2 / dof, "weights": weights, "rms": rms,
+                  "evaluations": int(evaluations), "status": result.message,
+                  "start": {n: float(v) for n, v in zip(names, initial)}}
+    if weights == "given" and dof > 0 and chi2_distribution.sf(chi2, dof) < MISFIT_P:
+        notes.append(f"the model misses the data beyond their stated uncertainties: chi2/dof {chi2 / dof:.3g} "
+                     f"({dof} degrees of freedom, p = {chi2_distribution.sf(chi2, dof):.2g})")
     parameters = {n: Parameter(float(v), float(e), float(b), bool(ok))
                   for n, v, e, b, ok in zip(names, x, stderr, boot, identifiable)}
     return FitResult(fitted, parameters, pd.DataFrame(correlation, index=names, columns=names), residuals,
@@ -310,6 +321,80 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
 #: Directions of the weighted Jacobian whose singular value is below this fraction of the largest are taken as
 #: unconstrained: the finite-difference Jacobian is accurate to about DIFF_STEP, far above round-off.
 SINGULAR = 1e-7
+
+
+#: Starts a fit tries besides the ball's own when the data do not depend on a parameter there: each free
+#: parameter's start times these factors (a parameter fitted in its logarithm, or friction), or these fractions of
+#: its bounded range (the COR, the inertia factor, the exponent).
+RESTART_FACTORS = (0.1, 0.3, 3.0, 10.0)
+RESTART_FRACTIONS = (0.1, 0.3, 0.7, 0.9)
+#: A restart replaces the fit when its gain in cost is this unlikely by chance (:func:`_significant`).
+RESTART_P = 0.01
+
+
+def _significant(cost: float, better: float, n: int, p: int) -> bool:
+    """Whether lowering the weighted cost from ``cost`` to ``better`` (n values, p parameters) is more than noise:
+    an F test of the gain on one degree of freedom against the better fit's residual variance, at
+    :data:`RESTART_P`."""
+    if not better < cost:
+        return False
+    if n <= p or better <= 0:
+        return True
+    statistic = (cost - better) / (better / (n - p))
+    return bool(f_distribution.sf(statistic, 1, n - p) < RESTART_P)
+#: Stated uncertainties that the residuals exceed with a chi-square probability below this are a misfit, said.
+MISFIT_P = 1e-3
+
+
+def _restarted(result, solve, sigma, names, initial, bounds, logs, natural):
+    """The best of ``result`` and fits from the alternative starts (:data:`RESTART_FACTORS`,
+    :data:`RESTART_FRACTIONS`), for a first solution with a flat direction; and a note naming the starts and the one
+    kept.  A restart replaces the fit only where it lowers the cost significantly (:func:`_significant`): one that
+    merely fits the noise in another regime does not, and a parameter the data truly do not constrain stays
+    reported as such."""
+    best, kept, tried = result, initial, []
+    for k in range(len(RESTART_FACTORS)):
+        start = np.array([v * RESTART_FACTORS[k] if lo == 0 or log else lo + RESTART_FRACTIONS[k] * (hi - lo)
+                          if math.isfinite(hi) else v * RESTART_FACTORS[k]
+                          for v, log, lo, hi in zip(initial, logs, *_natural_bounds(bounds, logs))])
+        theta = _inside(np.where(logs, np.log(np.where(logs, start, 1.0)), start), *bounds)
+        trial = solve(theta, sigma)
+        tried.append(natural(theta))
+        if _significant(best.cost, trial.cost, len(trial.fun), len(names)):
+            best, kept = trial, natural(theta)
+    shown = "; ".join(", ".join(f"{n} = {v:.3g}" for n, v in zip(names, point)) for point in tried)
+    first = ", ".join(f"{n} = {v:.3g}" for n, v in zip(names, initial))
+    chosen = ", ".join(f"{n} = {v:.3g}" for n, v in zip(names, kept))
+    return best, (f"the data did not depend on every parameter at the start ({first}); also started from {shown}; "
+                  f"kept the fit from {chosen}")
+
+
+def _natural_bounds(bounds, logs):
+    """The fitted variables' bounds in the parameters' own units."""
+    return tuple(np.where(logs, np.exp(b), b) for b in bounds)
+
+
+def _unreachable(values: pd.DataFrame, ball: Ball) -> list[str]:
+    """A note for each measured quantity with values outside what the ball's model can give (:data:`REACHABLE`):
+    no parameter reaches them, and the fit only spreads its misfit."""
+    notes = []
+    for name, (low, high, needs) in REACHABLE.items():
+        if needs == "passive" and not ball.scene.law.passive:
+            continue
+        mine = values[values["quantity"] == name]
+        outside = mine[(mine["value"] < low) | (mine["value"] > high)]
+        if len(outside):
+            notes.append(f"{len(outside)} of {len(mine)} measured {name} lie outside what the model can give "
+                         f"([{low:g}, {high:g}]{' for a passive contact' if needs == 'passive' else ''}; e.g. "
+                         f"{outside['value'].iloc[0]:g} at bounce {int(outside['bounce'].iloc[0])}): no parameter "
+                         "reaches them")
+    return notes
+
+
+#: Measured quantities with bounds any ball of the model respects -> (low, high, what it needs): the COR of a
+#: passive contact (``ContactLaw.passive``), magnitudes and durations that are never negative.
+REACHABLE = {"cor": (0.0, 1.0, "passive"), "abs_omega_f": (0.0, math.inf, ""), "t_f": (0.0, math.inf, ""),
+             "t_m": (0.0, math.inf, ""), "delta_m": (0.0, math.inf, ""), "force_max": (0.0, math.inf, "")}
 
 
 def _uncertainties(jac: np.ndarray, x: np.ndarray, logs: np.ndarray):
