@@ -184,6 +184,15 @@ CONFIGS = [
     ({"study": "fitted", "bounces": {"drop": {"speed": 5.0}}, "contact": {"modulus": 1e8}, "ball": BALL,
       "fit": {"data": "data/kharaz2001.csv", "free": ["spin"]}},
      "config key fit.free: free: 'spin' cannot be fitted; the parameters a fit may free are mu, kappa"),
+    # issue 42: what the jobs would refuse, refused by the check (each passed it before)
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL,
+      "contact": {"model": "hunt-crossley", "modulus": 1e8, "cor": 1.0, "cor_speed": 5.0}},
+     "cor must be a finite number in (0, 1) for the damped model 'hunt-crossley'"),
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL, "contact": {"modulus": 1e8},
+      "ranges": {"map_spin": 1e300}},
+     "config key ranges (map_speeds, map_angles, map_spin): spin: the rotational energy I omega^2 overflows"),
+    ({"study": "mine", "bounces": {"b" * 300: {"speed": 5.0}}, "ball": BALL, "contact": {"modulus": 1e8}},
+     "config key bounces: 'bbbbbbbb"),
     # issue 42: an own study describes its ball; none is assumed
     ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "contact": {"modulus": 1e8}},
      "config key ball (or contact): describe your ball: give ball.mass, ball.diameter (or a ball_file)"),

@@ -493,7 +493,7 @@ def _sweep(args) -> None:
     for name, values in ranges.items():
         if name not in laws:
             check_columns({name: values})
-    largest = {name: float(np.max(ranges[name])) for name in ("mass", "speed", "diameter")}
+    largest = {name: float(np.max(np.abs(ranges[name]))) for name in ("mass", "speed", "diameter", "spin")}
     problem = magnitude_problem(**largest)  # the squares and products overflow first at the largest values
     if problem:
         raise ValueError(problem)

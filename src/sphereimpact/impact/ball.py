@@ -27,7 +27,7 @@ from .. import plugins as plugin_modules
 from ..errors import ExtrapolationWarning
 from ..files import write_text
 from ..contact.laws import LAWS
-from .calibrate import RELATIONS, Calibration, calibrate
+from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
 from .inputs import as_number
 from .scene import Scene, SolverOptions
 
@@ -181,9 +181,11 @@ def uncalibrated(measurement: Measurement, **fields) -> Scene:
     Raises
     ------
     ValueError
-        The damping or k given besides the measurement that sets them, or a field Scene refuses.
+        A measurement the law cannot take (:func:`~.calibrate.check_measurement`), the damping or k given besides
+        the measurement that sets them, or a field Scene refuses.
     """
     law = LAWS.law(fields.get("model", Scene.__dataclass_fields__["model"].default))
+    check_measurement(law, measurement.cor, measurement.relation, measurement.contact_time)
     if law.damping is not None and fields.get(law.damping) is not None:
         raise ValueError(f"give {law.damping} or cor, not both (cor sets {law.damping})")
     for name in ("k", "modulus"):

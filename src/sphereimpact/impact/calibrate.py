@@ -83,6 +83,35 @@ def contact_time(scene: Scene, options: SolverOptions = TIGHT) -> float:
     return IntegratedNormal(scene.reduced, options).t_f
 
 
+def check_measurement(law, cor, relation: str = "exact", contact_time=None) -> float:
+    """The measured ``cor`` as a number, once checked against ``law`` without solving anything (what
+    :func:`calibrate` and a study's config check refuse alike).
+
+    Raises
+    ------
+    ValueError
+        A relation that is not known or not the law's, a COR outside (0, 1) for a damped law, or an elastic law
+        given anything but COR 1 with a contact time.
+    """
+    cor = as_number("cor", cor)
+    if relation not in RELATIONS:
+        raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {relation!r}")
+    if law.damping is None:
+        if contact_time is not None and cor == 1.0:
+            return cor
+        raise ValueError(f"cor: model {law.name!r} has no damping parameter to calibrate (it is elastic, "
+                         "COR 1); choose a damped law" + (", or give cor 1 with contact_time" if contact_time
+                                                          is None else ""))
+    if not (math.isfinite(cor) and 0.0 < cor < 1.0):
+        raise ValueError(f"cor must be a finite number in (0, 1) for the damped model {law.name!r} "
+                         f"(1 is the elastic limit, damping 0); got {cor!r}")
+    if relation != "exact" and relation not in law.cor_relations:
+        available = ", ".join(["exact", *law.cor_relations])
+        raise ValueError(f"cor_relation {relation!r} is not available for model {law.name!r} "
+                         f"(its relations: {available})")
+    return cor
+
+
 def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> Calibration:
     """Set ``scene``'s damping so that its normal COR is ``cor`` (and, with ``contact_time``, its k too).
 
@@ -108,23 +137,9 @@ def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> 
         A COR outside (0, 1), a law without damping, a relation the law lacks, or a COR or contact time
         that the law cannot reach at this speed, naming the parameter.
     """
-    law = scene.law
-    cor = as_number("cor", cor)
-    if relation not in RELATIONS:
-        raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {relation!r}")
-    if law.damping is None:
-        if contact_time is not None and cor == 1.0:
-            return _fit_stiffness(scene, None, relation, as_number("contact_time", contact_time))
-        raise ValueError(f"cor: model {scene.model!r} has no damping parameter to calibrate (it is elastic, "
-                         "COR 1); choose a damped law" + (", or give cor 1 with contact_time" if contact_time
-                                                          is None else ""))
-    if not (math.isfinite(cor) and 0.0 < cor < 1.0):
-        raise ValueError(f"cor must be a finite number in (0, 1) for the damped model {scene.model!r} "
-                         f"(1 is the elastic limit, damping 0); got {cor!r}")
-    if relation != "exact" and relation not in law.cor_relations:
-        available = ", ".join(["exact", *law.cor_relations])
-        raise ValueError(f"cor_relation {relation!r} is not available for model {scene.model!r} "
-                         f"(its relations: {available})")
+    cor = check_measurement(scene.law, cor, relation, contact_time)
+    if scene.law.damping is None:
+        return _fit_stiffness(scene, None, relation, as_number("contact_time", contact_time))
     if contact_time is not None:
         return _fit_stiffness(scene, cor, relation, as_number("contact_time", contact_time))
     return _calibrate_damping(scene, cor, relation)

@@ -107,18 +107,22 @@ def density_problem(mass, diameter, body: str = "ball") -> str | None:
             f"any ball's {low:g} to {high:g} kg/m^3{rows}: {slip}")
 
 
-def magnitude_problem(mass, speed, diameter) -> str | None:
+def magnitude_problem(mass, speed, diameter, spin=0.0) -> str | None:
     """Why squares of these (arrays, or numbers) would overflow double precision, naming the parameters and
-    the first bad row, or None.  The outputs hold v^2, R^2, m v^2 and I = alpha m R^2 (energies, spin):
-    beyond double precision they are inf or NaN, never a result."""
+    the first bad row, or None.  The outputs hold v^2, R^2, m v^2, I = alpha m R^2 and I omega^2 (energies,
+    spin): beyond double precision they are inf or NaN, never a result."""
     with np.errstate(over="ignore", invalid="ignore"):
-        m, v, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, speed, diameter)))
+        m, v, d, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float))
+                                           for x in (mass, speed, diameter, spin)))
+        surface = w * 0.5 * d  # the spin's surface speed omega R [m/s]
         checks = ((v * v, f"speed must be below {SQUARE_LIMIT:.4g} m/s (its square overflows double precision)", v),
                   (d * d, f"diameter must be below {SQUARE_LIMIT:.4g} m (its square overflows double precision)", d),
                   (m * v * v, "mass and speed: the kinetic energy m v^2 overflows double precision (lower either)",
                    None),
                   (m * (0.5 * d) * (0.5 * d), "mass and diameter: the moment of inertia alpha m R^2 overflows double "
-                                              "precision (lower either)", None))
+                                              "precision (lower either)", None),
+                  (m * surface * surface, "spin: the rotational energy I omega^2 overflows double precision (lower "
+                                          "it)", w))
         for square, message, value in checks:
             bad = ~np.isfinite(square)
             if bad.any():
@@ -288,7 +292,7 @@ def check_columns(columns: dict) -> dict:
                      *own_parameters()]
             raise ValueError(f"unknown scene parameter {name!r}; expected one of {', '.join(known)}")
     if all(name in columns for name in ("mass", "speed", "diameter")):
-        problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"])
+        problem = magnitude_problem(columns["mass"], columns["speed"], columns["diameter"], columns.get("spin", 0.0))
         if problem:
             raise ValueError(problem)
     if "model" not in columns or "diameter" not in columns:

@@ -166,7 +166,7 @@ class Scene:
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
             object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
-        problem = magnitude_problem(self.mass, self.speed, self.diameter)
+        problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
         if problem:
             raise ValueError(problem)
         slip = density_problem(self.mass, self.diameter)

@@ -152,7 +152,34 @@ def own_errors(config: dict) -> list[str]:
             bounce_scene(ball, spec)
         except ValueError as err:
             errors.append(f"config key bounces.{name}: {err}")
+    return errors + _range_errors(config["ranges"], ball)
+
+
+def _range_errors(ranges: dict, ball: Scene) -> list[str]:
+    """The speed curve's and the maps' scenes at the corners of their grids (where a scale or a square overflows
+    first), as Scene checks them: what the jobs would refuse, refused before any job runs."""
+    try:
+        grids = {"speeds": [{"speed": v, "angle_to_surface": 90.0} for v in _ends(ranges["speeds"])],
+                 "map_speeds, map_angles, map_spin": [{"speed": v, "angle_to_surface": a, "spin": ranges["map_spin"]}
+                                                       for v in _ends(ranges["map_speeds"])
+                                                       for a in _ends(ranges["map_angles"])]}
+    except ValueError:  # a range that does not parse: said above, with its key
+        return []
+    errors = []
+    for keys, specs in grids.items():
+        for spec in specs:
+            try:
+                bounce_scene(ball, spec)
+            except ValueError as err:
+                errors.append(f"config key ranges ({keys}): {err}")
+                break
     return errors
+
+
+def _ends(text: str) -> tuple:
+    """A range's first and last value."""
+    values = parse_range(text)
+    return float(values.min()), float(values.max())
 
 
 def outputs(config: dict) -> dict:
