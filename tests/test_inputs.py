@@ -414,7 +414,7 @@ def test_f1_a_cor_near_zero_is_calibrated(tmp_path, capsys):
     """A COR of 1e-6 drives Hunt-Crossley's chi to 3e5 s/m; the landing on t_f once stepped out of its step."""
     law = ["--model", "hunt-crossley", "--modulus", "1e7", "--cor", "1e-6"]
     assert _json(capsys, ["simulate", *law, "--json"])["cor"] == pytest.approx(1e-6, rel=1e-6)
-    table = _swept(tmp_path, [*law, "--angle", "0:10:10"])  # calibrated at 3 m/s, its speed's normal impact
+    table = _swept(tmp_path, [*law, "--angle", "0:10:10", "--cor-speed", "3"])  # calibrated at 3 m/s, a normal impact
     assert table["cor"].iloc[0] == pytest.approx(1e-6, rel=1e-6)
     tilted = Scene(model="hunt-crossley", modulus=1e7, chi=table["chi"].iloc[1], angle=10.0)
     assert table["cor"].iloc[1] == pytest.approx(simulate(tilted).cor, rel=1e-6)  # ~1 / v_n: 1.5 % higher
@@ -423,7 +423,7 @@ def test_f1_a_cor_near_zero_is_calibrated(tmp_path, capsys):
 def test_f2_an_exponent_far_from_hertz_is_calibrated(tmp_path, capsys):
     law = ["--model", "hunt-crossley", "--modulus", "1e7", "--exponent", "2.8", "--cor", "0.8"]
     assert _json(capsys, ["simulate", *law, "--json"])["cor"] == pytest.approx(0.8, rel=1e-8)
-    assert _swept(tmp_path, [*law, "--angle", "0:10:10"])["cor"].iloc[0] == pytest.approx(0.8, rel=1e-8)
+    assert _swept(tmp_path, [*law, "--angle", "0:10:10", "--cor-speed", "3"])["cor"].iloc[0] == pytest.approx(0.8, rel=1e-8)
 
 
 @pytest.mark.parametrize("law", [["--exponent", "2.7"], ["--exponent", "1.92", "--chi", "0.49"], ["--exponent", "2.36"]])

@@ -460,3 +460,51 @@ def test_a_fit_says_what_its_chi2_means_and_flags_data_no_ball_gives(tmp_path, c
     assert misfit.statistics["weights"] == "given"
     assert any(note.startswith("the model misses the data beyond their stated uncertainties: chi2/dof 66.7")
                for note in misfit.notes)
+
+
+PAIR = ["--model", "hunt-crossley", "--modulus", "1e8", "--mass", "0.05", "--diameter", "0.04",
+        "--partner-mass", "0.1", "--partner-diameter", "0.05"]
+
+
+def test_sweep_calibrates_a_pair_as_simulate_does(tmp_path, capsys):
+    """Before: sweep --cor with a partner was refused ('partner_mass is not a parameter of model ...') where simulate
+    answered; and the sweep's default cor_speed was the path's speed where simulate's is the normal one."""
+    import json
+
+    import pandas as pd
+
+    out = tmp_path / "pair.csv"
+    assert run(["sweep", "--speed", "3", "--angle", "30", *PAIR, "--cor", "0.8", "--out", str(out)]) == 0
+    row = pd.read_csv(out).iloc[0]
+    assert run(["simulate", "--speed", "3", "--angle", "30", *PAIR, "--cor", "0.8", "--json"]) == 0
+    one = json.loads(capsys.readouterr().out)
+    for key in ("vc_t", "vc_n", "omega_f", "partner_vc_n", "cor"):
+        assert row[key] == pytest.approx(one[key], rel=1e-7), key
+    assert row["cor"] == pytest.approx(0.8, rel=1e-7)
+    assert run(["sweep", "--speed", "3", "--angle", "0:30:30", *PAIR, "--cor", "0.8", "--out", str(out), "--force"]) == 2
+    assert "cor_speed is required when the sweep's scenes have several normal speeds" in capsys.readouterr().err
+
+
+def test_a_fit_takes_what_was_measured_of_the_partner(tmp_path, capsys):
+    """Before: a measured partner_vc_t was refused ('neither an approach ... nor a measurable quantity')."""
+    import pandas as pd
+
+    from sphereimpact import simulate
+    from sphereimpact.fit import fit, read_measured
+
+    pair = dict(model="hunt-crossley", modulus=1e8, chi=0.1, mass=0.05, diameter=0.04, partner_mass=0.1,
+                partner_diameter=0.05)
+    rows = []
+    for incidence in (20.0, 40.0, 60.0):
+        out = simulate(Scene(incidence=incidence, mu=0.15, **pair))
+        rows.append({"speed": 3.0, "incidence": incidence, "partner_vc_t": out.partner_vc_t,
+                     "partner_omega_f": out.partner_omega_f})
+    path = tmp_path / "pair.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    result = fit(read_measured(path), Ball(Scene(mu=0.4, **pair)), ["mu"])
+    assert result.parameters["mu"].value == pytest.approx(0.15, rel=1e-6)
+    flat = {key: value for key, value in pair.items() if not key.startswith("partner")}
+    with pytest.raises(ValueError, match="partner_omega_f is the partner sphere's, and the ball strikes the flat"):
+        fit(read_measured(path), Ball(Scene(mu=0.4, **flat)), ["mu"])
+    assert run(["fit", str(path), "--free", "mu", "--mu", "0.4", "--chi", "0.1", *PAIR, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["parameters"]["mu"]["value"] == pytest.approx(0.15, rel=1e-6)

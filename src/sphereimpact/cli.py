@@ -320,7 +320,7 @@ def _parser() -> argparse.ArgumentParser:
                           "calibrated once per distinct ball, then swept")
     swp.add_argument("--cor-speed", type=_number, default=None, metavar="M_S",
                      help="normal impact speed at which --cor (and --contact-time) was measured [m/s] (default: the "
-                          "sweep's speed, when it has one)")
+                          "scenes' normal speed, as simulate's, when they share one)")
     swp.add_argument("--cor-relation", default="exact", metavar="|".join(RELATIONS),
                      help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
@@ -470,7 +470,7 @@ def _each_range(args, read) -> dict:
 def _sweep(args) -> None:
     import time
 
-    from .sweep.calibrate import calibrate_table, warn_if_extrapolating
+    from .sweep.calibrate import calibrate_table, normal_speeds, warn_if_extrapolating
     from .memory import check_size
     from .parsing import parse_range
     from .sweep.engine import FAST_OUTPUTS, grid, outputs_wanted, sweep
@@ -522,10 +522,10 @@ def _sweep(args) -> None:
         for name in ("k", "modulus"):
             if args.contact_time is not None and ranges.get(name) is not None:
                 raise ValueError(f"give --{name} or --contact-time, not both (--contact-time fits k)")
-        speeds = np.unique(table["speed"])
+        speeds = np.unique(normal_speeds(table))  # as simulate: the scenes' normal speed, if they share one
         if args.cor_speed is None and speeds.size > 1:
-            raise ValueError("cor_speed is required when the sweep has several speeds: the speed [m/s] of the normal "
-                             "impact whose COR was measured")
+            raise ValueError("cor_speed is required when the sweep's scenes have several normal speeds: the speed "
+                             "[m/s] of the normal impact whose COR was measured")
         measurement = Measurement(args.cor, speeds[0] if args.cor_speed is None else args.cor_speed,
                                   args.contact_time, args.cor_relation)
         table = calibrate_table(table, measurement)

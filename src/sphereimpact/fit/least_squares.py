@@ -27,6 +27,7 @@ from scipy.stats import f as f_distribution
 
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball
+from ..impact.pair import PARTNER_UNITS
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
@@ -217,6 +218,10 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     if len(values) <= len(names):
         raise ValueError(f"free: {len(names)} free parameters need more than {len(names)} measured values; "
                          f"the data give {len(values)}")
+    partner = sorted(set(values["quantity"]) & set(PARTNER_UNITS))
+    if partner and not ball.scene.has_partner:
+        raise ValueError(f"measured: {partner[0]} is the partner sphere's, and the ball strikes the flat: describe the "
+                         "partner (--partner-mass, --partner-diameter; a study's surface.partner)")
     table = _bounces(measured.bounces, ball)
     theta_incidence = incidence(table)
     e_t_rows = values["quantity"] == "e_t"

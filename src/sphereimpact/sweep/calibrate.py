@@ -24,14 +24,20 @@ APPROACH_DEFAULTS = {"speed": Scene.__dataclass_fields__["speed"].default, "angl
                      "angle_to_surface": np.nan}
 
 
+def normal_speeds(table) -> np.ndarray:
+    """Each scene's normal approach speed v cos(theta) [m/s], the approach columns a table leaves out taking the
+    Scene's defaults (NaN where a cell is not a number: the sweep refuses it, with its row)."""
+    frame = pd.DataFrame(table)
+    approach = pd.DataFrame({name: pd.to_numeric(frame[name], errors="coerce") if name in frame else default
+                             for name, default in APPROACH_DEFAULTS.items()}, index=frame.index)
+    return approach_speeds(approach)[0]
+
+
 def warn_if_extrapolating(table, measurement: Measurement) -> None:
     """An :class:`~sphereimpact.errors.ExtrapolationWarning` when some of ``table``'s scenes have a normal speed
     more than :data:`~sphereimpact.impact.ball.FAR` times from the measurement's, either way: there the law
     calibrated to it extrapolates."""
-    frame = pd.DataFrame(table)
-    approach = pd.DataFrame({name: pd.to_numeric(frame[name], errors="coerce") if name in frame else default
-                             for name, default in APPROACH_DEFAULTS.items()}, index=frame.index)
-    speeds = approach_speeds(approach)[0]
+    speeds = normal_speeds(table)
     far = int(np.count_nonzero(measurement.extrapolates(speeds)))
     if far:
         factor = speeds / measurement.speed

@@ -156,7 +156,7 @@ def given_fields(row: dict) -> dict:
     under ``parameters``), for building a Scene from a row no :func:`scene_table` has filled in."""
     given = {name: value for name, value in row.items()
              if value is not None and not (isinstance(value, float) and value != value)}
-    own = {name: given.pop(name) for name in list(given) if name not in DEFAULTS}
+    own = {name: given.pop(name) for name in list(given) if name not in DEFAULTS and name not in PARTNER_FIELDS}
     return given | ({"parameters": own} if own else {})
 
 
