@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from sphereimpact.cli import run
-from sphereimpact.study.chung_ooi import (HERTZ_TIME, compare, dem_rules, deviations, load_tests, read_table,
+from sphereimpact.study.chung_ooi import (HERTZ_TIME, OUTPUTS, dem_rules, deviations, load_tests, read_table,
                                           reference, write_table)
 
 
@@ -55,8 +55,10 @@ def test_sliding_rows_follow_the_gross_slip_line():
 
 
 def test_compare_reports_the_deviation_of_a_dem_rule(tmp_path):
-    """The project's own `mindlin` outputs, laid out as a DEM code's, through the API and the command line: the
-    deviations reported are the differences from the reference, computed here row by row."""
+    """The project's own `mindlin` outputs, laid out as a DEM code's, through the API: the deviations reported are the
+    differences from the reference, computed here row by row, and the verdict follows the tolerance."""
+    from sphereimpact.study.dem_compare import compare
+
     mine, theirs = tmp_path / "reference", tmp_path / "theirs"
     mine.mkdir()
     theirs.mkdir()
@@ -65,7 +67,8 @@ def test_compare_reports_the_deviation_of_a_dem_rule(tmp_path):
     rules = dem_rules(5)
     mindlin = rules[rules["tangential"] == "mindlin"].reset_index(drop=True)
     write_table(mindlin, theirs / "test5.csv")
-    report = compare(mine, theirs).set_index("quantity")
+    verdict = compare(mine, theirs)
+    report = verdict.table.set_index("quantity")
     written = read_table(mine / "test5.csv")
     for quantity in ("omega_f", "vc_t", "e_t"):
         diff = np.abs(mindlin[quantity].to_numpy() - written[quantity].to_numpy())
@@ -74,22 +77,54 @@ def test_compare_reports_the_deviation_of_a_dem_rule(tmp_path):
     assert report.loc["omega_f", "max_rel"] == pytest.approx(
         deviations(rules, exact).set_index(["tangential", "quantity"]).loc[("mindlin", "omega_f"), "max_rel"], rel=1e-9)
     assert report.loc["t_f", "max_abs"] < 1e-15  # the normal motion is the same
+    worst = report["max_rel"].max()
+    assert verdict.passed == (worst <= 0.02) and compare(mine, theirs, {"*": 1.01 * worst}).passed
+    assert not compare(mine, theirs, {"*": 0.99 * worst}).passed
 
 
 def test_command_line_writes_and_compares(tmp_path, capsys):
+    """benchmark compare as a CI gate: the reference and a shuffled copy pass (exit 0); a deviation beyond the
+    tolerance, a hole and a wrong input fail or are refused; a unit is converted when known, refused otherwise; a
+    file with nothing to compare is refused; --json carries the same verdicts."""
     out = tmp_path / "ref"
-    assert run(["benchmark", "chung-ooi", "--out", str(out), "--tests", "2"]) == 0
-    table = pd.read_csv(out / "test2.csv")
-    assert "force_max [N]" in table.columns and len(table) == 2
+    assert run(["benchmark", "chung-ooi", "--out", str(out), "--tests", "2,7"]) == 0
+    table = pd.read_csv(out / "test7.csv")
+    assert "omega_f [rad/s]" in table.columns and len(table) == 30
     capsys.readouterr()
     theirs = tmp_path / "theirs"
     theirs.mkdir()
-    table.assign(**{"force_max [N]": table["force_max [N]"] * 1.01}).to_csv(theirs / "test2.csv", index=False)
-    assert run(["benchmark", "compare", str(out), str(theirs), "--json"]) == 0
-    rows = {row["quantity"]: row for row in json.loads(capsys.readouterr().out)}
-    assert rows["force_max"]["max_rel"] == pytest.approx(0.01, rel=1e-6) and rows["t_f"]["max_abs"] == 0
-    table.iloc[:1].to_csv(theirs / "test2.csv", index=False)
-    assert run(["benchmark", "compare", str(out), str(theirs)]) == 2
-    assert "has 1 rows; the reference has 2" in capsys.readouterr().err
+
+    def judged(frame, *extra):
+        frame.to_csv(theirs / "test7.csv", index=False)
+        status = run(["benchmark", "compare", str(out), str(theirs), *extra])
+        return status, capsys.readouterr()
+
+    assert judged(table)[0] == 0
+    status, said = judged(table.sample(frac=1.0, random_state=1), "--json")  # any order
+    assert status == 0 and json.loads(said.out)["passed"] is True
+    off = table.assign(**{"omega_f [rad/s]": table["omega_f [rad/s]"] * (1 + 1e-3)})
+    assert judged(off)[0] == 0  # within the default 2 %
+    status, said = judged(off, "--tolerance", "omega_f=1e-4")
+    assert status == 1 and "overall: FAIL (worst: test 7 omega_f" in said.out
+    status, said = judged(off, "--json", "--tolerance", "1e-4")
+    verdict = json.loads(said.out)
+    assert status == 1 and verdict["passed"] is False and verdict["tests"][0]["passed"] is False
+    holed = table.copy()
+    holed.loc[3, "vc_t [m/s]"] = float("nan")
+    status, said = judged(holed)
+    assert status == 1 and "FAIL" in said.out
+    rpm = table.rename(columns={"omega_f [rad/s]": "omega_f [rpm]"}).assign(
+        **{"omega_f [rpm]": table["omega_f [rad/s]"] * 60 / (2 * np.pi)})
+    assert judged(rpm)[0] == 0  # converted
+    status, said = judged(table.rename(columns={"omega_f [rad/s]": "omega_f [furlong/s]"}))
+    assert status == 2 and "unit 'furlong/s' is not 'rad/s'" in said.err
+    status, said = judged(table[[c for c in table.columns if c.split(" [")[0] not in OUTPUTS]])
+    assert status == 2 and "has no output of the reference's to compare" in said.err
+    status, said = judged(table.assign(**{"mu [-]": 0.3}))
+    assert status == 2 and "mu 0.3 is not the reference's 0.4" in said.err
+    status, said = judged(table.iloc[1:])
+    assert status == 2 and "lacks the reference's row 0" in said.err
+    status, said = judged(pd.concat([table, table.iloc[:1]]))
+    assert status == 2 and "are the same reference row" in said.err
     assert run(["benchmark", "chung-ooi", "--out", str(out), "--tests", "2"]) == 2
     assert "exists; pass --force" in capsys.readouterr().err

@@ -333,3 +333,15 @@ def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(w
         assert (workdir / "results/chung_ooi" / name).read_bytes() == (tmp_path / name).read_bytes()
     checks = pd.read_csv(workdir / "results/chung_ooi/checks.csv")
     assert set(checks["test"]) == {1, 5} and checks["max_rel"].max() < 1e-8
+    # the gate's pipeline door: each DEM rule judged as `benchmark compare` judges a code's file of it
+    from sphereimpact.study.chung_ooi import dem_rules, write_table
+
+    verdicts = pd.read_csv(workdir / "results/chung_ooi/verdicts.csv")
+    rules = dem_rules(5)
+    for rule in ("mindlin", "rigid"):
+        theirs = tmp_path / rule
+        theirs.mkdir()
+        write_table(rules[rules["tangential"] == rule].reset_index(drop=True), theirs / "test5.csv")
+        status = run(["benchmark", "compare", str(workdir / "results/chung_ooi"), str(theirs)])
+        mine = verdicts[(verdicts["tangential"] == rule) & (verdicts["test"] == 5)]
+        assert len(mine) > 3 and status == (0 if mine["passed"].all() else 1)

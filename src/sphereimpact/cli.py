@@ -2,7 +2,7 @@
 
 Every input is answered with a result or one line: ``sphereimpact: error: <what> <allowed range>``,
 exit status 2 for bad input (argparse's convention) and 1 for a failure that a change of input does not
-fix (a full disk, say).  Never a traceback.
+fix (a full disk, say) or a failing verdict (``benchmark compare``).  Never a traceback.
 """
 
 from __future__ import annotations
@@ -383,13 +383,20 @@ def _parser() -> argparse.ArgumentParser:
     chung.add_argument("--tests", default=None, metavar="LIST", help="comma-separated test numbers (default: all)")
     chung.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
     against = tests.add_parser(
-        "compare", help="a DEM code's deviation from the reference files", formatter_class=_Help,
-        description="For every test<N>.csv in THEIRS (the reference file's rows and columns, holding the code's "
-                    "outputs), the largest deviation from DIR's reference per test and output: absolute, and "
-                    "relative to the exact column's largest magnitude.")
+        "compare", help="judge a DEM code's results against the reference files (exit 0 pass, 1 fail, 2 bad input)",
+        formatter_class=_Help,
+        description="For every test<N>.csv in THEIRS (the reference's rows, in any order, matched by their case and "
+                    "approach; the code's outputs in the reference's columns, each headed 'name [unit]' and converted "
+                    "where the unit is known), every input checked against the reference's and each output's largest "
+                    "deviation, relative to the reference column's scale, judged against its tolerance. A value "
+                    "missing where the reference has one fails. Exit status 0 when every test passes, 1 when one "
+                    "fails, 2 for bad input.")
     against.add_argument("reference", metavar="DIR", help="the reference files (benchmark chung-ooi --out DIR)")
-    against.add_argument("theirs", metavar="THEIRS", help="the DEM code's files, named and laid out as DIR's")
-    against.add_argument("--json", action="store_true", help="print a JSON list instead of the table")
+    against.add_argument("theirs", metavar="THEIRS", help="the DEM code's files, named as DIR's")
+    against.add_argument("--tolerance", default=None, metavar="TOL",
+                         help="relative tolerance of every output (e.g. 0.05) or of some (omega_f=0.1,e_t=0.05); "
+                              "default 0.02 for each")
+    against.add_argument("--json", action="store_true", help="print one JSON object (overall, per test, per output)")
     return parser
 
 
@@ -769,19 +776,28 @@ def _fit(args) -> None:
 
 def _benchmark(args) -> None:
     """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, or a code's deviation from them."""
-    from .study.chung_ooi import chosen_tests, compare, write_reference
+    from .study.chung_ooi import chosen_tests, write_reference
 
     if args.benchmark == "compare":
+        from .study.dem_compare import compare, parse_tolerances
+
         for name, folder in (("DIR", args.reference), ("THEIRS", args.theirs)):
             if not os.path.isdir(folder):
                 raise ValueError(f"{name}: {folder!r} is not a folder")
-        table = compare(args.reference, args.theirs)
+        verdict = compare(args.reference, args.theirs, parse_tolerances(args.tolerance))
         if args.json:
-            json.dump(table.to_dict("records"), sys.stdout, indent=2)
+            json.dump(verdict.as_dict(), sys.stdout, indent=2)
             sys.stdout.write("\n")
         else:
-            sys.stdout.write(table.to_string(index=False, float_format=lambda x: f"{x:.3g}") + "\n")
-        return
+            shown = verdict.table.assign(passed=verdict.table["passed"].map({True: "pass", False: "FAIL"}))
+            sys.stdout.write(shown.to_string(index=False, float_format=lambda x: f"{x:.3g}") + "\n")
+            for number, ok in verdict.tests.items():
+                sys.stdout.write(f"test {number}: {'pass' if ok else 'FAIL'}\n")
+            worst = verdict.table.loc[(verdict.table["max_rel"] / verdict.table["tolerance"].clip(lower=1e-300)).idxmax()]
+            sys.stdout.write(f"overall: {'pass' if verdict.passed else 'FAIL'} (worst: test {worst['test']} "
+                             f"{worst['quantity']} {worst['max_rel']:.3g} of tolerance {worst['tolerance']:g}, "
+                             f"{worst['worst']})\n")
+        return 0 if verdict.passed else 1
     try:
         numbers = None if args.tests is None else [int(n) for n in args.tests.split(",") if n.strip()]
     except ValueError:
@@ -796,7 +812,8 @@ def _benchmark(args) -> None:
 
 
 def run(argv=None) -> int:
-    """Parse ``argv`` and run the command; return the exit status (0 done, 1 failed, 2 bad input).
+    """Parse ``argv`` and run the command; return the exit status (0 done, 1 failed or a failing verdict, 2 bad
+    input).
 
     Every error is one line on standard error: ``sphereimpact: error: ...``.
     """
@@ -808,7 +825,7 @@ def run(argv=None) -> int:
             parser = _parser()
             args = parser.parse_args(_values_as_one_token(argv, parser))
             args.given = _given(argv, parser, args.command)
-            {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
+            status = {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
         _say(caught, getattr(args, "strict", False))
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)
@@ -818,7 +835,7 @@ def run(argv=None) -> int:
         raise
     except OSError as err:
         return _fail(1, f"{err.strerror or err}: {err.filename or ''}".rstrip(": "))
-    return 0
+    return status or 0  # a verdict's 1 (benchmark compare), else 0
 
 
 def _say(caught, strict: bool) -> None:

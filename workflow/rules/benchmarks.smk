@@ -4,7 +4,8 @@ CHUNG_OOI = config["chung_ooi"]["tests"]
 
 rule chung_ooi:
     """Each test's exact reference (one CSV per test, as `sphereimpact benchmark chung-ooi` writes them), the DEM
-    rules beside the exact contact and their deviations, and each reference's check against its closed form."""
+    rules beside the exact contact, their deviations and the verdict `sphereimpact benchmark compare` gives each,
+    and each reference's check against its closed form."""
     input:
         definition="src/sphereimpact/study/chung_ooi.yaml",
     output:
@@ -12,6 +13,7 @@ rule chung_ooi:
         rules="results/chung_ooi/dem_rules.csv",
         deviations=report("results/chung_ooi/deviations.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
         checks=report("results/chung_ooi/checks.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
+        verdicts=report("results/chung_ooi/verdicts.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
     params:
         code=code("workflow/scripts/chung_ooi.py"),
         tests=CHUNG_OOI,

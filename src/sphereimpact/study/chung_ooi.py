@@ -8,8 +8,8 @@ e < 1 the reference is exact for that model, whose tangential contact is undampe
 tangential spring too, and may differ from it by that choice (each file's ``model`` and ``tangential`` columns
 name the model).  Beside
 it, the simplified rules DEM codes use (:data:`DEM_RULES`), and for test 3 every damped law of the project.
-:func:`write_reference` writes one CSV per test for DEM developers (units in the header) and :func:`compare`
-reports a code's deviation from it.
+:func:`write_reference` writes one CSV per test for DEM developers (units in the header), and
+:func:`sphereimpact.study.dem_compare.compare` judges a code's files against them.
 """
 
 from __future__ import annotations
@@ -246,42 +246,6 @@ def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
     return written
 
 
-def compare(reference_folder, theirs_folder) -> pd.DataFrame:
-    """A DEM code's deviation from the references: for every ``test<N>.csv`` in ``theirs_folder`` (the reference's
-    rows and columns, their outputs), per test and output column, the largest absolute deviation and the
-    largest relative to the exact column's largest magnitude (the columns the exact solution holds at 0, a normal
-    test's tangential outputs, are not compared).
-
-    Raises
-    ------
-    ValueError
-        A file with no reference, other rows than the reference's, or inputs that differ from it.
-    """
-    theirs_folder, reference_folder = Path(theirs_folder), Path(reference_folder)
-    files = sorted(theirs_folder.glob("test*.csv"))
-    if not files:
-        raise ValueError(f"THEIRS: no test<N>.csv file in {str(theirs_folder)!r}")
-    rows = []
-    for file in files:
-        mine = reference_folder / file.name
-        if not mine.exists():
-            raise ValueError(f"THEIRS: {file.name} has no reference in {str(reference_folder)!r} (test1.csv ... test8.csv)")
-        exact, code = read_table(mine), read_table(file)
-        if len(code) != len(exact):
-            raise ValueError(f"THEIRS: {file.name} has {len(code)} rows; the reference has {len(exact)}, one per case")
-        for name in ("speed", "incidence", "spin", "mass", "diameter"):
-            if name in code and not np.allclose(code[name], exact[name], rtol=1e-6, equal_nan=True):
-                i = int(np.flatnonzero(~np.isclose(code[name], exact[name], rtol=1e-6, equal_nan=True))[0])
-                raise ValueError(f"THEIRS: {file.name} row {i}: {name} {code[name].iloc[i]!r} is not the reference's "
-                                 f"{exact[name].iloc[i]!r}: give the reference's inputs")
-        for quantity in OUTPUTS:
-            found = _deviation(code, exact, quantity)
-            if found is not None:
-                rows.append({"test": int(exact["test"].iloc[0]), "quantity": quantity, "unit": OUTPUTS[quantity],
-                             **found})
-    return pd.DataFrame(rows)
-
-
 #: The varied input of each oblique test, plotted along x: (column, label).
 VARIED = {4: ("incidence", "incidence [deg]"), 5: ("incidence", "incidence [deg]"), 6: ("spin", "spin [rad/s]"),
           7: ("spin", "spin of each sphere [rad/s]"), 8: ("spin", "spin of the ball [rad/s]")}
@@ -289,12 +253,15 @@ VARIED = {4: ("incidence", "incidence [deg]"), 5: ("incidence", "incidence [deg]
 
 def run_study(folder, numbers=None, path=DEFINITION) -> None:
     """The pipeline's study (rule ``chung_ooi``): in ``folder``, each test's reference ``test<N>.csv``, the DEM
-    rules' solutions of the oblique tests (``dem_rules.csv``) and their deviations from the reference
-    (``deviations.csv``), and the checks of each reference against its closed forms (``checks.csv``)."""
+    rules' solutions of the oblique tests (``dem_rules.csv``), their deviations from the reference
+    (``deviations.csv``) and the verdict ``benchmark compare`` gives each rule at its default tolerance
+    (``verdicts.csv``), and the checks of each reference against its closed forms (``checks.csv``)."""
     folder = Path(folder)
     numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
-    rules, deviation, checks = [], [], []
+    from .dem_compare import rule_verdicts  # the gate's own module (it reads this one's columns)
+
+    rules, deviation, checks, verdicts = [], [], [], []
     for number in numbers:
         exact = reference(number, path)
         write_table(exact, folder / f"test{number}.csv")
@@ -303,6 +270,10 @@ def run_study(folder, numbers=None, path=DEFINITION) -> None:
             solved = dem_rules(number, path)
             rules.append(solved)
             deviation.append(deviations(solved, exact))
+            verdicts.append(rule_verdicts(solved, exact))
+    (pd.concat(verdicts, ignore_index=True) if verdicts else pd.DataFrame(
+        columns=["test", "quantity", "max_rel", "tolerance", "passed", "tangential"])).to_csv(
+        folder / "verdicts.csv", index=False, float_format="%.6g", lineterminator="\n")
     write_table(pd.concat(rules, ignore_index=True) if rules else pd.DataFrame(columns=list(INPUTS)),
                 folder / "dem_rules.csv")
     (pd.concat(deviation, ignore_index=True) if deviation else pd.DataFrame(
