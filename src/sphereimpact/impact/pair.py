@@ -7,8 +7,12 @@ points' relative slip s = v_t - w1 R1 - w2 R2 at ds/dt = F (1/m* + R1^2/I1 + R2^
 m*, radius R* and inertia factor alpha* with 1/(alpha* m*) = 1/(alpha1 m1) + 1/(alpha2 m2), spinning at
 w* = (R1 w1 + R2 w2) / R*, slips alike.  So the relative motion of the two is exactly that sphere's on the
 flat, for every contact law and tangential model, and each body's velocities and spin follow from the
-impulses (J_n, J_t) it exchanged.  Spins are in one rotational sense, the ball's (positive: topspin of the
-ball), so two spheres turning the same way rub at the contact.  Functions take floats or arrays.
+impulses (J_n, J_t) it exchanged.  Exact, that is, with the line of centres held fixed during the contact: the
+centres' relative tangential motion turns it by about max(|v_t|, |v_t'|) t_f / (R1 + R2) radians, which the
+reduction neglects (an error of that order in the tangential outputs; Chung & Ooi's reference files give the
+angle per row, ``line_turn``).  Momentum is conserved to round-off either way.  Spins are in one rotational
+sense, the ball's (positive: topspin of the ball), so two spheres turning the same way rub at the contact.
+Functions take floats or arrays.
 """
 
 from __future__ import annotations

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
+from contextvars import ContextVar
 from dataclasses import dataclass, fields, replace
 from functools import cached_property
 
@@ -32,6 +33,8 @@ from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body
 TANGENTIAL_ONLY = ("mu", "tangential", *TANGENTIAL_PARAMETERS, "spin", "parameters")
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
+#: True while :meth:`Scene.with_` copies a scene: its bodies were checked (and any unit slip said) when it was built.
+_COPYING: ContextVar[bool] = ContextVar("scene_copying", default=False)
 
 
 class FrozenMapping(Mapping):
@@ -169,7 +172,7 @@ class Scene:
         problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
         if problem:
             raise ValueError(problem)
-        slip = density_problem(self.mass, self.diameter)
+        slip = None if _COPYING.get() else density_problem(self.mass, self.diameter)
         if slip:  # stack: __post_init__, __init__, the caller
             warnings.warn(slip, UnitWarning, stacklevel=3)
         self._check_path()
@@ -208,7 +211,7 @@ class Scene:
             raise ValueError(missing_partner("partner_mass" if self.partner_mass is None else "partner_diameter"))
         if self.gravity != 0:
             raise ValueError(partner_gravity(self.gravity))
-        slip = density_problem(self.partner_mass, self.partner_diameter, "partner sphere")
+        slip = None if _COPYING.get() else density_problem(self.partner_mass, self.partner_diameter, "partner sphere")
         if slip:
             warnings.warn(slip, UnitWarning, stacklevel=4)
         return True
@@ -498,7 +501,11 @@ class Scene:
                                      *tangential.own_parameters)}
             kept = {name: value for name, value in changes.get("parameters", self.parameters).items() if name in keep}
             changes["parameters"] = kept | own
-        return replace(self, **changes)
+        token = _COPYING.set(True)  # a copy's body was checked when the scene was built: no density warning again
+        try:
+            return replace(self, **changes)
+        finally:
+            _COPYING.reset(token)
 
 
 #: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.
