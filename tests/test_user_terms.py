@@ -508,3 +508,44 @@ def test_a_fit_takes_what_was_measured_of_the_partner(tmp_path, capsys):
         fit(read_measured(path), Ball(Scene(mu=0.4, **flat)), ["mu"])
     assert run(["fit", str(path), "--free", "mu", "--mu", "0.4", "--chi", "0.1", *PAIR, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["parameters"]["mu"]["value"] == pytest.approx(0.15, rel=1e-6)
+
+
+def test_every_output_is_declared_once_with_a_scale_its_unit_gives():
+    """Before: outputs were described in seven tables and nothing tested that a new dimensional output is scaled by
+    the similar path.  Each is one declaration; its scale follows from its unit, and a unit without one fails here."""
+    from sphereimpact import simulate
+    from sphereimpact.impact.declarations import OUTPUTS, PARTNER, SCALE_OF_UNIT, SCALES, Kind
+    from sphereimpact.impact.outcome import NUMERIC_OUTPUTS, OUTPUT_KEYS, OUTPUT_UNITS
+
+    names = [o.name for o in (*OUTPUTS, *PARTNER)]
+    assert len(names) == len(set(names))
+    assert all(o.unit in SCALE_OF_UNIT for o in (*OUTPUTS, *PARTNER)), "declare the scale of a new unit"
+    out = simulate(Scene(angle=30.0))
+    assert tuple(out.to_dict()) == OUTPUT_KEYS and tuple(OUTPUT_UNITS) == OUTPUT_KEYS
+    dimensional = {o.name for o in OUTPUTS if o.kind is Kind.NUMBER and o.unit not in ("-", "deg")}
+    assert set(SCALES) == dimensional and set(SCALES) <= set(NUMERIC_OUTPUTS)
+
+
+def test_the_similar_path_scales_every_numeric_output_as_simulate_gives_it():
+    """Two scenes of one dimensionless problem (an elastic Hertz ball with microslip at one incidence, two speeds):
+    the second is the first's outputs scaled, and every numeric output, dimensional or not, is simulate's."""
+    import math
+
+    from sphereimpact import simulate
+    from sphereimpact.impact.outcome import NUMERIC_OUTPUTS
+    from sphereimpact.sweep import sweep
+
+    ball = dict(model="hertz", k=1e7, tangential="microslip", kappa=0.8, mu=0.3, incidence=30.0)
+    import pandas as pd
+
+    table = sweep(pd.DataFrame({"speed": [3.0, 6.0]} | {key: [value] * 2 for key, value in ball.items()}))
+    assert table["path"].tolist() == ["similar", "similar"]
+    for row in (0, 1):
+        one = simulate(Scene(speed=float(table["speed"][row]), **ball))
+        for key in NUMERIC_OUTPUTS:
+            expected = getattr(one, key)
+            got = table[key][row]
+            if expected is None:
+                assert math.isnan(got), key
+            else:
+                assert got == pytest.approx(expected, rel=1e-7, abs=1e-12), (row, key)

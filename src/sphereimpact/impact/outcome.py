@@ -14,28 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..ode.events import extremum
-from .pair import PARTNER_OUTPUTS
+from .declarations import (NUMERIC_OUTPUTS, OUTPUT_KEYS, OUTPUT_UNITS, PARTNER_OUTPUTS,  # noqa: F401 (re-exported:
+                           SCALAR_OUTPUTS, SOLVER_KEYS)                                # declared once there)
 from .scene import Scene
 
-#: The outputs of one impact, in the order of the JSON object and tables.
-OUTPUT_KEYS = ("t_m", "delta_m", "t_f", "vc_t", "vc_n", "ve_t", "ve_n", "omega_f", "cor",
-               "regime", "t_roll", "force_min", "force_max", "beyond_radius",
-               "switches", "rebound_angle", "rebound_angle_contact", "rebound_angle_to_surface", "work_t", "energy_gained",
-               "method", "rtol", "atol", "nfev", "wall_time")
-
-#: The solver's statistics among OUTPUT_KEYS; the others are the impact's scalar outputs.
-SOLVER_KEYS = ("method", "rtol", "atol", "nfev", "wall_time")
-#: The scalar outputs of one impact (OUTPUT_KEYS less the solver's statistics): the columns of a sweep's
-#: table too (:func:`sphereimpact.sweep.sweep`).
-SCALAR_OUTPUTS = tuple(key for key in OUTPUT_KEYS if key not in SOLVER_KEYS)
-#: The scalar outputs that are numbers (not the regime's name or a flag): what is compared to a tolerance.
-NUMERIC_OUTPUTS = tuple(key for key in SCALAR_OUTPUTS if key not in ("regime", "beyond_radius", "energy_gained"))
-#: Units of the outputs (SI; angles in degrees).
-OUTPUT_UNITS = {"t_m": "s", "delta_m": "m", "t_f": "s", "vc_t": "m/s", "vc_n": "m/s", "ve_t": "m/s", "ve_n": "m/s",
-                "omega_f": "rad/s", "cor": "-", "regime": "", "t_roll": "s", "force_min": "N", "force_max": "N",
-                "beyond_radius": "", "switches": "-", "rebound_angle": "deg", "rebound_angle_contact": "deg",
-                "rebound_angle_to_surface": "deg", "work_t": "J", "energy_gained": "", "method": "", "rtol": "-",
-                "atol": "-", "nfev": "-", "wall_time": "s"}
 
 #: A tangential contact whose work exceeds this fraction of the incoming kinetic energy made energy (above the
 #: solvers' round-off and tolerances: the rigid contact's work is exact to about 1e-15 of it).

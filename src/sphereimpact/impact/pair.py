@@ -17,12 +17,10 @@ Functions take floats or arrays.
 
 from __future__ import annotations
 
+from .declarations import PARTNER_OUTPUTS, PARTNER_UNITS  # noqa: F401 (re-exported: declared once there)
+
 #: The partner body's Scene fields, in order: mass [kg], diameter [m], inertia factor [-], spin [rad/s].
 PARTNER_FIELDS = ("partner_mass", "partner_diameter", "partner_inertia_factor", "partner_spin")
-#: The partner's outputs: its centre's velocity along t and n [m/s] and its spin [rad/s] after the impact.
-PARTNER_OUTPUTS = ("partner_vc_t", "partner_vc_n", "partner_omega_f")
-#: Units of :data:`PARTNER_OUTPUTS`.
-PARTNER_UNITS = {"partner_vc_t": "m/s", "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
 
 
 def missing_partner(name: str) -> str:

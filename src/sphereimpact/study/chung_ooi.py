@@ -29,6 +29,8 @@ from ..contact.materials import dundurs_beta, effective_moduli
 from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
 from ..impact.solve import simulate_many
+from .benchmark_columns import CLOSED_FORMS, INPUTS, OUTPUTS, STATEMENTS
+from .dem_compare import rule_verdicts
 from .tables import text_table
 
 #: The tests' inputs and their sources.
@@ -45,21 +47,6 @@ DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modifie
 #: delta_m, 2 delta_m / v int_0^1 (1 - x^(5/2))^(-1/2) dx = (4/5) B(2/5, 1/2) delta_m / v (Johnson, Contact Mechanics,
 #: 1985, sec. 11.4), with delta_m = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5): 2.868...
 HERTZ_TIME = 0.8 * math.sqrt(math.pi) * math.gamma(0.4) / math.gamma(0.9) * (15.0 / 16.0) ** 0.4
-#: Columns of a reference file and their units: the inputs, then the outputs.
-INPUTS = {"test": "-", "case": "", "model": "", "tangential": "", "speed": "m/s", "incidence": "deg",
-          "spin": "rad/s", "mass": "kg", "diameter": "m", "partner_mass": "kg", "partner_diameter": "m",
-          "partner_spin": "rad/s", "modulus": "Pa", "kappa": "-", "mu": "-", "cor_target": "-", "dundurs_beta": "-"}
-OUTPUTS = {"t_f": "s", "delta_m": "m", "force_max": "N", "vc_t": "m/s", "vc_n": "m/s", "omega_f": "rad/s",
-           "ve_t": "m/s", "cor": "-", "e_t": "-", "rebound_angle_contact": "deg", "partner_vc_t": "m/s",
-           "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
-#: Hertz's closed forms of the elastic normal tests, beside the computed t_f, delta_m and force_max.
-CLOSED_FORMS = {"hertz_t_f": "s", "hertz_delta_m": "m", "hertz_force_max": "N"}
-#: What each row says of its own exactness: for two spheres, the angle the line of centres would turn during the
-#: contact, max(|v_t|, |v_t'|) t_f / (R1 + R2), which the reduction to one sphere holds fixed (its error is of that
-#: order; :mod:`sphereimpact.impact.pair`); empty on a plane.
-STATEMENTS = {"line_turn": "rad"}
-
-
 def load_tests(path=DEFINITION) -> tuple[dict, dict]:
     """The materials and the tests of a definition file (:data:`DEFINITION` by default)."""
     definition = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
@@ -282,8 +269,6 @@ def run_study(folder, numbers=None, path=DEFINITION) -> None:
     folder = Path(folder)
     numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
-    from .dem_compare import rule_verdicts  # the gate's own module (it reads this one's columns)
-
     rules, deviation, checks, verdicts = [], [], [], []
     for number in numbers:
         exact = reference(number, path)

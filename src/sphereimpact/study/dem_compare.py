@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .chung_ooi import INPUTS, OUTPUTS
+from .benchmark_columns import INPUTS, OUTPUTS
 
 #: Default tolerance of every output: its largest deviation relative to the reference column's scale (the column's
 #: largest magnitude, or :func:`scale`'s where the exact column is 0 throughout, test 7's vc_t).  2 % is the order of

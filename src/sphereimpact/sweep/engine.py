@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import EnergyGainWarning, ImpactError, UnitWarning
+from ..impact.declarations import HISTORY_OUTPUTS
 from ..impact.inputs import density_problem
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_energy, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
@@ -39,9 +40,6 @@ __all__ = ["HISTORY_OUTPUTS", "FAST_OUTPUTS", "PATHS", "SCENE_COLUMNS", "SWEEP_O
 
 #: Outputs of a sweep: every scalar output of ``simulate``, named as it names them (one list, shared).
 SWEEP_OUTPUTS = SCALAR_OUTPUTS
-#: The outputs that depend on the force's history, not only on the contact's end: each fast path computes
-#: them as it integrates or tabulates them (its extremes, and the instant the impulse reaches a grip level).
-HISTORY_OUTPUTS = ("t_roll", "force_min", "force_max")
 #: The outputs the fast paths compute from the end state alone (``outputs=FAST_OUTPUTS``: the fastest sweep).
 FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 

@@ -22,6 +22,7 @@ import pandas as pd
 from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIALS
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
+from ..impact.declarations import SCALES
 from ..impact.outcome import NUMERIC_OUTPUTS
 from ..impact.scene import TANGENTIAL_ONLY, SolverOptions
 from ..impact.solve import reusing_normal_motions, simulate, simulate_many
@@ -274,12 +275,6 @@ class SinglePath(SweepPath):
 # ---------------------------------------------------------------- scenes alike but for their scales
 
 
-#: How each numeric output scales between two scenes of one dimensionless problem: by the time scale T = 1 / w,
-#: the length v_n T, the speed v_n, the spin v_n / R, the force m v_n / T, the energy m v_n^2; the others
-#: (the COR, the rebound angles, the mode switches) are the same.
-SCALES = {"t_m": "time", "t_f": "time", "t_roll": "time", "delta_m": "length", "vc_t": "speed", "vc_n": "speed",
-          "ve_t": "speed", "ve_n": "speed", "omega_f": "spin", "force_min": "force", "force_max": "force",
-          "work_t": "energy"}
 
 
 def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
