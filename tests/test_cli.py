@@ -14,7 +14,7 @@ from sphereimpact.cli import run
 def test_json_has_exactly_the_output_keys(capsys):
     assert run(["simulate", "--angle", "60", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert tuple(data) == OUTPUT_KEYS
+    assert tuple(data) == (*OUTPUT_KEYS, "gravity") and data["gravity"] == 0.0  # the default, recorded
     reference = simulate(Scene(angle=60.0)).to_dict()
     for key in OUTPUT_KEYS:
         if key != "wall_time":
@@ -85,7 +85,7 @@ def test_installed_command_runs():
 def test_readable_output_has_every_output_with_its_unit(capsys):
     assert run(["simulate", "--angle", "60"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert [line.split()[0] for line in lines] == list(OUTPUT_KEYS)
+    assert [line.split()[0] for line in lines] == [*OUTPUT_KEYS, "gravity"]
     cor = next(line for line in lines if line.startswith("cor "))
     assert float(cor.split()[1]) == pytest.approx(simulate(Scene(angle=60.0)).cor, rel=1e-9)
     assert next(line for line in lines if line.startswith("t_f ")).endswith(" s")

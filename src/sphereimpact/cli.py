@@ -660,7 +660,7 @@ def _simulate(args) -> None:
                              f"{scene.v_normal:.6g} m/s; give --cor-speed, the normal speed of the measurement\n")
     options = SolverOptions(method=args.method, rtol=args.rtol, atol=args.atol,
                             settings=({} if ball is None else dict(ball.options.settings)) | _settings(args))
-    fitted, units = {}, UNITS
+    fitted, units = {}, UNITS | {"gravity": "m/s^2"}
     if ball is not None and args.ball is None:  # calibrated here: what was fitted, and the published relations
         damping = scene.law.damping
         for name, value in ball.fitted.items():
@@ -673,7 +673,7 @@ def _simulate(args) -> None:
                   else Ball(scene, options=SolverOptions(settings=options.settings), plugins=tuple(args.plugin or ())),
                   args.save_ball)
     outcome = simulate(scene, options, body=args.body, strict=args.strict)
-    outputs = outcome.to_dict() | fitted
+    outputs = outcome.to_dict() | fitted | {"gravity": scene.gravity}  # the one input a default sets, recorded
     chapter = [] if ball is not None or args.chapter_ball else undescribed(args.given, args.model)
     if chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "

@@ -80,9 +80,11 @@ class FitResult:
         weight used), ``sigma_given`` (whether it was measured), ``residual`` (model - measured) and
         ``model_stderr`` (the model's standard error there, from the parameters' covariance).
     statistics : dict
-        ``values`` (n), ``free`` (p), ``dof``, ``chi2`` and ``reduced_chi2`` of the weighted residuals, ``rms``
-        per quantity, ``evaluations`` of the model (each a sweep of the bounces, the Jacobians' included) and the
-        optimiser's ``status`` message.
+        ``values`` (n), ``free`` (p), ``dof``, ``chi2`` and ``reduced_chi2`` of the weighted residuals, ``weights``
+        (``given``, ``scatter``: every uncertainty estimated from the residuals, so chi2/dof is near 1 by
+        construction, or ``mixed``), ``rms`` per quantity, ``evaluations`` of the model (each a sweep of the bounces,
+        the Jacobians' included), the optimiser's ``status`` message, the ``gravity`` [m/s^2] the bounces were
+        solved with and the ``start`` of the free parameters.
     notes : list of str
         What the reader must know (a parameter not identifiable, weights estimated from the residuals).
     """
@@ -312,7 +314,7 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     weights = "given" if given.all() else "scatter" if not given.any() else "mixed"
     statistics = {"values": len(values), "bounces": len(measured.bounces), "free": len(names), "dof": dof,
                   "chi2": chi2, "reduced_chi2": chi2 / dof, "weights": weights, "rms": rms,
-                  "evaluations": int(evaluations), "status": result.message,
+                  "evaluations": int(evaluations), "status": result.message, "gravity": ball.scene.gravity,
                   "start": {n: float(v) for n, v in zip(names, initial)}}
     if weights == "given" and dof > 0 and chi2_distribution.sf(chi2, dof) < MISFIT_P:
         notes.append(f"the model misses the data beyond their stated uncertainties: chi2/dof {chi2 / dof:.3g} "
