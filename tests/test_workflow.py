@@ -345,3 +345,5 @@ def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(w
         status = run(["benchmark", "compare", str(workdir / "results/chung_ooi"), str(theirs)])
         mine = verdicts[(verdicts["tangential"] == rule) & (verdicts["test"] == 5)]
         assert len(mine) > 3 and status == (0 if mine["passed"].all() else 1)
+    published = pd.read_csv(workdir / "results/chung_ooi/published.csv")  # the paper's curves beside the references
+    assert set(published["test"]) == {5} and published["points"].min() > 10

@@ -8,12 +8,14 @@ rule chung_ooi:
     and each reference's check against its closed form."""
     input:
         definition="src/sphereimpact/study/chung_ooi.yaml",
+        curves="data/chung_ooi_paper/curves.csv",
     output:
         tables=expand("results/chung_ooi/test{n}.csv", n=CHUNG_OOI),
         rules="results/chung_ooi/dem_rules.csv",
         deviations=report("results/chung_ooi/deviations.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
         checks=report("results/chung_ooi/checks.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
         verdicts=report("results/chung_ooi/verdicts.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
+        published=report("results/chung_ooi/published.csv", caption="../report/chung_ooi.rst", category="Benchmarks"),
     params:
         code=code("workflow/scripts/chung_ooi.py"),
         tests=CHUNG_OOI,
@@ -33,6 +35,7 @@ rule chung_ooi_figures:
         tables=rules.chung_ooi.output.tables,
         rules=rules.chung_ooi.output.rules,
         data=config["validation"]["data"],
+        curves="data/chung_ooi_paper/curves.csv",
     output:
         png=report(
             expand("results/chung_ooi/test{n}.png", n=CHUNG_OOI), caption="../report/chung_ooi.rst", category="Benchmarks"
@@ -54,6 +57,7 @@ rule chung_ooi_readme:
     input:
         checks=rules.chung_ooi.output.checks,
         deviations=rules.chung_ooi.output.deviations,
+        published=rules.chung_ooi.output.published,
     output:
         md="results/readme/chung_ooi.md",
     params:

@@ -5,4 +5,4 @@ from sphereimpact.study.chung_ooi import run_study
 from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], "Chung & Ooi benchmark tests"):
-    run_study(os.path.dirname(snakemake.output.rules), snakemake.params.tests)
+    run_study(os.path.dirname(snakemake.output.rules), snakemake.params.tests, curves_csv=snakemake.input.curves)

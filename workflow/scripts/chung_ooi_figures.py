@@ -5,4 +5,5 @@ from sphereimpact.figures.chung_ooi import test_figures
 from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], "Chung & Ooi figures"):
-    test_figures(os.path.dirname(snakemake.input.rules), snakemake.input.data, snakemake.output.png)
+    test_figures(os.path.dirname(snakemake.input.rules), snakemake.input.data, snakemake.output.png,
+                 snakemake.input.curves)

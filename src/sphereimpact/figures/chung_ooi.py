@@ -17,12 +17,13 @@ STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "linea
 
 
 def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFrame, varied, data=None,
-                outputs=()) -> None:
+                outputs=(), published=None) -> None:
     """Test ``number``'s figure: the normal tests (1-3) as each computed value against its independent reference
     (Hertz's closed forms, the requested COR; on the diagonal when they agree), the oblique ones as the ball's
     v_t', omega_f and contact-point rebound angle against the varied input (``varied``: column, label), the exact
     contact solid and each DEM rule (``rules``) in its own style, per material; ``data`` (columns ``quantity``,
-    ``incidence_deg``, ``value``: Kharaz's e_t and |omega|) as points on the first material's curves."""
+    ``incidence_deg``, ``value``: Kharaz's e_t and |omega|) as points on the first material's curves; ``published``
+    (:func:`~sphereimpact.study.chung_ooi.published_points`) the paper's own curves as open diamonds."""
     with plt.rc_context(RC | {"figure.figsize": (6.4, 7.2 if number >= 4 else 3.6)}):
         if number < 4:
             fig, ax = plt.subplots()
@@ -57,26 +58,43 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
                 axes[0].plot(e_t["incidence_deg"], e_t["value"] * v_t, "k.", ms=4, label="Kharaz et al. (2001)")
                 spin = data[data["quantity"] == "omega_rad_s"]
                 axes[1].plot(spin["incidence_deg"], spin["value"], "k.", ms=4)
+            if published is not None and len(published):
+                panel = {quantity: ax for ax, (quantity, _) in zip(axes, PANELS)}
+                named = set()
+                for (material, column), part in published.groupby(["material", "column"], sort=False):
+                    if column in panel:
+                        first = part[part["case"] == part["case"].iloc[0]]  # a curve of every case: once
+                        tag = None if material in named else ("the paper's curve" + (f" ({material})" if material else "")
+                                                               + ", Kratos' digitisation")
+                        named.add(material)
+                        panel[column].plot(first["x"], first["y"], "D", mfc="none", ms=4, color="k", label=tag)
             axes[-1].set_xlabel(label)
-            handles, labels = axes[0].get_legend_handles_labels()
-            fig.legend(handles, labels, fontsize=6, ncol=2, loc="lower center")
+            legend = {}  # every panel's labelled lines and points, once each
+            for ax in axes:
+                for handle, text in zip(*ax.get_legend_handles_labels()):
+                    legend.setdefault(text, handle)
+            fig.legend(list(legend.values()), list(legend), fontsize=6, ncol=2, loc="lower center")
             fig.subplots_adjust(left=0.17, bottom=0.24, hspace=0.3)
         fig.suptitle(f"Chung & Ooi test {number}: {title}", fontsize=9)
         save(fig, outputs)
         plt.close(fig)
 
 
-def test_figures(folder, data_csv: str, outputs) -> None:
+def test_figures(folder, data_csv: str, outputs, curves_csv=None) -> None:
     """Every test's figure from the study's tables in ``folder`` (rule ``chung_ooi``): ``outputs`` one path per
-    test, ``test<N>.png``; test 4 with the Kharaz data of ``data_csv``."""
+    test, ``test<N>.png``; test 4 with the Kharaz data of ``data_csv``; with ``curves_csv``, the paper's own
+    curves."""
     from pathlib import Path
 
-    from ..study.chung_ooi import VARIED, load_tests, read_table
+    from ..study.chung_ooi import VARIED, load_tests, published_points, read_curves, read_table
 
     _, tests = load_tests()
     rules = read_table(Path(folder) / "dem_rules.csv")
     data = pd.read_csv(data_csv, comment="#")
+    curves = None if curves_csv is None else read_curves(curves_csv)
     for path in outputs:
         number = int(Path(path).stem.removeprefix("test"))
-        test_figure(number, tests[number]["title"], read_table(Path(folder) / f"test{number}.csv"),
-                    rules[rules["test"] == number], VARIED.get(number), data if number == 4 else None, [path])
+        exact = read_table(Path(folder) / f"test{number}.csv")
+        points = None if curves is None or number not in VARIED else published_points(curves, number, exact)
+        test_figure(number, tests[number]["title"], exact, rules[rules["test"] == number], VARIED.get(number),
+                    data if number == 4 else None, [path], points)

@@ -337,6 +337,8 @@ RESTART_FACTORS = (0.1, 0.3, 3.0, 10.0)
 RESTART_FRACTIONS = (0.1, 0.3, 0.7, 0.9)
 #: A restart replaces the fit when its gain in cost is this unlikely by chance (:func:`_significant`).
 RESTART_P = 0.01
+#: Stated uncertainties that the residuals exceed with a chi-square probability below this are a misfit, said.
+MISFIT_P = 1e-3
 
 
 def _significant(cost: float, better: float, n: int, p: int) -> bool:
@@ -349,8 +351,6 @@ def _significant(cost: float, better: float, n: int, p: int) -> bool:
         return True
     statistic = (cost - better) / (better / (n - p))
     return bool(f_distribution.sf(statistic, 1, n - p) < RESTART_P)
-#: Stated uncertainties that the residuals exceed with a chi-square probability below this are a misfit, said.
-MISFIT_P = 1e-3
 
 
 def _restarted(result, solve, sigma, names, initial, bounds, logs, natural):

@@ -256,22 +256,98 @@ def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
     return written
 
 
+def read_curves(path) -> pd.DataFrame:
+    """The paper's reference curves as shipped (``data/chung_ooi_paper/curves.csv``: its header and README say what
+    they are, whose digitisation and under which licence)."""
+    return pd.read_csv(path, comment="#", keep_default_na=False, dtype={"case": str})
+
+
+def published_points(curves: pd.DataFrame, number: int, exact: pd.DataFrame) -> pd.DataFrame:
+    """Test ``number``'s published curves in the figures' columns: each point's ``case`` (every case of ``exact``
+    where the curve is not one material's), ``column`` (vc_t, omega_f or rebound_angle_contact), ``x`` (in the
+    test's varied input, :data:`VARIED`) and ``y`` (in this project's units and sign); ``material`` the curve's
+    own case ('' for one of every case) and ``quantity`` its own quantity.  The conversions: e_t v_t = vc_t;
+    R omega' / (mu v_n) and v_t / (mu v_n) at the test's v_n and radius; the paper's spin sign by ``sign``."""
+    mine = curves[curves["test"] == number]
+    rows = []
+    for case in dict.fromkeys(exact["case"]):
+        part = exact[exact["case"] == case]
+        speed, radius, mu = (float(part[c].iloc[0]) for c in ("speed", "diameter", "mu"))
+        radius /= 2
+        v_n = speed * math.cos(math.radians(float(part["incidence"].iloc[0])))
+        for curve in mine[(mine["case"] == case) | (mine["case"] == "")].itertuples(index=False):
+            x, y = float(curve.x), float(curve.y) * curve.sign
+            if curve.quantity == "e_t":  # at this test's speed along the path
+                column, y = "vc_t", y * speed * math.sin(math.radians(x))
+            elif curve.quantity == "spin_ratio":
+                column, y = "omega_f", y * mu * v_n / radius
+            else:
+                column = curve.quantity
+            if curve.x_quantity == "slip_ratio":  # v_t = x mu v_n: the incidence at this test's v_n
+                x = math.degrees(math.atan(x * mu))
+            rows.append({"case": case, "material": curve.case, "quantity": curve.quantity, "column": column, "x": x,
+                         "y": y})
+    return pd.DataFrame(rows, columns=["case", "material", "quantity", "column", "x", "y"])
+
+
+def own_quantity(exact: pd.DataFrame, name: str) -> np.ndarray:
+    """A curve's quantity (or its x) as the exact reference gives it: a column, or the paper's normalised
+    ``slip_ratio`` v_t / (mu v_n) and ``spin_ratio`` R omega' / (mu v_n)."""
+    theta = np.radians(exact["incidence"].to_numpy())
+    mu_v_n = exact["mu"].to_numpy() * exact["speed"].to_numpy() * np.cos(theta)
+    if name == "slip_ratio":
+        return exact["speed"].to_numpy() * np.sin(theta) / mu_v_n
+    if name == "spin_ratio":
+        return 0.5 * exact["diameter"].to_numpy() * exact["omega_f"].to_numpy() / mu_v_n
+    return exact[name].to_numpy(dtype=float)
+
+
+def published_deviations(curves: pd.DataFrame, exact_by_test: dict) -> pd.DataFrame:
+    """Each published curve's largest deviation from the exact reference, per test, case and quantity, in the curve's
+    own quantities (:func:`own_quantity`; the paper's spin sign converted): the exact answer interpolated linearly
+    at the curve's points within its range; ``max_rel`` over the exact quantity's largest magnitude, ``at`` the
+    curve's x there, ``outside`` its points beyond the reference's range."""
+    rows = []
+    for number, exact in exact_by_test.items():
+        mine = curves[curves["test"] == number]
+        for curve_key, curve in mine.groupby(["quantity", "x_quantity", "case"], sort=False):
+            quantity, x_quantity, case = curve_key
+            for name in ([case] if case else list(dict.fromkeys(exact["case"]))):
+                part = exact[exact["case"] == name]
+                order = np.argsort(own_quantity(part, x_quantity), kind="stable")
+                xs, ys = own_quantity(part, x_quantity)[order], own_quantity(part, quantity)[order]
+                x, y = curve["x"].to_numpy(float), curve["y"].to_numpy(float) * curve["sign"].to_numpy(float)
+                inside = (x >= xs.min()) & (x <= xs.max())
+                if not inside.any():
+                    continue
+                diff = np.abs(y[inside] - np.interp(x[inside], xs, ys))
+                worst = int(np.argmax(diff))
+                rows.append({"test": number, "case": name, "quantity": quantity, "x_quantity": x_quantity,
+                             "points": int(inside.sum()), "outside": int((~inside).sum()),
+                             "max_abs": float(diff[worst]), "max_rel": float(diff[worst] / np.abs(ys).max()),
+                             "at": float(x[inside][worst])})
+    return pd.DataFrame(rows, columns=["test", "case", "quantity", "x_quantity", "points", "outside", "max_abs",
+                                       "max_rel", "at"])
+
+
 #: The varied input of each oblique test, plotted along x: (column, label).
 VARIED = {4: ("incidence", "incidence [deg]"), 5: ("incidence", "incidence [deg]"), 6: ("spin", "spin [rad/s]"),
           7: ("spin", "spin of each sphere [rad/s]"), 8: ("spin", "spin of the ball [rad/s]")}
 
 
-def run_study(folder, numbers=None, path=DEFINITION) -> None:
+def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
     """The pipeline's study (rule ``chung_ooi``): in ``folder``, each test's reference ``test<N>.csv``, the DEM
     rules' solutions of the oblique tests (``dem_rules.csv``), their deviations from the reference
     (``deviations.csv``) and the verdict ``benchmark compare`` gives each rule at its default tolerance
-    (``verdicts.csv``), and the checks of each reference against its closed forms (``checks.csv``)."""
+    (``verdicts.csv``), the checks of each reference against its closed forms (``checks.csv``), and with
+    ``curves_csv`` (the paper's curves, :func:`read_curves`) each curve's largest deviation from the reference
+    (``published.csv``, :func:`published_deviations`)."""
     folder = Path(folder)
     numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
-    rules, deviation, checks, verdicts = [], [], [], []
+    rules, deviation, checks, verdicts, exacts = [], [], [], [], {}
     for number in numbers:
-        exact = reference(number, path)
+        exact = exacts[number] = reference(number, path)
         write_table(exact, folder / f"test{number}.csv")
         checks.append(_checks(number, exact))
         if number >= 4:
@@ -289,6 +365,9 @@ def run_study(folder, numbers=None, path=DEFINITION) -> None:
         folder / "deviations.csv", index=False, float_format="%.6g", lineterminator="\n")
     pd.concat(checks, ignore_index=True).to_csv(folder / "checks.csv", index=False, float_format="%.6g",
                                                 lineterminator="\n")
+    if curves_csv is not None:
+        published_deviations(read_curves(curves_csv), exacts).to_csv(folder / "published.csv", index=False,
+                                                                     float_format="%.6g", lineterminator="\n")
 
 
 def _checks(number: int, exact: pd.DataFrame) -> pd.DataFrame:
@@ -338,5 +417,15 @@ def readme_block(folder) -> str:
         rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", beta, rules))
     table = text_table(("test", "what", "reference against its check (largest relative difference)",
                         "Dundurs' β (neglected)", "DEM rules' largest relative deviation from the exact contact"), rows)
-    return ("Chung & Ooi's benchmark tests, exact (`results/chung_ooi/`, rule `chung_ooi`; inputs and sources in "
+    text = ("Chung & Ooi's benchmark tests, exact (`results/chung_ooi/`, rule `chung_ooi`; inputs and sources in "
             "`src/sphereimpact/study/chung_ooi.yaml`):\n\n" + table + "\n")
+    published = folder / "published.csv"
+    if published.exists():
+        curves = pd.read_csv(published)
+        if len(curves):
+            worst = curves.loc[curves.groupby(["test", "quantity"], sort=True)["max_rel"].idxmax()]
+            text += ("\nThe paper's own curves (digitised by the Kratos developers, `data/chung_ooi_paper/`) against the "
+                     "exact references, each curve's largest relative deviation and where: " + "; ".join(
+                         f"test {r.test} {r.quantity} {r.max_rel:.2g} ({r.case}, at {r.x_quantity} {r.at:.3g})"
+                         for r in worst.itertuples()) + ".\n")
+    return text
