@@ -549,3 +549,22 @@ def test_the_similar_path_scales_every_numeric_output_as_simulate_gives_it():
                 assert math.isnan(got), key
             else:
                 assert got == pytest.approx(expected, rel=1e-7, abs=1e-12), (row, key)
+
+
+def test_a_pair_sweep_judges_each_body_not_their_reduced_sphere():
+    """The pair sweep solves each pair as its reduced sphere (m*, R*), which is no body: before, only that sphere's
+    density was judged, and a 500 kg partner of 5 cm (whose reduced sphere looks like a ball) passed unsaid.  Now each
+    body is judged as given, and a real pair raises nothing."""
+    import warnings
+
+    import pandas as pd
+
+    from sphereimpact.errors import UnitWarning
+    from sphereimpact.sweep import sweep
+
+    real = dict(angle=30.0, mass=0.145, diameter=0.063)  # 1107 kg/m^3: a ball; the partner a steel ball
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UnitWarning)
+        sweep(pd.DataFrame([real | dict(partner_mass=0.5, partner_diameter=0.0496)]), outputs=["cor"])
+    with pytest.warns(UnitWarning, match="the partner sphere.s mean density is 7.83e\\+06"):
+        sweep(pd.DataFrame([real | dict(partner_mass=500.0, partner_diameter=0.0496)]), outputs=["cor"])

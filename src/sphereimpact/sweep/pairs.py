@@ -9,10 +9,13 @@ as :func:`sphereimpact.simulate` derives them.  The table written keeps the rows
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 
-from ..impact.inputs import check_columns
+from ..errors import UnitWarning
+from ..impact.inputs import check_columns, density_problem
 from ..impact.outcome import SCALAR_OUTPUTS
 from ..impact.pair import (PARTNER_FIELDS, PARTNER_OUTPUTS, missing_partner, pair_velocities, partner_gravity,
                            reduced_body, stray_partner)
@@ -98,8 +101,14 @@ def pair_sweep(sweep, scenes, span=None, outputs=None, **options) -> pd.DataFram
     solved_for = None if wanted is None else [name for name in dict.fromkeys([*wanted, *MAPPED, "cor"])
                                               if name not in PARTNER_OUTPUTS]
     reduced_span = None if span is None else reduced_table(given_table(span).reset_index(drop=True))[0]
-    result = sweep(reduced, span=reduced_span, outputs=solved_for, **options)
     pair = ~np.isnan(partner["partner_mass"])
+    for slip in (density_problem(body["mass"], body["diameter"]),
+                 density_problem(partner["partner_mass"][pair], partner["partner_diameter"][pair], "partner sphere")):
+        if slip:  # each body as given, once for the table
+            warnings.warn(slip, UnitWarning, stacklevel=3)
+    with warnings.catch_warnings():  # the reduced sphere (m*, R*) is no body: its density says nothing
+        warnings.simplefilter("ignore", UnitWarning)
+        result = sweep(reduced, span=reduced_span, outputs=solved_for, **options)
     v_n, v_t = approach_speeds(result)
     velocities = pair_velocities({name: result[name].to_numpy() for name in MAPPED}, body["mass"],
                                  0.5 * body["diameter"], body["inertia_factor"], body["spin"],
