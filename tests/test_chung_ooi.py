@@ -146,3 +146,21 @@ def test_the_papers_curves_stand_beside_the_exact_answers():
     points = published_points(curves, 4, four)
     spin = points[(points["column"] == "omega_f") & (points["case"] == "al-oxide")]
     assert (spin["y"] > 0).all()  # the paper's negative spins in this project's sense
+
+
+def test_the_files_give_the_dem_codes_frames_and_normalised_quantities():
+    """Test 1 in its lab frame (each sphere at 10 m/s, as the paper sets it up) exchanges the two velocities (elastic,
+    identical spheres); test 5's approach is given as v_n and v_t (5 m/s and the listed tangential speeds), and its
+    sliding rows lie on Maw's gross-slip line in Kratos' normalised quantities: beta = -1 + 3.5 mu (1 + e) v_n / v_st,
+    R omega' / (mu v_n) = 2.5 (1 + e)."""
+    one = reference(1)
+    assert np.allclose(one["lab_ball_v_n"], -10.0) and np.allclose(one["lab_partner_v_n"], 10.0)
+    assert np.allclose(one["lab_ball_vc_n"], 10.0, rtol=1e-8) and np.allclose(one["lab_partner_vc_n"], -10.0, rtol=1e-8)
+    from sphereimpact.study.chung_ooi import EXACT, scenes_of_test, solve
+
+    five = scenes_of_test(5, EXACT)
+    _, tests = load_tests()
+    assert np.allclose(five["v_n"], 5.0) and np.allclose(sorted(set(five["v_t"].round(9))), tests[5]["tangential_speed"])
+    sliding = solve(five[five["v_t"] >= 50.0])  # the last rows: sliding throughout
+    line = -1.0 + 3.5 * sliding["mu"] * (1 + sliding["cor"]) * sliding["v_n"] / sliding["slip"]
+    assert np.allclose(sliding["beta"], line, rtol=1e-6) and np.allclose(sliding["spin_ratio"], 5.0, rtol=1e-6)

@@ -5,9 +5,21 @@
 INPUTS = {"test": "-", "case": "", "model": "", "tangential": "", "speed": "m/s", "incidence": "deg",
           "spin": "rad/s", "mass": "kg", "diameter": "m", "partner_mass": "kg", "partner_diameter": "m",
           "partner_spin": "rad/s", "modulus": "Pa", "kappa": "-", "mu": "-", "cor_target": "-", "dundurs_beta": "-"}
-OUTPUTS = {"t_f": "s", "delta_m": "m", "force_max": "N", "vc_t": "m/s", "vc_n": "m/s", "omega_f": "rad/s",
-           "ve_t": "m/s", "cor": "-", "e_t": "-", "rebound_angle_contact": "deg", "partner_vc_t": "m/s",
-           "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
+OUTCOME_OUTPUTS = {"t_f": "s", "delta_m": "m", "force_max": "N", "vc_t": "m/s", "vc_n": "m/s", "omega_f": "rad/s",
+                   "ve_t": "m/s", "cor": "-", "e_t": "-", "rebound_angle_contact": "deg", "partner_vc_t": "m/s",
+                   "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
+#: The approach as the DEM codes set it up (inputs): the normal and tangential approach speeds and the contact
+#: point's initial slip v_t - w R (- w2 R2 with a partner) [m/s]; for two spheres set up symmetrically (``lab:
+#: symmetric``, tests 1 and 7: each at half the relative speed, as Chung & Ooi's test 1 and Kratos' benchmarks do),
+#: each body's normal velocity before in that lab frame (n from the partner towards the ball).
+FRAME_INPUTS = {"v_n": "m/s", "v_t": "m/s", "slip": "m/s", "lab_ball_v_n": "m/s", "lab_partner_v_n": "m/s"}
+#: The same frame after the impact, and the normalised quantities of Kratos' benchmarks 5 and 6 on a plane
+#: (``DEM_benchmarks_class.py``): slip_ratio = slip / (mu v_n), spin_ratio = R omega' / (mu v_n) and beta = -ve_t' /
+#: slip, the contact point's tangential velocity after over before, negated (empty where the slip is 0, and for two
+#: spheres).
+FRAME_OUTPUTS = {"slip_ratio": "-", "spin_ratio": "-", "beta": "-", "lab_ball_vc_n": "m/s", "lab_partner_vc_n": "m/s"}
+INPUTS |= FRAME_INPUTS
+OUTPUTS = OUTCOME_OUTPUTS | FRAME_OUTPUTS
 #: Hertz's closed forms of the elastic normal tests, beside the computed t_f, delta_m and force_max.
 CLOSED_FORMS = {"hertz_t_f": "s", "hertz_delta_m": "m", "hertz_force_max": "N"}
 #: What each row says of its own exactness: for two spheres, the angle the line of centres would turn during the

@@ -29,7 +29,7 @@ from ..contact.materials import dundurs_beta, effective_moduli
 from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
 from ..impact.solve import simulate_many
-from .benchmark_columns import CLOSED_FORMS, INPUTS, OUTPUTS, STATEMENTS
+from .benchmark_columns import CLOSED_FORMS, INPUTS, OUTCOME_OUTPUTS, OUTPUTS, STATEMENTS
 from .dem_compare import rule_verdicts
 from .tables import text_table
 
@@ -116,8 +116,29 @@ def _scenes(number: int, test: dict, materials: dict, tangential: str, model: st
                          "partner_diameter": bodies.get("partner_diameter", math.nan),
                          "partner_spin": scene.partner_spin if scene.has_partner else math.nan,
                          "modulus": e_star, "kappa": kappa, "mu": test["mu"], "cor_target": cor,
-                         "dundurs_beta": beta, "scene": scene})
+                         "dundurs_beta": beta, **_frame(scene, test.get("lab")), "scene": scene})
     return pd.DataFrame(rows)
+
+
+def _frame(scene: Scene, lab: str | None) -> dict:
+    """A row's approach as the DEM codes set it up (:data:`FRAME_INPUTS`)."""
+    half = 0.5 * scene.v_normal if lab == "symmetric" and scene.has_partner else math.nan
+    return {"v_n": scene.v_normal, "v_t": scene.v_tangent, "slip": scene.slip0, "lab_ball_v_n": -half,
+            "lab_partner_v_n": half}
+
+
+def _frame_outputs(out: pd.DataFrame) -> pd.DataFrame:
+    """:data:`FRAME_OUTPUTS` of solved rows: the lab frame after (each velocity shifted by the partner's lab velocity
+    before) and, on a plane with slip, the normalised quantities."""
+    plane, slipping = out["partner_mass"].isna(), out["slip"] != 0
+    mu_v_n = out["mu"] * out["v_n"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return pd.DataFrame({
+            "slip_ratio": np.where(plane, out["slip"] / mu_v_n, np.nan),
+            "spin_ratio": np.where(plane, 0.5 * out["diameter"] * out["omega_f"] / mu_v_n, np.nan),
+            "beta": np.where(plane & slipping, -out["ve_t"] / out["slip"], np.nan),
+            "lab_ball_vc_n": out["vc_n"] + out["lab_partner_v_n"],
+            "lab_partner_vc_n": out["partner_vc_n"] + out["lab_partner_v_n"]}, index=out.index)
 
 
 def _scene(fields: dict, e_star: float, kappa: float, cor: float, tangential: str, model: str) -> Scene:
@@ -155,8 +176,9 @@ def solve(table: pd.DataFrame) -> pd.DataFrame:
     one), and Hertz's closed forms for the elastic rows."""
     outcomes = simulate_many(table["scene"].tolist())
     out = table.drop(columns="scene").copy()
-    for key in OUTPUTS:
+    for key in OUTCOME_OUTPUTS:
         out[key] = [math.nan if getattr(outcome, key) is None else float(getattr(outcome, key)) for outcome in outcomes]
+    out = pd.concat([out, _frame_outputs(out)], axis=1)
     forms = [hertz(scene) if scene.model == "hertz" else dict.fromkeys(CLOSED_FORMS, math.nan) for scene in table["scene"]]
     out["line_turn"] = [_line_turn(scene, outcome) for scene, outcome in zip(table["scene"], outcomes)]
     return pd.concat([out, pd.DataFrame(forms, index=out.index)], axis=1)
