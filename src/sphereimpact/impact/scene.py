@@ -24,8 +24,8 @@ from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
                                   kappa_from_shear_modulus)
-from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, density_problem,
-                     law_parameters, magnitude_problem, scale_problem)
+from .inputs import (DENSITY_RANGE, PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number,
+                     density_problem, law_parameters, magnitude_problem, scale_problem)
 from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body, stray_partner
 
 #: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
@@ -33,6 +33,17 @@ from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body
 TANGENTIAL_ONLY = ("mu", "tangential", *TANGENTIAL_PARAMETERS, "spin", "parameters")
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
+def _ball_like(mass: float, diameter: float) -> bool:
+    """Whether a body's mean density lies in :data:`~.inputs.DENSITY_RANGE` (or is not finite: the magnitude checks
+    speak of that), in plain floats."""
+    try:
+        volume = math.pi / 6.0 * diameter ** 3
+    except OverflowError:  # a diameter beyond 5.6e102 m: its cube leaves double precision
+        return True
+    density = mass / volume if volume > 0 else math.inf
+    return not math.isfinite(density) or DENSITY_RANGE[0] <= density <= DENSITY_RANGE[1]
+
+
 #: True while :meth:`Scene.with_` copies a scene: its bodies were checked (and any unit slip said) when it was built.
 _COPYING: ContextVar[bool] = ContextVar("scene_copying", default=False)
 
@@ -172,9 +183,8 @@ class Scene:
         problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
         if problem:
             raise ValueError(problem)
-        slip = None if _COPYING.get() else density_problem(self.mass, self.diameter)
-        if slip:  # stack: __post_init__, __init__, the caller
-            warnings.warn(slip, UnitWarning, stacklevel=3)
+        if not _COPYING.get() and not _ball_like(self.mass, self.diameter):  # floats: a scene is built per row
+            warnings.warn(density_problem(self.mass, self.diameter), UnitWarning, stacklevel=3)  # caller's line
         self._check_path()
         if self._check_partner():
             self._take_reduced()
@@ -211,9 +221,9 @@ class Scene:
             raise ValueError(missing_partner("partner_mass" if self.partner_mass is None else "partner_diameter"))
         if self.gravity != 0:
             raise ValueError(partner_gravity(self.gravity))
-        slip = None if _COPYING.get() else density_problem(self.partner_mass, self.partner_diameter, "partner sphere")
-        if slip:
-            warnings.warn(slip, UnitWarning, stacklevel=4)
+        if not _COPYING.get() and not _ball_like(self.partner_mass, self.partner_diameter):
+            warnings.warn(density_problem(self.partner_mass, self.partner_diameter, "partner sphere"), UnitWarning,
+                          stacklevel=4)
         return True
 
     def _take_reduced(self) -> None:
