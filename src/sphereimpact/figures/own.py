@@ -36,14 +36,19 @@ def speed_figure(csv_path: str, study: str, outputs, measured_at: float | None =
         save(fig, outputs)
 
 
-def map_figure(csv_path: str, study: str, key: str, label: str, outputs) -> None:
-    """One output over angle to the surface x speed."""
+def map_figure(csv_path: str, study: str, key: str, label: str, outputs, centre: float | None = None) -> None:
+    """One output over angle to the surface x speed; with ``centre``, a signed quantity on a diverging scale
+    symmetric about it (so its sign reads off the colour: the spin's topspin red, backspin blue)."""
     table = pd.read_csv(csv_path)
     angles, speeds = np.unique(table["angle_to_surface"]), np.unique(table["speed"])
     values = table.pivot(index="speed", columns="angle_to_surface", values=key).loc[speeds, angles].to_numpy()
+    scale = {"cmap": "viridis"}
+    if centre is not None:
+        reach = float(np.nanmax(np.abs(values - centre))) or 1.0
+        scale = {"cmap": "RdBu_r", "vmin": centre - reach, "vmax": centre + reach}
     with plt.rc_context(RC):
         fig, ax = plt.subplots()
-        mesh = ax.pcolormesh(angles, speeds, values, shading="nearest", cmap="viridis")
+        mesh = ax.pcolormesh(angles, speeds, values, shading="nearest", **scale)
         fig.colorbar(mesh, ax=ax, label=label)
         ax.set(xlabel="angle to the surface [deg]", ylabel="speed along the path [m/s]")
         ax.set_title(f"study {study}: {label}, incoming spin {table['spin'].iloc[0]:g} rad/s", fontsize=9)
@@ -56,6 +61,7 @@ def curves_and_maps(speed_csv: str, maps_csv: str, ball_json: str, study: str, o
     the study's, which its ball file may name."""
     measured = load_ball(ball_json, plugins).measurement
     speed_figure(speed_csv, study, [outputs["speed"]], None if measured is None else measured.speed)
-    map_figure(maps_csv, study, "omega_f", "rebound spin [rad/s]", [outputs["spin_map"]])
+    map_figure(maps_csv, study, "omega_f", "rebound spin [rad/s], + topspin, - backspin", [outputs["spin_map"]],
+               centre=0.0)
     map_figure(maps_csv, study, "rebound_angle_to_surface", "rebound angle of the centre to the surface [deg]",
                [outputs["rebound_map"]])
