@@ -93,6 +93,13 @@ def density_problem(mass, diameter, body: str = "ball") -> str | None:
     """One line naming the likely unit slip when the mean density m / (pi D^3 / 6) (arrays, or numbers: the first
     bad row named) lies outside :data:`DENSITY_RANGE`, else None.  A warning, not a refusal: a test body may be
     odd on purpose."""
+    if isinstance(mass, float) and isinstance(diameter, float):  # one body (a Scene is built per row): plain floats
+        try:
+            density = mass / (math.pi / 6.0 * diameter ** 3)
+        except (OverflowError, ZeroDivisionError):  # beyond double precision: the magnitude checks speak of that
+            return None
+        if not math.isfinite(density) or DENSITY_RANGE[0] <= density <= DENSITY_RANGE[1]:
+            return None
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         m, d = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, diameter)))
         rho = m / (math.pi / 6.0 * d ** 3)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
+from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, fields, replace
 from functools import cached_property
@@ -24,8 +25,8 @@ from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
                                   kappa_from_shear_modulus)
-from .inputs import (DENSITY_RANGE, PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number,
-                     density_problem, law_parameters, magnitude_problem, scale_problem)
+from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as_number, density_problem,
+                     law_parameters, magnitude_problem, scale_problem)
 from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body, stray_partner
 
 #: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
@@ -33,19 +34,19 @@ from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body
 TANGENTIAL_ONLY = ("mu", "tangential", *TANGENTIAL_PARAMETERS, "spin", "parameters")
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
-def _ball_like(mass: float, diameter: float) -> bool:
-    """Whether a body's mean density lies in :data:`~.inputs.DENSITY_RANGE` (or is not finite: the magnitude checks
-    speak of that), in plain floats."""
+#: True while Scenes are built whose bodies were judged already, or are no body (:func:`bodies_judged`).
+_JUDGED: ContextVar[bool] = ContextVar("bodies_judged", default=False)
+
+
+@contextmanager
+def bodies_judged():
+    """Within it, a Scene built does not judge its bodies' density again: a copy (:meth:`Scene.with_`), whose bodies
+    were judged when it was built; a pair's reduced sphere, which is no body; a sweep's rows, judged once per table."""
+    token = _JUDGED.set(True)
     try:
-        volume = math.pi / 6.0 * diameter ** 3
-    except OverflowError:  # a diameter beyond 5.6e102 m: its cube leaves double precision
-        return True
-    density = mass / volume if volume > 0 else math.inf
-    return not math.isfinite(density) or DENSITY_RANGE[0] <= density <= DENSITY_RANGE[1]
-
-
-#: True while :meth:`Scene.with_` copies a scene: its bodies were checked (and any unit slip said) when it was built.
-_COPYING: ContextVar[bool] = ContextVar("scene_copying", default=False)
+        yield
+    finally:
+        _JUDGED.reset(token)
 
 
 class FrozenMapping(Mapping):
@@ -183,8 +184,9 @@ class Scene:
         problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
         if problem:
             raise ValueError(problem)
-        if not _COPYING.get() and not _ball_like(self.mass, self.diameter):  # floats: a scene is built per row
-            warnings.warn(density_problem(self.mass, self.diameter), UnitWarning, stacklevel=3)  # caller's line
+        slip = None if _JUDGED.get() else density_problem(self.mass, self.diameter)
+        if slip:  # stack: __post_init__, __init__, the caller
+            warnings.warn(slip, UnitWarning, stacklevel=3)
         self._check_path()
         if self._check_partner():
             self._take_reduced()
@@ -221,9 +223,9 @@ class Scene:
             raise ValueError(missing_partner("partner_mass" if self.partner_mass is None else "partner_diameter"))
         if self.gravity != 0:
             raise ValueError(partner_gravity(self.gravity))
-        if not _COPYING.get() and not _ball_like(self.partner_mass, self.partner_diameter):
-            warnings.warn(density_problem(self.partner_mass, self.partner_diameter, "partner sphere"), UnitWarning,
-                          stacklevel=4)
+        slip = None if _JUDGED.get() else density_problem(self.partner_mass, self.partner_diameter, "partner sphere")
+        if slip:
+            warnings.warn(slip, UnitWarning, stacklevel=4)
         return True
 
     def _take_reduced(self) -> None:
@@ -233,8 +235,7 @@ class Scene:
             self.mass, self.radius, self.inertia_factor, self.spin, self.partner_mass, 0.5 * self.partner_diameter,
             self.partner_inertia_factor, self.partner_spin)
         own = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in PARTNER_FIELDS}
-        with warnings.catch_warnings():  # the reduced sphere is no ball: its density is not checked (each body's is)
-            warnings.simplefilter("ignore", UnitWarning)
+        with bodies_judged():  # the reduced sphere is no body: each body's density was judged above
             reduced = Scene(**own | dict(mass=m_star, diameter=2.0 * r_star, inertia_factor=alpha_star,
                                          spin=spin_star))
         for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, "separation", "parameters"):
@@ -511,11 +512,8 @@ class Scene:
                                      *tangential.own_parameters)}
             kept = {name: value for name, value in changes.get("parameters", self.parameters).items() if name in keep}
             changes["parameters"] = kept | own
-        token = _COPYING.set(True)  # a copy's body was checked when the scene was built: no density warning again
-        try:
+        with bodies_judged():  # judged when this scene was built
             return replace(self, **changes)
-        finally:
-            _COPYING.reset(token)
 
 
 #: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.

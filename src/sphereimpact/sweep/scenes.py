@@ -8,7 +8,6 @@ as the Scene does; :func:`numbers` gives each row the numbers that choose and dr
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, fields
 from types import SimpleNamespace
 
@@ -18,10 +17,9 @@ import pandas as pd
 from ..contact.laws import LAWS, PARAMETER_NAMES
 from ..contact.separation import Separation
 from ..contact.declared import own_parameters
-from ..errors import UnitWarning
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
 from ..impact.pair import PARTNER_FIELDS
-from ..impact.scene import Scene
+from ..impact.scene import Scene, bodies_judged
 from ..memory import check_size
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
@@ -146,8 +144,7 @@ def scene_of(row: dict) -> Scene:
     for name in TANGENTIAL_PARAMETERS:
         if np.isnan(values[name]) or (name != "kappa" and resolved):
             values[name] = None
-    with warnings.catch_warnings():  # the sweep warns once for its table (engine.sweep), not once per row
-        warnings.simplefilter("ignore", UnitWarning)
+    with bodies_judged():  # the sweep judges its table once (engine.sweep), not each row
         return Scene(**values)
 
 
