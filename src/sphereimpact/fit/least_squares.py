@@ -360,10 +360,11 @@ def _restarted(result, solve, sigma, names, initial, bounds, logs, natural):
     merely fits the noise in another regime does not, and a parameter the data truly do not constrain stays
     reported as such."""
     best, kept, tried = result, initial, []
-    for k in range(len(RESTART_FACTORS)):
-        start = np.array([v * RESTART_FACTORS[k] if lo == 0 or log else lo + RESTART_FRACTIONS[k] * (hi - lo)
-                          if math.isfinite(hi) else v * RESTART_FACTORS[k]
-                          for v, log, lo, hi in zip(initial, logs, *_natural_bounds(bounds, logs))])
+    low, high = _natural_bounds(bounds, logs)
+    ranged = ~logs & (low != 0) & np.isfinite(high)  # a bounded range (the COR, the inertia factor, the exponent)
+    for factor, fraction in zip(RESTART_FACTORS, RESTART_FRACTIONS):
+        with np.errstate(invalid="ignore"):  # the unranged lanes' -inf + inf, not taken
+            start = np.where(ranged, low + fraction * (high - low), initial * factor)
         theta = _inside(np.where(logs, np.log(np.where(logs, start, 1.0)), start), *bounds)
         trial = solve(theta, sigma)
         tried.append(natural(theta))

@@ -66,7 +66,6 @@ def _body(frame: pd.DataFrame) -> dict:
     the row), defaulted where not given."""
     n = len(frame)
     given = {name: frame[name].to_numpy() for name in BODY if name in frame}
-    check_columns({name: values for name, values in given.items() if not pd.isna(values).any()})
     out = {}
     for name, default in BODY.items():
         values = given[name] if name in given else np.full(n, default)
