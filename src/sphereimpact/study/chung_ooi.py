@@ -30,7 +30,7 @@ from ..impact.calibrate import calibrate
 from ..impact.scene import Scene
 from ..impact.solve import simulate_many
 from .benchmark_columns import CLOSED_FORMS, INPUTS, OUTCOME_OUTPUTS, OUTPUTS, STATEMENTS
-from .dem_compare import rule_verdicts
+from .dem_compare import read_with_units, rule_verdicts
 from .tables import text_table
 
 #: The tests' inputs and their sources.
@@ -249,9 +249,9 @@ def write_table(table: pd.DataFrame, path) -> None:
 
 
 def read_table(path) -> pd.DataFrame:
-    """A reference table (or a DEM code's, in the same columns), the units stripped from its header."""
-    table = pd.read_csv(path)
-    return table.rename(columns={name: name.split(" [")[0] for name in table.columns})
+    """A reference table (or a DEM code's, in the same columns), the units stripped from its header
+    (:func:`~.dem_compare.read_with_units`, which also gives them)."""
+    return read_with_units(path)[0]
 
 
 def chosen_tests(numbers=None, path=DEFINITION) -> list[int]:
@@ -294,9 +294,8 @@ def published_points(curves: pd.DataFrame, number: int, exact: pd.DataFrame) -> 
     rows = []
     for case in dict.fromkeys(exact["case"]):
         part = exact[exact["case"] == case]
-        speed, radius, mu = (float(part[c].iloc[0]) for c in ("speed", "diameter", "mu"))
+        speed, radius, mu, v_n = (float(part[c].iloc[0]) for c in ("speed", "diameter", "mu", "v_n"))
         radius /= 2
-        v_n = speed * math.cos(math.radians(float(part["incidence"].iloc[0])))
         for curve in mine[(mine["case"] == case) | (mine["case"] == "")].itertuples(index=False):
             x, y = float(curve.x), float(curve.y) * curve.sign
             if curve.quantity == "e_t":  # at this test's speed along the path
@@ -312,21 +311,9 @@ def published_points(curves: pd.DataFrame, number: int, exact: pd.DataFrame) -> 
     return pd.DataFrame(rows, columns=["case", "material", "quantity", "column", "x", "y"])
 
 
-def own_quantity(exact: pd.DataFrame, name: str) -> np.ndarray:
-    """A curve's quantity (or its x) as the exact reference gives it: a column, or the paper's normalised
-    ``slip_ratio`` v_t / (mu v_n) and ``spin_ratio`` R omega' / (mu v_n)."""
-    theta = np.radians(exact["incidence"].to_numpy())
-    mu_v_n = exact["mu"].to_numpy() * exact["speed"].to_numpy() * np.cos(theta)
-    if name == "slip_ratio":
-        return exact["speed"].to_numpy() * np.sin(theta) / mu_v_n
-    if name == "spin_ratio":
-        return 0.5 * exact["diameter"].to_numpy() * exact["omega_f"].to_numpy() / mu_v_n
-    return exact[name].to_numpy(dtype=float)
-
-
 def published_deviations(curves: pd.DataFrame, exact_by_test: dict) -> pd.DataFrame:
     """Each published curve's largest deviation from the exact reference, per test, case and quantity, in the curve's
-    own quantities (:func:`own_quantity`; the paper's spin sign converted): the exact answer interpolated linearly
+    own quantities (the reference's columns of them; the paper's spin sign converted): the exact answer interpolated linearly
     at the curve's points within its range; ``max_rel`` over the exact quantity's largest magnitude, ``at`` the
     curve's x there, ``outside`` its points beyond the reference's range."""
     rows = []
@@ -336,8 +323,8 @@ def published_deviations(curves: pd.DataFrame, exact_by_test: dict) -> pd.DataFr
             quantity, x_quantity, case = curve_key
             for name in ([case] if case else list(dict.fromkeys(exact["case"]))):
                 part = exact[exact["case"] == name]
-                order = np.argsort(own_quantity(part, x_quantity), kind="stable")
-                xs, ys = own_quantity(part, x_quantity)[order], own_quantity(part, quantity)[order]
+                order = np.argsort(part[x_quantity].to_numpy(), kind="stable")
+                xs, ys = part[x_quantity].to_numpy(float)[order], part[quantity].to_numpy(float)[order]
                 x, y = curve["x"].to_numpy(float), curve["y"].to_numpy(float) * curve["sign"].to_numpy(float)
                 inside = (x >= xs.min()) & (x <= xs.max())
                 if not inside.any():

@@ -246,7 +246,7 @@ def rule_verdicts(rules: pd.DataFrame, exact: pd.DataFrame, tolerances: dict | N
     """The pipeline's door: each simplified DEM rule's solution of a test (``rules``, a ``tangential`` column naming
     the rule) judged against the exact reference as a code's file would be (:func:`compare_test`, SI units), one
     row per rule and output with the rule in ``tangential``."""
-    units = {name: unit for name, unit in (INPUTS | OUTPUTS).items()}
+    units = INPUTS | OUTPUTS
     parts = []
     for rule, part in rules.groupby("tangential", sort=False):
         judged = compare_test(exact, part.reset_index(drop=True), {c: units.get(c, "") for c in part.columns},
