@@ -14,9 +14,8 @@ integrated independently and interpolants are built on the whole sweep.
 
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 import warnings
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
