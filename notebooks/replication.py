@@ -100,8 +100,11 @@ display(Markdown(report[report.index("## Hypotheses tested"):]))
 # %% [markdown]
 # ## The figures
 #
-# Histories are drawn under the `penetration` criterion (`figure_separation` in the config), so
-# the whole contact is shown, including any tension. The chapter's printed values are marked in red.
+# Histories are drawn under the separation criterion the table above uses (`primary.separation` in the
+# config), so a figure and the table show the same contact; the other criterion's end is marked on each
+# figure, and in Figs 4.7 and 4.8 a thin line continues a law to δ = 0 where that criterion ends it
+# elsewhere, with the least force it would reach. The chapter's printed values are marked in red; each
+# figure's caption, with its numbers read from the run files, is in `paper_figures/README.md`.
 
 # %%
 for name, spec in FIGURES.items():
@@ -109,8 +112,9 @@ for name, spec in FIGURES.items():
         display(Image(filename=f"paper_figures/{name}.png"))
 
 # %% [markdown]
-# In Figs 4.7 and 4.8 the previous model (dashed) starts at P = b v_n, not 0, and ends pulling, as the
-# chapter says. The modified model (solid) starts from zero. Whether it also pulls at the end is measured,
-# case by case, in the table above and in the findings: near δ = 0, P ≈ δ(k + c b δ̇/R), which is negative
+# In Figs 4.7 and 4.8 the previous model (dashed) starts at P = b v_n, not 0, and, held to δ = 0 (thin
+# line), pulls, as the chapter says; under the force criterion its contact ends at P = 0 with δ > 0 instead.
+# The modified model (solid) starts from zero. Whether it also pulls at the end is measured, case by case,
+# in the figures' thin lines, the table above and the findings: near δ = 0, P ≈ δ(k + c b δ̇/R), which is negative
 # whenever the rebound speed exceeds kR/(c b). The chapter's conclusion that the modified model has no
 # negative force holds only for the cases whose rebound stays below that speed.

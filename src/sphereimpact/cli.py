@@ -689,7 +689,7 @@ def _simulate(args) -> None:
 
             title = (f"{scene.model} law, {scene.tangential} contact: {scene.speed:g} m/s at {scene.incidence_deg:g}° "
                      f"from the normal, spin {scene.spin:g} rad/s; COR {outcome.cor:.4g}, ω_f {outcome.omega_f:.4g} rad/s")
-            history_figure(history, title, [args.plot])
+            history_figure(history, title, scene.separation, [args.plot])
     if args.json:
         json.dump(outputs, sys.stdout, indent=2)
         sys.stdout.write("\n")

@@ -117,9 +117,14 @@ def notebook_inputs(wildcards):
     return NOTEBOOKS[wildcards.name] + extra
 
 
-def figure_runs(wildcards):
-    spec = FIGURES[wildcards.fig]
+def chapter_runs(fig):
+    """The run files chapter figure ``fig`` draws, in its laws' order."""
+    spec = FIGURES[fig]
     return [f"results/runs/{spec.case}_{model}.csv" for model in spec.models]
+
+
+def figure_runs(wildcards):
+    return chapter_runs(wildcards.fig)
 
 
 def chapter_outputs():

@@ -22,11 +22,16 @@ rule figure:
 
 
 rule figure_index:
-    """paper_figures/README.md: every figure with its caption (the folder's index a reader sees)."""
+    """paper_figures/README.md: every figure with its caption (the folder's index a reader sees), the chapter
+    figures' facts read from their run files."""
+    input:
+        runs=sorted({run for fig in drawable_figures() for run in chapter_runs(fig)}),
     output:
         md="paper_figures/README.md",
     params:
         code=code("workflow/scripts/figure_index.py"),
+        config=params_for("figure_index"),
+        runs={fig: chapter_runs(fig) for fig in drawable_figures()},
     benchmark:
         "results/benchmarks/figures/figure_index.tsv",
     log:

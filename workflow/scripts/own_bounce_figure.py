@@ -5,4 +5,5 @@ from sphereimpact.study.workflow import job_log
 
 with job_log(snakemake.log[0], f"draw {snakemake.wildcards.bounce}"):
     bounce_figure(read_history(snakemake.input.history), snakemake.params.config["study"],
-                  snakemake.wildcards.bounce, [snakemake.output.png])
+                  snakemake.wildcards.bounce, snakemake.params.config["contact"]["separation"],
+                  [snakemake.output.png])

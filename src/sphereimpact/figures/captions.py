@@ -1,25 +1,34 @@
 """Every figure's caption, in one place: the index of ``paper_figures/`` (``paper_figures/README.md``, which a
-reader browsing the folder sees) and the notebooks read them.  No matplotlib here."""
+reader browsing the folder sees), the report and the notebooks read them; the chapter figures' captions end with
+facts read from their run files (:func:`chapter_facts`).  No matplotlib here."""
 
 from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .catalog import CRITERIA, EQUATIONS, FIGURES
 
 #: Figure (file stem in ``paper_figures/``) -> (section, caption).  The chapter's figures first, in its order.
 CAPTIONS = {
     "fig4_2": ("The chapter's figures",
-               "Fig. 4.2 redrawn: the centre's normal and tangential displacement against time, normal impact at 3 m/s "
-               "(modified law, eq. 4.2). Red: the chapter's printed maximum compression and its t_m and t_f; grey: the "
-               "end of this model's contact, after which nothing is drawn."),
+               "Fig. 4.2 redrawn: the centre's normal and tangential displacement against time, normal impact "
+               "(modified law, eq. 4.2), drawn to the end of contact under the replication table's criterion (grey "
+               "line; the dotted grey line is where the other criterion ends it). Red: the chapter's printed maximum "
+               "compression and its t_m and t_f."),
     "fig4_3": ("The chapter's figures", "Fig. 4.3 redrawn: the same for the 60° impact."),
     "fig4_4": ("The chapter's figures",
-               "Fig. 4.4 redrawn: the centre's and the contact point's velocities against time, normal impact; each "
-               "printed end velocity marked with its own red symbol."),
+               "Fig. 4.4 redrawn: the centre's and the contact point's velocities against time, normal impact, under "
+               "the table's criterion; each printed end velocity marked with its own red symbol."),
     "fig4_5": ("The chapter's figures",
                "Fig. 4.5 redrawn: the velocities of the 60° impact; the printed normal and tangential contact-point "
                "velocities at t_f marked with different red symbols."),
-    "fig4_6": ("The chapter's figures", "Fig. 4.6 redrawn: the spin against time, 60° impact, with the printed ω_f."),
+    "fig4_6": ("The chapter's figures", "Fig. 4.6 redrawn: the spin against time, 60° impact, under the table's "
+                                        "criterion, with the printed ω_f."),
     "fig4_7": ("The chapter's figures",
                "Fig. 4.7 redrawn: normal force against deflection, normal impact, eq. 4.1 (dashed) and eq. 4.2 "
-               "(solid): eq. 4.1 jumps at first touch and pulls before δ returns to 0, eq. 4.2 does neither."),
+               "(solid) under the table's criterion; thin lines continue a law to δ = 0 (the other criterion) "
+               "where that differs."),
     "fig4_8": ("The chapter's figures", "Fig. 4.8 redrawn: the same for the 60° impact."),
     "spin_map": ("Sweeps",
                  "Spin (top) and contact-point slip (bottom) after impact against the flat's inclination at the chapter's "
@@ -68,21 +77,92 @@ CAPTIONS = {
 }
 
 
-def figure_index() -> str:
-    """``paper_figures/README.md``: every figure, grouped by section, with its caption."""
+def contact_ends(history: pd.DataFrame) -> dict:
+    """Each criterion's end of contact in a run file's histories: criterion -> its last row."""
+    return {criterion: part.iloc[-1] for criterion, part in history.groupby("separation", sort=False)}
+
+
+def _g(value: float, digits: int = 4) -> str:
+    text = f"{value:.{digits}g}"
+    return text.replace("-", "−")
+
+
+def chapter_facts(name: str, histories: list, separation: str) -> str:
+    """What chapter figure ``name`` shows, read from its run files' histories (``histories``: one frame per law
+    of :data:`~sphereimpact.figures.catalog.FIGURES`, every criterion; SI): the end of contact under
+    ``separation`` (the table's criterion) and under the other, and the figure's own numbers (the peak compression,
+    the end velocities or spin, or the force at first touch, at the end and held to δ = 0)."""
+    spec = FIGURES[name]
+    if spec.kind == "force_deflection":
+        facts = []
+        for model, history in zip(spec.models, histories):
+            drawn = criterion_history(history, separation)
+            scale = max(drawn["force"].abs().max(), 1e-300)
+            first, last = drawn["force"].iloc[0], drawn.iloc[-1]
+            text = f"{EQUATIONS[model]} starts " + (f"with a jump to {_g(first)} N" if first > 1e-9 * scale
+                                                     else "from 0 N")
+            text += (f" and ends at P = 0 with δ = {_g(last['delta'] * 1e3)} mm" if last["delta"] > 1e-9 * drawn["delta"].max()
+                     else " and ends at δ = 0")
+            lowest = drawn["force"].min()
+            text += f", its least force {_g(lowest)} N" if lowest < -1e-9 * scale else ", never pulling"
+            for other, end in contact_ends(history).items():
+                if other != separation and abs(end["t"] - last["t"]) > 1e-12:
+                    held = history[history["separation"] == other]["force"].min()
+                    text += (f"; held to δ = 0 ({other} criterion) it would pull to {_g(held)} N"
+                             if held < -1e-9 * scale else f"; held to δ = 0 ({other} criterion) it would not pull")
+            facts.append(text)
+        return f"Under the {separation} criterion (the table's): " + "; ".join(facts) + "."
+    history = histories[0]
+    drawn, ends = criterion_history(history, separation), contact_ends(history)
+    last = drawn.iloc[-1]
+    text = (f"Approach {_g(float(np.hypot(drawn['vc_t'].iloc[0], drawn['vc_n'].iloc[0])))} m/s. Drawn under the "
+            f"{separation} criterion (the table's): the contact ends at {_g(last['t'] * 1e3)} ms")
+    for other, end in ends.items():
+        if other != separation:
+            text += (f", as under the {other} criterion" if abs(end["t"] - last["t"]) <= 1e-12
+                     else f"; under the {other} criterion ({CRITERIA[other].split(' (')[0]}) at {_g(end['t'] * 1e3)} ms")
+    if spec.kind == "displacement":
+        peak = drawn.loc[drawn["delta"].idxmax()]
+        text += f". Largest compression {_g(peak['delta'] * 1e3)} mm at {_g(peak['t'] * 1e3)} ms (nearest sample)"
+    elif spec.kind == "velocity":
+        text += (f". At the end the contact point moves at v_E,t = {_g(last['ve_t'])} m/s, "
+                 f"v_E,n = {_g(last['ve_n'])} m/s")
+    else:
+        text += f". Spin at the end {_g(last['omega'])} rad/s"
+    return text + "."
+
+
+def criterion_history(history: pd.DataFrame, separation: str) -> pd.DataFrame:
+    """The rows of a run file's histories under ``separation``; refused in one line when it has none."""
+    drawn = history[history["separation"] == separation]
+    if drawn.empty:
+        raise ValueError(f"separation {separation!r}: the run file has no history under it; add it to "
+                         f"`separations` (one of {sorted(CRITERIA)}) or choose another `primary.separation`")
+    return drawn
+
+
+def figure_index(facts: dict | None = None) -> str:
+    """``paper_figures/README.md``: every figure, grouped by section, with its caption; ``facts`` (figure ->
+    :func:`chapter_facts`) follow the chapter figures' captions."""
+    facts = facts or {}
     lines = ["# Figures", "",
-             "Written by `snakemake --cores 2` (the chapter's Figs 4.2-4.8 are committed; the others are drawn on "
-             "every run). Each figure with its caption; the notebooks (`results/notebooks/`) discuss them.", ""]
+             "Written by `snakemake --cores 2`, each with its caption; the numbers in the chapter figures' captions "
+             "are read from their run files. The notebooks (`results/notebooks/`) discuss them.", ""]
     section = None
     for name, (where, caption) in CAPTIONS.items():
         if where != section:
             lines += [f"## {where}", ""]
             section = where
-        lines += [f"**{name}.png**: {caption}", "", f"![{name}]({name}.png)", ""]
+        fact = f" {facts[name]}" if name in facts else ""
+        lines += [f"**{name}.png**: {caption}{fact}", "", f"![{name}]({name}.png)", ""]
     return "\n".join(lines)
 
 
-def write_figure_index(path: str) -> None:
-    """Write :func:`figure_index` to ``path``."""
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write(figure_index())
+def write_figure_index(path: str, run_csvs: dict, separation: str) -> None:
+    """Write :func:`figure_index` to ``path``, with the chapter figures' facts read from ``run_csvs`` (figure ->
+    its run CSVs, in :data:`~sphereimpact.figures.catalog.FIGURES`' order) under ``separation``."""
+    from ..files import write_text
+
+    facts = {name: chapter_facts(name, [pd.read_csv(csv) for csv in csvs], separation)
+             for name, csvs in run_csvs.items()}
+    write_text(path, figure_index(facts))

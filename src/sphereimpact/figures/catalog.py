@@ -30,6 +30,12 @@ class FigureSpec(NamedTuple):
     title: str
 
 
+#: The chapter's name of each force law the figures draw.
+EQUATIONS = {"kelvin-voigt": "eq. 4.1", "modified": "eq. 4.2"}
+
+#: How each separation criterion ends a contact, as figures and captions name it.
+CRITERIA = {"force": "P returns to 0 (force criterion)", "penetration": "δ returns to 0 (penetration criterion)"}
+
 FIGURES = {
     "fig4_2": FigureSpec("displacement", "normal", ("modified",), "Fig. 4.2: displacement of the centre, normal impact"),
     "fig4_3": FigureSpec("displacement", "oblique60", ("modified",), "Fig. 4.3: displacement of the centre, 60° impact"),

@@ -6,6 +6,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import pandas as pd
 
+from .catalog import CRITERIA
 from .style import RC, save
 
 
@@ -22,10 +23,10 @@ def unit_for(largest: float, units) -> tuple[float, str]:
     return units[-1]
 
 
-def history_figure(history: pd.DataFrame, title: str, outputs) -> None:
+def history_figure(history: pd.DataFrame, title: str, separation: str, outputs) -> None:
     """Four panels of :meth:`sphereimpact.Outcome.history`'s table, in the units its contact's time and
-    compression read best in (a steel ball's microseconds, a tennis ball's milliseconds); ``outputs`` the files
-    to write."""
+    compression read best in (a steel ball's microseconds, a tennis ball's milliseconds), the separation criterion
+    that ended the contact (``separation``) named under the title; ``outputs`` the files to write."""
     t_size, t_unit = unit_for(float(history["t"].max()), TIME_UNITS)
     d_size, d_unit = unit_for(float(max(history["delta"].abs().max(), history["u_t"].abs().max())), LENGTH_UNITS)
     t = history["t"] / t_size
@@ -48,6 +49,6 @@ def history_figure(history: pd.DataFrame, title: str, outputs) -> None:
         force.set(xlabel=f"compression δ [{d_unit}]", ylabel="force [N]", title="force against compression")
         for ax in (motion, velocity, force):
             ax.legend(fontsize=7)
-        fig.suptitle(title, fontsize=9)
+        fig.suptitle(f"{title}\ncontact ends when {CRITERIA[separation]}", fontsize=9)
         fig.tight_layout()
         save(fig, outputs)

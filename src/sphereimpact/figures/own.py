@@ -12,9 +12,10 @@ from .history import history_figure
 from .style import RC, save
 
 
-def bounce_figure(history: pd.DataFrame, study: str, bounce: str, outputs) -> None:
-    """One bounce's history (:func:`sphereimpact.figures.history.history_figure`), titled by its study."""
-    history_figure(history, f"study {study}: bounce {bounce}", outputs)
+def bounce_figure(history: pd.DataFrame, study: str, bounce: str, separation: str, outputs) -> None:
+    """One bounce's history (:func:`sphereimpact.figures.history.history_figure`), titled by its study, its
+    contact ended under ``separation``."""
+    history_figure(history, f"study {study}: bounce {bounce}", separation, outputs)
 
 
 def speed_figure(csv_path: str, study: str, outputs, measured_at: float | None = None) -> None:

@@ -1,8 +1,9 @@
 """The chapter's Figs 4.2-4.8, redrawn from the run files, with the printed values marked.
 
-Each figure function takes the run CSVs it needs (time histories, SI), the
-published values and the criterion whose histories to draw, and returns a
-matplotlib Figure.  Plotted in ms, mm, m/s, rad/s and N.
+Each figure function takes the run CSVs it needs (time histories, SI, every separation criterion), the
+published values and the criterion the replication table uses, and returns a matplotlib Figure: the
+histories under that criterion, the end of contact under each criterion named on the figure.  Plotted in
+ms, mm, m/s, rad/s and N.
 """
 
 from __future__ import annotations
@@ -11,7 +12,8 @@ import matplotlib.pyplot as plt
 import pandas as pd
 
 from ..study.replication import load_published
-from .catalog import FIGURES
+from .captions import criterion_history, contact_ends
+from .catalog import CRITERIA, EQUATIONS, FIGURES
 from .style import RC, save
 
 PUBLISHED_STYLE = dict(color="crimson", marker="x", markersize=9, mew=2, linestyle="none")
@@ -26,11 +28,6 @@ WIDE = (9.0, 4.2)
 def _legend(ax, fig) -> None:
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     fig.tight_layout()
-
-
-def _history(path: str, separation: str) -> pd.DataFrame:
-    frame = pd.read_csv(path)
-    return frame[frame["separation"] == separation]
 
 
 def _published(published: list[dict], case: str) -> dict:
@@ -50,7 +47,8 @@ def _time_history(run_csv, published, case, separation, title, curves, markers, 
     ``curves``: (column, scale, style, label), drawn when not identically zero (``style`` None: always drawn).
     ``markers``: (published quantity, quantity giving its time, scale, label) for the printed values.
     """
-    h, pub = _history(run_csv, separation), _published(published, case)
+    runs = pd.read_csv(run_csv)
+    h, pub = criterion_history(runs, separation), _published(published, case)
     with plt.rc_context(RC | {"figure.figsize": WIDE}):
         fig, ax = plt.subplots()
         for column, scale, style, label in curves:
@@ -58,7 +56,12 @@ def _time_history(run_csv, published, case, separation, title, curves, markers, 
                 ax.plot(h["t"] * 1e3, h[column] * scale, style or "-", label=label)
         _mark_times(ax, pub)
         end = h["t"].iloc[-1] * 1e3  # the history ends where this model's contact does
-        ax.axvline(end, color="0.45", linestyle="-", linewidth=0.8, label=f"contact ends, this model: {end:.3f} ms")
+        ax.axvline(end, color="0.45", linestyle="-", linewidth=0.8,
+                   label=f"contact ends: {CRITERIA[separation]}, {end:.3f} ms")
+        for other, row in contact_ends(runs).items():
+            if other != separation:
+                ax.axvline(row["t"] * 1e3, color="0.45", linestyle=":", linewidth=0.8,
+                           label=f"{CRITERIA[other]}: {row['t'] * 1e3:.3f} ms")
         for (key, at, scale, label), marker in zip([m for m in markers if m[0] in pub], PUBLISHED_MARKERS):
             style = PUBLISHED_STYLE | ({"marker": marker} if marker == "x" else {"marker": marker, "mfc": "none",
                                                                                    "markersize": 7, "mew": 1.6})
@@ -98,14 +101,25 @@ def spin(run_csv: str, published: list[dict], case: str, separation: str, title:
 
 def force_deflection(previous_csv: str, modified_csv: str, published: list[dict], case: str, separation: str,
                      title: str):
-    """Figs 4.7 / 4.8: normal force against deflection, previous model dashed, modified solid."""
+    """Figs 4.7 / 4.8: normal force against deflection, previous model dashed, modified solid, under
+    ``separation``; a thin line of the same colour continues a law to δ = 0 (the other criterion) where its
+    contact ends elsewhere, with the least force it would reach."""
     pub = _published(published, case)
     with plt.rc_context(RC | {"figure.figsize": WIDE}):
         fig, ax = plt.subplots()
-        for path, style, label in ((previous_csv, "--", "previous model, eq. 4.1"),
-                                   (modified_csv, "-", "modified model, eq. 4.2")):
-            h = _history(path, separation)
-            ax.plot(h["delta"] * 1e3, h["force"], style, label=label)
+        for path, style, model, colour in ((previous_csv, "--", "kelvin-voigt", "C0"),
+                                           (modified_csv, "-", "modified", "C1")):
+            runs = pd.read_csv(path)
+            h = criterion_history(runs, separation)
+            ax.plot(h["delta"] * 1e3, h["force"], style, color=colour,
+                    label=f"{EQUATIONS[model]} ({'previous' if model == 'kelvin-voigt' else 'modified'}), "
+                          f"{separation} criterion")
+            for other, end in contact_ends(runs).items():
+                if other != separation and abs(end["t"] - h["t"].iloc[-1]) > 1e-12:
+                    held = runs[runs["separation"] == other]
+                    ax.plot(held["delta"] * 1e3, held["force"], style, color=colour, linewidth=0.7,
+                            label=f"{EQUATIONS[model]} held to δ = 0 ({other} criterion): least P "
+                                  f"{held['force'].min():.3g} N")
         ax.axhline(0.0, color="black", linewidth=0.8)
         if "delta_m" in pub:
             ax.axvline(-pub["delta_m"] * 1e3, color="crimson", linestyle=":", linewidth=1.2,

@@ -32,7 +32,8 @@ _SOLVER = ("method", "rtol", "atol")
 RULE_KEYS = {
     "simulate": (*_SCENE, *_SOLVER, "separations", "samples"),
     "replicate": (*_SCENE, *_SOLVER, "cases", "primary", "compliance.poisson"),
-    "figure": ("figure_separation",),
+    "figure": ("primary.separation",),
+    "figure_index": ("primary.separation",),
     "work_precision": (*_SCENE, "cases", "primary", "numerics.methods", "numerics.tolerances",
                        "numerics.domain"),
     "stability": (*_SCENE, "numerics.methods", "numerics.stability"),
@@ -58,7 +59,7 @@ RULE_KEYS = {
     "own_bounces": ("study", "plugins", "bounces", "samples"),  # plugins: the ball file's, which it never imports
     "own_speed": ("study", "plugins", "ranges"),
     "own_maps": ("study", "plugins", "ranges"),
-    "own_bounce_figure": ("study",),
+    "own_bounce_figure": ("study", "contact.separation"),
     "own_figures": ("study", "plugins"),
     "own_page": ("study", "plugins", "contact", "bounces", "fit"),
 }
