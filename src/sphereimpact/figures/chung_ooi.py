@@ -14,19 +14,25 @@ PANELS = (("vc_t", "ball's v_t' [m/s]"), ("omega_f", "ball's ω_f [rad/s]"),
 #: Line styles of the tangential rules: the exact contact solid.
 STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "linear": (0, (5, 1, 1, 1, 1, 1)),
           "rigid": "-."}
+#: Colours of the tangential rules, so that curves lying close apart stay told apart: the exact contact black.
+COLOURS = {"microslip": "k", "mindlin": "C0", "mindlin-displacement": "C2", "linear": "C1", "rigid": "C3"}
 
 
 def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFrame, varied, data=None,
                 outputs=(), published=None) -> None:
     """Test ``number``'s figure: the normal tests (1-3) as each computed value against its independent reference
     (Hertz's closed forms, the requested COR; on the diagonal when they agree), the oblique ones as the ball's
-    v_t', omega_f and contact-point rebound angle against the varied input (``varied``: column, label), the exact
-    contact solid and each DEM rule (``rules``) in its own style, per material; ``data`` (columns ``quantity``,
-    ``incidence_deg``, ``value``: Kharaz's e_t and |omega|) as points on the first material's curves; ``published``
-    (:func:`~sphereimpact.study.chung_ooi.published_points`) the paper's own curves as open diamonds."""
-    with plt.rc_context(RC | {"figure.figsize": (6.4, 7.2 if number >= 4 else 3.6)}):
+    v_t', omega_f and contact-point rebound angle against the varied input (``varied``: column, label), one column
+    of panels per material (two materials' curves nearly coincide: drawn in one panel, one would hide the other),
+    the exact contact solid and each DEM rule (``rules``) in its own style; ``data`` (columns ``quantity``,
+    ``incidence_deg``, ``value``: Kharaz's e_t and |omega|) as points in the first material's column;
+    ``published`` (:func:`~sphereimpact.study.chung_ooi.published_points`) the paper's own curves as open
+    diamonds in their material's column."""
+    cases = list(dict.fromkeys(exact["case"]))
+    size = (3.6 + 3.0 * len(cases), 7.6) if number >= 4 else (6.4, 4.0)
+    with plt.rc_context(RC | {"figure.figsize": size}):
         if number < 4:
-            fig, ax = plt.subplots()
+            fig, ax = plt.subplots(layout="constrained")
             if number == 3:
                 for i, (law, part) in enumerate(exact.groupby("model", sort=False)):
                     ax.plot(part["cor_target"], part["cor"], "os^v"[i % 4], mfc="none", label=law)
@@ -41,40 +47,40 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
             ax.plot([lo, hi], [lo, hi], "k-", lw=0.5, label="agreement")
             ax.legend(fontsize=7)
         else:
-            fig, axes = plt.subplots(len(PANELS), 1, sharex=True)
+            fig, grid = plt.subplots(len(PANELS), len(cases), sharex=True, squeeze=False, layout="constrained")
             column, label = varied
-            for ax, (quantity, ylabel) in zip(axes, PANELS):
-                for colour, case in zip(("C0", "C3", "C2"), dict.fromkeys(exact["case"])):
-                    for rule, part in pd.concat([exact, rules]).groupby("tangential", sort=False):
-                        rows = part[part["case"] == case].sort_values(column)
-                        ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=colour, lw=1.2,
-                                label=f"{case}, {rule}" + (" (exact)" if rule == "microslip" else ""))
-                ax.set_ylabel(ylabel)
-            if data is not None:
-                first = exact[exact["case"] == exact["case"].iloc[0]].sort_values(column)
-                e_t = data[data["quantity"] == "e_t"]
-                v_t = np.interp(e_t["incidence_deg"], first["incidence"],
-                                first["speed"] * np.sin(np.radians(first["incidence"])))
-                axes[0].plot(e_t["incidence_deg"], e_t["value"] * v_t, "k.", ms=4, label="Kharaz et al. (2001)")
-                spin = data[data["quantity"] == "omega_rad_s"]
-                axes[1].plot(spin["incidence_deg"], spin["value"], "k.", ms=4)
-            if published is not None and len(published):
-                panel = {quantity: ax for ax, (quantity, _) in zip(axes, PANELS)}
-                named = set()
-                for (material, column), part in published.groupby(["material", "column"], sort=False):
-                    if column in panel:
-                        first = part[part["case"] == part["case"].iloc[0]]  # a curve of every case: once
-                        tag = None if material in named else ("the paper's curve" + (f" ({material})" if material else "")
-                                                               + ", Kratos' digitisation")
-                        named.add(material)
-                        panel[column].plot(first["x"], first["y"], "D", mfc="none", ms=4, color="k", label=tag)
-            axes[-1].set_xlabel(label)
+            both = pd.concat([exact, rules])
+            for col, case in enumerate(cases):
+                axes = grid[:, col]
+                for ax, (quantity, ylabel) in zip(axes, PANELS):
+                    for rule, part in both[both["case"] == case].groupby("tangential", sort=False):
+                        rows = part.sort_values(column)
+                        ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=COLOURS.get(rule, "C4"),
+                                lw=1.2,
+                                label=rule + (" (exact)" if rule == "microslip" else ""))
+                    if col == 0:
+                        ax.set_ylabel(ylabel)
+                axes[0].set_title(case, fontsize=9)
+                axes[-1].set_xlabel(label)
+                if data is not None and col == 0:
+                    first = exact[exact["case"] == case].sort_values(column)
+                    e_t = data[data["quantity"] == "e_t"]
+                    v_t = np.interp(e_t["incidence_deg"], first["incidence"],
+                                    first["speed"] * np.sin(np.radians(first["incidence"])))
+                    axes[0].plot(e_t["incidence_deg"], e_t["value"] * v_t, "k.", ms=4, label="Kharaz et al. (2001)")
+                    spin = data[data["quantity"] == "omega_rad_s"]
+                    axes[1].plot(spin["incidence_deg"], spin["value"], "k.", ms=4)
+                if published is not None and len(published):
+                    panel = {quantity: ax for ax, (quantity, _) in zip(axes, PANELS)}
+                    for quantity, part in published[published["case"] == case].groupby("column", sort=False):
+                        if quantity in panel:
+                            panel[quantity].plot(part["x"], part["y"], "D", mfc="none", ms=4, color="C5",
+                                                 label="the paper's curve, Kratos' digitisation")
             legend = {}  # every panel's labelled lines and points, once each
-            for ax in axes:
+            for ax in grid.flat:
                 for handle, text in zip(*ax.get_legend_handles_labels()):
                     legend.setdefault(text, handle)
-            fig.legend(list(legend.values()), list(legend), fontsize=6, ncol=2, loc="lower center")
-            fig.subplots_adjust(left=0.17, bottom=0.24, hspace=0.3)
+            fig.legend(list(legend.values()), list(legend), fontsize=7, ncol=3, loc="outside lower center")
         fig.suptitle(f"Chung & Ooi test {number}: {title}", fontsize=9)
         save(fig, outputs)
         plt.close(fig)
