@@ -88,4 +88,4 @@ if len(deviations):
 # %%
 for number in numbers:
     display(Markdown(f"**Test {number}**: {tests[number]['title']}"))
-    display(Image(f"results/chung_ooi/test{number}.png"))
+    display(Image(f"paper_figures/chung_ooi_test{number}.png"))

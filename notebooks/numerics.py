@@ -73,7 +73,7 @@ display(Markdown(f"Smallest error in the charts: **{smallest:.2g}**; largest ref
 # atol = rtol on the dimensionless state.
 
 # %%
-display(Image(filename="paper_figures/work_precision.png"))
+display(Image(filename="results/figures/work_precision.png"))
 display(Markdown(f"Methods: {', '.join(config['numerics']['methods'])}; tolerances "
                  f"{max(config['numerics']['tolerances']):g} to {min(config['numerics']['tolerances']):g}."))
 
@@ -180,7 +180,7 @@ display(Markdown(
 
 # %%
 resolution = pd.read_csv("results/microslip_resolution.csv")
-display(Image(filename="paper_figures/microslip_resolution.png"))
+display(Image(filename="results/figures/microslip_resolution.png"))
 settings = resolution.groupby(["elements", "time_steps"], as_index=False).agg(
     worst_error=("worst_error", "first"), time=("time", "median"))
 chosen = resolution[resolution.chosen]

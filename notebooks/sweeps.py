@@ -188,7 +188,7 @@ for _, row in bench[fits].iterrows():
 # as far from the reference.
 
 # %%
-display(Image(filename="paper_figures/sweep_paths.png"))
+display(Image(filename="results/figures/sweep_paths.png"))
 paths = pd.read_csv("results/sweep_paths.csv")
 always = sorted(name for name, rows in paths.groupby("path") if rows.dominated.all())
 fastest = paths.loc[paths.groupby(["comparison", "separation", "scenes"], sort=False).seconds.idxmin()]

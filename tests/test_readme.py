@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from sphereimpact.study.readme import (TIMING_RANGE, blocks, check, differences, replication_block, runtime_block,
-                                     update)
+from sphereimpact.study.readme import (BLOCKS, TIMING_CHARTS, TIMING_RANGE, blocks, check, differences, main,
+                                     replication_block, runtime_block, update)
 from sphereimpact.study.workflow import job_seconds
 from sphereimpact.study.replication import write_report
 from sphereimpact.study.runs import run_case
@@ -91,8 +91,49 @@ def test_check_reports_a_missing_block_or_snippet(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text("<!-- BEGIN GENERATED speed -->\nx\n<!-- END GENERATED speed -->\n")
     problems = check(str(readme), str(tmp_path))
-    assert "README has no generated block 'replication'" in problems
+    assert "no document has the generated block 'replication'" in problems
     assert any("speed.md is missing" in p for p in problems)
+
+
+def test_blocks_may_stand_in_docs_pages_but_once(tmp_path):
+    """A block moved from the README to a docs/ page is checked there; the same block in two documents is a
+    problem (which copy would the reader trust?)."""
+    snippets = tmp_path / "snippets"
+    snippets.mkdir()
+    documents = []
+    for i, name in enumerate(BLOCKS):
+        (snippets / f"{name}.md").write_text(f"{name}\n")
+        page = tmp_path / f"page{i % 2}.md"
+        with page.open("a") as handle:
+            handle.write(f"<!-- BEGIN GENERATED {name} -->\n{name}\n<!-- END GENERATED {name} -->\n")
+        documents.append(str(page))
+    documents = sorted(set(documents))
+    assert check(documents, str(snippets)) == []
+    with (tmp_path / "page0.md").open("a") as handle:
+        handle.write("<!-- BEGIN GENERATED speed -->\nspeed\n<!-- END GENERATED speed -->\n")
+    assert any("block 'speed' stands in" in p for p in check(documents, str(snippets)))
+
+
+def test_timing_charts_are_recorded_by_update_and_required_by_check(tmp_path, monkeypatch):
+    """`--update` copies each run's timing charts into paper_figures/ beside the timings the README shows;
+    `--check` fails while one is missing."""
+    monkeypatch.chdir(tmp_path)
+    snippets, figures, recorded = Path("results/readme"), Path("results/figures"), Path("paper_figures")
+    for folder in (snippets, figures, recorded):
+        folder.mkdir(parents=True)
+    text = "".join(f"<!-- BEGIN GENERATED {n} -->\nold\n<!-- END GENERATED {n} -->\n" for n in BLOCKS)
+    Path("README.md").write_text(text)
+    for name in BLOCKS:
+        (snippets / f"{name}.md").write_text(f"{name}\n")
+    png = b"\x89PNG\r\n\x1a\n" + b"chart"
+    for name in TIMING_CHARTS:
+        (figures / f"{name}.png").write_bytes(png)
+    assert main(["--check"]) == 1
+    assert main(["--update"]) == 0
+    assert main(["--check"]) == 0
+    assert all((recorded / f"{name}.png").read_bytes() == png for name in TIMING_CHARTS)
+    (recorded / f"{TIMING_CHARTS[0]}.png").unlink()
+    assert main(["--check"]) == 1
 
 
 def test_timed_cells_are_compared_in_their_units():
@@ -133,3 +174,4 @@ def test_job_seconds_refuses_a_file_that_is_not_a_benchmark(tmp_path):
     bad.write_text("time\n3\n")
     with pytest.raises(ValueError, match="not a Snakemake benchmark file"):
         job_seconds(str(bad))
+

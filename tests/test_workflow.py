@@ -26,17 +26,17 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/readme/runtime.md", "results/readme/fit.md", "results/fit_kharaz/fit.json",
            "results/fit_kharaz/ball.json", "results/fit_kharaz/residuals.csv", "results/fit_kharaz/fit.png",
            "results/consistency.csv", "results/readme/chung_ooi.md", "results/chung_ooi/test1.csv",
-           "results/chung_ooi/test5.csv", "results/chung_ooi/test5.png", "results/chung_ooi/deviations.csv",
+           "results/chung_ooi/test5.csv", "paper_figures/chung_ooi_test5.png", "results/chung_ooi/deviations.csv",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
            "paper_figures/README.md",
            "results/notebooks/validation.html",
            "results/notebooks/replication.html", "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
-           "paper_figures/work_precision.png", "paper_figures/stability.png",
-           "results/microslip_resolution.csv", "paper_figures/microslip_resolution.png",
+           "results/figures/work_precision.png", "paper_figures/stability.png",
+           "results/microslip_resolution.csv", "results/figures/microslip_resolution.png",
            "results/sweep/angle_speed.csv", "results/sweep/speed.csv", "results/bench_sweep.csv",
-           "results/sweep_paths.csv", "paper_figures/sweep_paths.png",
+           "results/sweep_paths.csv", "results/figures/sweep_paths.png",
            "paper_figures/spin_map.png", "paper_figures/cor_speed.png", "paper_figures/contact_speed.png",
            "results/notebooks/sweeps.html",
            *[f"paper_figures/{f}.{ext}" for f in FIGURES for ext in ("png", "pdf")],
@@ -204,7 +204,8 @@ def test_samples_rerun_the_histories_not_the_benchmarks(workdir):
 
 def test_editing_a_drawing_module_redraws_without_recomputing(overlapping):
     jobs = planned(overlapping["drawing"].result)
-    assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 4 and jobs.get("sweep_map") == 3
+    assert jobs.get("figure") == 7 and jobs.get("numerics_figure") == 1 and jobs.get("timing_chart") == 3
+    assert jobs.get("sweep_map") == 3
     assert not {"simulate", *HEAVY} & set(jobs), jobs
 
 
@@ -225,8 +226,11 @@ def test_html_report_has_every_figure_and_table(overlapping):
     report = overlapping["report"]
     assert report.result.returncode == 0, report.result.stderr[-2000:]
     html = (report.copy / "results/report.html").read_text(errors="replace")
-    for name in ["fig4_7.png", "work_precision.png", "spin_map.png", "replication.csv", "bench_sweep.csv"]:
+    for name in ["fig4_7.png", "work_precision.png", "spin_map.png", "replication.csv", "bench_sweep.csv", "config.yaml"]:
         assert name in html, name
+    # every figure's caption comes from sphereimpact.figures.captions, the one place they are written
+    for phrase in ["thin lines continue a law", "one panel per failure mode", "over the tangential speed"]:
+        assert phrase in html, phrase
 
 
 @pytest.mark.parametrize("name", FIGURES)

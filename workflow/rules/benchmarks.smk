@@ -38,10 +38,11 @@ rule chung_ooi_figures:
         curves="data/chung_ooi_paper/curves.csv",
     output:
         png=report(
-            expand("results/chung_ooi/test{n}.png", n=CHUNG_OOI), caption="../report/chung_ooi.rst", category="Benchmarks"
+            expand("paper_figures/chung_ooi_test{n}.png", n=CHUNG_OOI), caption="../report/figure.rst", category="Benchmarks"
         ),
     params:
         code=code("workflow/scripts/chung_ooi_figures.py"),
+        captions=captions(*(f"chung_ooi_test{n}" for n in CHUNG_OOI)),
     benchmark:
         "results/benchmarks/benchmarks/chung_ooi_figures.tsv"
     log:

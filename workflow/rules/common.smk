@@ -3,9 +3,11 @@ import os
 
 from snakemake.utils import validate
 
+from sphereimpact.figures.captions import CAPTIONS
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.fit import FIT_FILES
 from sphereimpact.study.config_check import check_config
+from sphereimpact.study.readme import TIMING_CHARTS
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest
 
 
@@ -64,10 +66,10 @@ NOTEBOOKS = {
         "results/bench_profile.csv",
         "results/stability.csv",
         "results/ablation.csv",
-        "paper_figures/work_precision.png",
+        "results/figures/work_precision.png",
         "paper_figures/stability.png",
         "results/microslip_resolution.csv",
-        "paper_figures/microslip_resolution.png",
+        "results/figures/microslip_resolution.png",
     ],
     "laws": [
         "results/config.yaml",
@@ -95,7 +97,7 @@ NOTEBOOKS = {
         "results/chung_ooi/checks.csv",
         "results/chung_ooi/deviations.csv",
         *expand("results/chung_ooi/test{n}.csv", n=config["chung_ooi"]["tests"]),
-        *expand("results/chung_ooi/test{n}.png", n=config["chung_ooi"]["tests"]),
+        *expand("paper_figures/chung_ooi_test{n}.png", n=config["chung_ooi"]["tests"]),
     ],
     "sweeps": [
         "results/config.yaml",
@@ -107,7 +109,7 @@ NOTEBOOKS = {
         "paper_figures/spin_map.png",
         "paper_figures/cor_speed.png",
         "paper_figures/contact_speed.png",
-        "paper_figures/sweep_paths.png",
+        "results/figures/sweep_paths.png",
     ],
 }
 
@@ -115,6 +117,11 @@ NOTEBOOKS = {
 def notebook_inputs(wildcards):
     extra = figure_outputs() if wildcards.name == "replication" else []
     return NOTEBOOKS[wildcards.name] + extra
+
+
+def captions(*names):
+    """Each figure's caption (sphereimpact.figures.captions), for the report's caption template figure.rst."""
+    return {name: CAPTIONS[name][1] for name in names}
 
 
 def chapter_runs(fig):
@@ -137,7 +144,8 @@ def chapter_outputs():
         *figure_outputs(),
         "results/bench.csv",
         "results/ablation.csv",
-        *expand("paper_figures/{study}.png", study=["work_precision", "stability", "microslip_resolution", "sweep_paths"]),
+        "paper_figures/stability.png",
+        *expand("results/figures/{study}.png", study=TIMING_CHARTS),
         *expand("paper_figures/{map}.png", map=["spin_map", "cor_speed", "contact_speed"]),
         "results/bench_sweep.csv",
         "results/cor_relations.csv",
@@ -151,6 +159,6 @@ def chapter_outputs():
         "results/readme/fit.md",
         "results/consistency.csv",
         *expand("results/notebooks/{name}.html", name=NOTEBOOKS),
-        *expand("results/chung_ooi/test{n}.png", n=config["chung_ooi"]["tests"]),
+        *expand("paper_figures/chung_ooi_test{n}.png", n=config["chung_ooi"]["tests"]),
         "results/readme/chung_ooi.md",
     ]

@@ -4,11 +4,12 @@ rule figure:
         runs=figure_runs,
         published=PUBLISHED,
     output:
-        png=report("paper_figures/{fig}.png", caption="../report/chapter_figure.rst", category="Chapter figures"),
+        png=report("paper_figures/{fig}.png", caption="../report/figure.rst", category="Chapter figures"),
         pdf="paper_figures/{fig}.pdf",
     params:
         code=code("workflow/scripts/figure.py"),
         config=params_for("figure"),
+        captions=lambda wildcards: captions(wildcards.fig),
     wildcard_constraints:
         fig="fig4_[2-8]",
     benchmark:

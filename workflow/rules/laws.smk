@@ -45,10 +45,11 @@ rule laws_figures:
         speed="results/laws.csv",
         force="results/laws_force.csv",
     output:
-        cor_speed=report("paper_figures/laws_cor_speed.png", caption="../report/laws.rst", category="Contact laws"),
-        force=report("paper_figures/laws_force.png", caption="../report/laws.rst", category="Contact laws"),
+        cor_speed=report("paper_figures/laws_cor_speed.png", caption="../report/figure.rst", category="Contact laws"),
+        force=report("paper_figures/laws_force.png", caption="../report/figure.rst", category="Contact laws"),
     params:
         code=code("workflow/scripts/laws_figures.py"),
+        captions=captions("laws_cor_speed", "laws_force"),
     benchmark:
         "results/benchmarks/laws/laws_figures.tsv",
     log:

@@ -95,15 +95,17 @@ rule microslip_resolution:
 
 
 rule numerics_figure:
-    """Work-precision and stability charts from their CSV files."""
+    """The chart of a numerical study from its CSV file: the stability chart, which holds no timing, beside the
+    chapter's committed figures (a changed one fails `.ci/run`)."""
     input:
         csv="results/{study}.csv",
     output:
-        png=report("paper_figures/{study}.png", caption="../report/numerics_figure.rst", category="Numerics"),
+        png=report("paper_figures/{study}.png", caption="../report/figure.rst", category="Numerics"),
     wildcard_constraints:
-        study="work_precision|stability|microslip_resolution|sweep_paths",
+        study="stability",
     params:
         code=code("workflow/scripts/numerics_figure.py"),
+        captions=lambda wildcards: captions(wildcards.study),
     benchmark:
         "results/benchmarks/numerics/numerics_figure/{study}.tsv",
     log:
@@ -112,3 +114,17 @@ rule numerics_figure:
         ENV
     script:
         "../scripts/numerics_figure.py"
+
+
+use rule numerics_figure as timing_chart with:
+    """A chart of timings (work-precision, microslip resolution, sweep paths): each run's own, under results/;
+    `python -m sphereimpact.study.readme --update` copies the run the README's speed tables come from into
+    paper_figures/."""
+    output:
+        png=report("results/figures/{study}.png", caption="../report/figure.rst", category="Numerics"),
+    wildcard_constraints:
+        study="|".join(TIMING_CHARTS),
+    benchmark:
+        "results/benchmarks/numerics/timing_chart/{study}.tsv"
+    log:
+        "logs/figures/{study}.log",

@@ -70,9 +70,10 @@ rule sweep_map:
         published=PUBLISHED,
         compliance="results/compliance_map.csv",
     output:
-        png=report("paper_figures/{map}.png", caption="../report/sweep_map.rst", category="Sweeps"),
+        png=report("paper_figures/{map}.png", caption="../report/figure.rst", category="Sweeps"),
     params:
         code=code("workflow/scripts/sweep_map.py"),
+        captions=lambda wildcards: captions(wildcards.map),
         config=params_for("sweep_map"),
     wildcard_constraints:
         map="spin_map|cor_speed|contact_speed",

@@ -72,11 +72,12 @@ rule validation_figures:
         maw="results/validation_maw.csv",
         map="results/compliance_map.csv",
     output:
-        kharaz=report("paper_figures/validation_kharaz.png", caption="../report/validation.rst", category="Validation"),
-        maw=report("paper_figures/validation_maw.png", caption="../report/validation.rst", category="Validation"),
-        map=report("paper_figures/compliance_map.png", caption="../report/validation.rst", category="Validation"),
+        kharaz=report("paper_figures/validation_kharaz.png", caption="../report/figure.rst", category="Validation"),
+        maw=report("paper_figures/validation_maw.png", caption="../report/figure.rst", category="Validation"),
+        map=report("paper_figures/compliance_map.png", caption="../report/figure.rst", category="Validation"),
     params:
         code=code("workflow/scripts/validation_figures.py"),
+        captions=captions("validation_kharaz", "validation_maw", "compliance_map"),
         config=params_for("validation_figures"),
     benchmark:
         "results/benchmarks/validation/validation_figures.tsv",

@@ -61,19 +61,35 @@ CAPTIONS = {
                        "rings, so it changes sign) and its envelope over neighbouring κ against the configured "
                        "tolerance (right)."),
     "work_precision": ("Numerics",
-                       "Work-precision: worst relative error against median wall time per impact (top) and against "
-                       "right-hand-side evaluations (bottom), one colour per method, solid the reduced body, dashed "
-                       "the planar one, dotted the 1e-9 target; one column per scene."),
+                       "Timings differ from run to run: this copy is from the run whose timings docs/numerics.md "
+                       "shows; each run writes its own to results/figures/. Work-precision: worst relative error "
+                       "against median wall time per impact (top) and against right-hand-side evaluations (bottom), "
+                       "one colour per method, solid the reduced body, dashed the planar one, dotted the 1e-9 "
+                       "target; one column per scene."),
     "stability": ("Numerics", "Where methods fail, one panel per failure mode: stiffness, the force jump at first "
                               "touch, friction at grip, locating separation, and the modified law past separation; "
                               "the naive formulation beside the package's."),
     "microslip_resolution": ("Numerics",
-                             "The microslip contact's error against its cost over its resolution (cells x time "
-                             "steps; left) and each scene's error against the time steps at the chosen cell count "
-                             "(right): the default is the cheapest setting meeting the target."),
-    "sweep_paths": ("Numerics", "The sweep's paths on the scenes several of them solve: time per scene (top) and worst "
-                                "error (bottom) against the sweep's size, one colour per path (named under the "
-                                "figure), solid the force criterion, dashed the penetration criterion."),
+                             "Timings: recorded as work_precision's. The microslip contact's error against its "
+                             "cost over its resolution (cells x time steps; left) and each scene's error against "
+                             "the time steps at the chosen cell count (right): the default is the cheapest setting "
+                             "meeting the target."),
+    "sweep_paths": ("Numerics", "Timings: recorded as work_precision's. The sweep's paths on the scenes several of "
+                                "them solve: time per scene (top) and worst error (bottom) against the sweep's size, "
+                                "one colour per path (named under the figure), solid the force criterion, dashed the "
+                                "penetration criterion."),
+    **{f"chung_ooi_test{n}": ("Benchmarks: Chung & Ooi", text) for n, text in (
+        (1, "Test 1, two identical spheres, elastic, normal: contact time, compression and peak force against "
+            "Hertz's closed forms (on the diagonal when they agree)."),
+        (2, "Test 2, a sphere on a rigid plane, elastic, normal: the same against Hertz's closed forms."),
+        (3, "Test 3, a sphere on a rigid plane, normal, damped: the computed COR against the requested one, each law."),
+        (4, "Test 4, oblique at constant speed over incidence: the ball's v_t', spin and contact-point rebound angle, "
+            "one column per material, the exact contact (black) and each DEM tangential rule; Kharaz's measurements "
+            "(dots) and the paper's own curve (diamonds, Kratos' digitisation) where there are."),
+        (5, "Test 5, oblique at constant normal speed over the tangential speed: as test 4."),
+        (6, "Test 6 (Kratos' Benchmark6), constant normal speed, the spin alone varied: as test 4."),
+        (7, "Test 7, two identical spheres with opposite angular velocities: as test 4 (they do not slip)."),
+        (8, "Test 8, two spheres of different sizes: as test 4."))},
 }
 
 

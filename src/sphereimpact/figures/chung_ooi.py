@@ -88,7 +88,7 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
 
 def test_figures(folder, data_csv: str, outputs, curves_csv=None) -> None:
     """Every test's figure from the study's tables in ``folder`` (rule ``chung_ooi``): ``outputs`` one path per
-    test, ``test<N>.png``; test 4 with the Kharaz data of ``data_csv``; with ``curves_csv``, the paper's own
+    test, ``chung_ooi_test<N>.png``; test 4 with the Kharaz data of ``data_csv``; with ``curves_csv``, the paper's own
     curves."""
     from pathlib import Path
 
@@ -99,7 +99,7 @@ def test_figures(folder, data_csv: str, outputs, curves_csv=None) -> None:
     data = pd.read_csv(data_csv, comment="#")
     curves = None if curves_csv is None else read_curves(curves_csv)
     for path in outputs:
-        number = int(Path(path).stem.removeprefix("test"))
+        number = int(Path(path).stem.removeprefix("chung_ooi_test"))
         exact = read_table(Path(folder) / f"test{number}.csv")
         points = None if curves is None or number not in VARIED else published_points(curves, number, exact)
         test_figure(number, tests[number]["title"], exact, rules[rules["test"] == number], VARIED.get(number),

@@ -1,8 +1,8 @@
-"""The README's generated blocks: written by the pipeline, copied into README.md, checked by CI.
+"""The generated blocks of the README and the pages under docs/: written by the pipeline, copied in, checked by CI.
 
-No measured number in the README is typed by hand.  The pipeline writes each block to
+No measured number in the README or docs/ is typed by hand.  The pipeline writes each block to
 ``results/readme/<name>.md`` (:func:`write_snippets`); ``python -m sphereimpact.study.readme --update``
-copies them between the README's markers::
+copies them between the documents' markers::
 
     <!-- BEGIN GENERATED <name> ... -->
     ...
@@ -10,7 +10,10 @@ copies them between the README's markers::
 
 and ``--check`` (run by ``.ci/run`` after the pipeline) fails when a block disagrees with what the
 pipeline wrote: exactly, except for the cells of timed columns (:data:`TIMED`), which differ from run to
-run and must agree within a factor :data:`TIMING_RANGE`.
+run and must agree within a factor :data:`TIMING_RANGE`.  Every block of :data:`BLOCKS` stands in exactly one
+document.  The charts of timings (:data:`TIMING_CHARTS`) differ from run to run too: each run writes its own
+under ``results/figures/``, and ``--update`` copies them into ``paper_figures/`` beside the timings they show,
+where ``--check`` requires them.
 """
 
 from __future__ import annotations
@@ -27,8 +30,10 @@ from ..numerics.reference import FINE_DIGITS
 from .tables import text_table
 from .workflow import job_seconds
 
-#: Blocks of the README, in order.
+#: Generated blocks of the README and docs/.
 BLOCKS = ("replication", "speed", "validation", "fit", "chung_ooi", "consistency", "runtime")
+#: Charts of timings: written to results/figures/ by every run, recorded in paper_figures/ by ``--update``.
+TIMING_CHARTS = ("work_precision", "microslip_resolution", "sweep_paths")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on
 #: this project's 2-core machines: one timing moved by up to 1.8x between two idle runs (garbage collector
 #: off), and a speed-up is the ratio of two timings.
@@ -308,6 +313,27 @@ def update(readme: str, snippets: str) -> str:
     return text
 
 
+def record_charts(figures: str, into: str) -> None:
+    """Copy each chart of :data:`TIMING_CHARTS` from ``figures`` (a run's ``results/figures``) into ``into``
+    (``paper_figures``), each written whole or not at all."""
+    from ..files import replacing
+
+    for name in TIMING_CHARTS:
+        data = Path(figures, f"{name}.png").read_bytes()
+        with replacing(Path(into, f"{name}.png")) as partial:
+            Path(partial).write_bytes(data)
+
+
+def recorded_chart_problems(into: str) -> list[str]:
+    """Each chart of :data:`TIMING_CHARTS` missing from ``into`` or not a PNG file."""
+    problems = []
+    for name in TIMING_CHARTS:
+        path = Path(into, f"{name}.png")
+        if not path.is_file() or path.read_bytes()[:8] != b"\x89PNG\r\n\x1a\n":
+            problems.append(f"{path} is missing or not a PNG: `--update` records the run's chart")
+    return problems
+
+
 #: Units a timed cell may carry, as factors to one base unit (a time column switches from ms to s).
 _CELL_UNITS = {"ms": 1e-3, "s": 1.0}
 
@@ -357,42 +383,61 @@ def differences(readme_block: str, fresh: str) -> list[str]:
     return found
 
 
-def check(readme: str, snippets: str) -> list[str]:
-    """Every disagreement between the README's blocks and ``snippets/<name>.md``; empty when they agree."""
-    text = Path(readme).read_text(encoding="utf-8")
-    spans = blocks(text)
-    problems = [f"README has no generated block {name!r}" for name in BLOCKS if name not in spans]
-    for name, (start, end) in spans.items():
-        fresh = Path(snippets, f"{name}.md")
-        if not fresh.is_file():
-            problems.append(f"{fresh} is missing: run `snakemake --cores 2` first")
-            continue
-        problems += [f"{name}: {d}" for d in differences(text[start:end], fresh.read_text(encoding="utf-8"))]
+def check(documents, snippets: str) -> list[str]:
+    """Every disagreement between the generated blocks of ``documents`` (the README and the docs/ pages; one path
+    is one document) and ``snippets/<name>.md``; empty when they agree and each block of :data:`BLOCKS` stands in
+    exactly one document."""
+    documents = [documents] if isinstance(documents, (str, Path)) else list(documents)
+    problems, seen = [], {}
+    for document in documents:
+        text = Path(document).read_text(encoding="utf-8")
+        for name, (start, end) in blocks(text).items():
+            if name in seen:
+                problems.append(f"{document}: block {name!r} stands in {seen[name]} too")
+            seen[name] = document
+            fresh = Path(snippets, f"{name}.md")
+            if not fresh.is_file():
+                problems.append(f"{fresh} is missing: run `snakemake --cores 2` first")
+                continue
+            problems += [f"{document}: {name}: {d}"
+                         for d in differences(text[start:end], fresh.read_text(encoding="utf-8"))]
+    problems += [f"no document has the generated block {name!r}" for name in BLOCKS if name not in seen]
     return problems
 
 
 def main(argv=None) -> int:
-    """``python -m sphereimpact.study.readme (--check | --update) README.md results/readme``."""
+    """``python -m sphereimpact.study.readme (--check | --update)``: the README and docs/*.md against
+    results/readme, the recorded timing charts of paper_figures against results/figures."""
     parser = argparse.ArgumentParser(prog="python -m sphereimpact.study.readme", allow_abbrev=False,
-                                     description="Check or update the README's generated blocks.")
+                                     description="Check or update the generated blocks of the README and docs/, "
+                                                 "and the recorded timing charts.")
     mode = parser.add_mutually_exclusive_group(required=True)
     mode.add_argument("--check", action="store_true", help="exit 1 when a block disagrees with the pipeline's")
-    mode.add_argument("--update", action="store_true", help="copy the pipeline's blocks into the README")
-    parser.add_argument("readme", nargs="?", default="README.md")
-    parser.add_argument("snippets", nargs="?", default="results/readme")
+    mode.add_argument("--update", action="store_true", help="copy the pipeline's blocks and timing charts in")
+    parser.add_argument("documents", nargs="*", help="default: README.md and docs/*.md")
+    parser.add_argument("--snippets", default="results/readme", help="the pipeline's blocks (default %(default)s)")
+    parser.add_argument("--figures", default="results/figures",
+                        help="the pipeline's timing charts (default %(default)s)")
+    parser.add_argument("--recorded", default="paper_figures",
+                        help="where the recorded timing charts are kept (default %(default)s)")
     args = parser.parse_args(argv)
+    documents = args.documents or ["README.md", *sorted(str(p) for p in Path("docs").glob("*.md"))]
     try:
         if args.update:
-            Path(args.readme).write_text(update(args.readme, args.snippets), encoding="utf-8")
+            from ..files import write_text
+
+            for document in documents:
+                write_text(document, update(document, args.snippets))
+            record_charts(args.figures, args.recorded)
             return 0
-        problems = check(args.readme, args.snippets)
+        problems = check(documents, args.snippets) + recorded_chart_problems(args.recorded)
     except (OSError, ValueError) as err:
         parser.exit(2, f"readme: error: {err}\n")
     for problem in problems:
         print(f"readme: {problem}", file=sys.stderr)
     if problems:
-        print("readme: the README disagrees with the results; `python -m sphereimpact.study.readme --update` "
-              "copies the pipeline's blocks in", file=sys.stderr)
+        print("readme: the documents disagree with the results; `python -m sphereimpact.study.readme --update` "
+              "copies the pipeline's blocks and charts in", file=sys.stderr)
     return 1 if problems else 0
 
 
