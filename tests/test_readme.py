@@ -1,6 +1,7 @@
 """The README's generated blocks: the replication block is exactly what the pipeline writes, and the check
 that CI runs after the pipeline tells agreement, run-to-run timing noise and real disagreement apart."""
 
+import re
 from pathlib import Path
 
 import pytest
@@ -175,3 +176,44 @@ def test_job_seconds_refuses_a_file_that_is_not_a_benchmark(tmp_path):
     with pytest.raises(ValueError, match="not a Snakemake benchmark file"):
         job_seconds(str(bad))
 
+
+def _documents():
+    return [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+
+def test_every_figure_the_documents_name_is_committed():
+    """No dangling figure: every `paper_figures/<name>.png` the README or a docs page shows or names is in the
+    repository (tracked by git), so a fresh clone has it."""
+    import subprocess
+
+    from sphereimpact.figures.captions import CAPTIONS
+
+    tracked = set(subprocess.run(["git", "ls-files", "paper_figures"], cwd=ROOT, capture_output=True, text=True,
+                                 check=True).stdout.split())
+    named = {f"paper_figures/{name}.png" for name in CAPTIONS}  # the index, paper_figures/README.md, shows each
+    for document in _documents():
+        text = document.read_text(encoding="utf-8")
+        named |= set(re.findall(r"paper_figures/[\w.-]+\.png", text))
+        named |= {f"paper_figures/{name}" for name in re.findall(r"`([\w-]+\.png)`", text)
+                  if name.removesuffix(".png") in CAPTIONS}
+    assert named and named <= tracked, sorted(named - tracked)
+
+
+def test_links_and_contents_of_the_documents_resolve():
+    """Each relative link of the README and docs/ points at a file of the repository, and each of the README's
+    contents entries at one of its headings (GitHub's anchors: lower case, punctuation dropped, spaces as -)."""
+    for document in _documents():
+        text = document.read_text(encoding="utf-8")
+        for target in re.findall(r"\]\(([^)#:]+)(?:#[^)]*)?\)", text):
+            assert (document.parent / target).exists(), f"{document.name}: {target}"
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    anchors = {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-")
+               for h in re.findall(r"^#+ (.+)$", readme, re.M)}
+    wanted = set(re.findall(r"\]\(#([\w-]+)\)", readme))
+    assert wanted and wanted <= anchors, sorted(wanted - anchors)
+
+
+def test_the_first_screen_has_the_contents_and_the_quick_start():
+    """A newcomer's first screen: what it is, the two commands, the contents, then the quick start."""
+    lines = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()
+    assert lines.index("## Contents") < 25 and lines.index("## Quick start") < 45
