@@ -132,13 +132,13 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contender
 #: The microslip map's ball: the chapter's, with an elastic Hertz contact (E* 10^8 Pa) and the exact elastic microslip
 #: tangential contact of rubber (kappa 2/3).
 MICROSLIP_MAP = {"model": "hertz", "modulus": 1e8, "tangential": "microslip", "kappa": 2.0 / 3.0}
-#: The README's large sweep, as its command line gives it (`sphereimpact sweep --angle 0:89:0.1 ...`).
-README_SWEEP = {"angle": "0:89:0.1", "speed": "0.5:30:0.05", "mu": "0.4"}
+#: The large sweep of docs/sweeps.md, as its command line gives it (`sphereimpact sweep --angle 0:89:0.1 ...`).
+GUIDE_SWEEP = {"angle": "0:89:0.1", "speed": "0.5:30:0.05", "mu": "0.4"}
 
 
-def readme_sweep() -> pd.DataFrame:
-    """The scenes of :data:`README_SWEEP` (526 581), every combination of its ranges, as the command line."""
-    return grid(**{name: parse_range(text) for name, text in README_SWEEP.items()})
+def guide_sweep() -> pd.DataFrame:
+    """The scenes of :data:`GUIDE_SWEEP` (526 581), every combination of its ranges, as the command line."""
+    return grid(**{name: parse_range(text) for name, text in GUIDE_SWEEP.items()})
 
 
 #: The targets [s] of the exact microslip contact's issue: "a 10^5-scene microslip angle x speed map in seconds"
@@ -189,7 +189,7 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         Random scenes of the many-ball sweep (k, b, m, angle and speed drawn per scene: the engine's (zeta, lam)
         plane).
     million : bool
-        Also time a 10^6-scene one-ball sweep, and the README's large sweep (:data:`README_SWEEP`).
+        Also time a 10^6-scene one-ball sweep, and the sweeps guide's large sweep (:data:`GUIDE_SWEEP`).
     laws : sequence of str
         Laws of :data:`LAW_SCENES` to time on the one-ball angle x speed sweep each (the path the engine
         takes for them: interpolation in their family's number, per family, or batched lanes if the law
@@ -223,8 +223,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
                     | {"target_seconds": MICROSLIP_MAP_TARGET_SECONDS})
         rows.append(measure("10^6 scenes, modified, angle x speed",
                             grid(angle=np.linspace(0, 89, 1000), speed=np.linspace(0.5, 30, 1000)), 1000, **options))
-        flags = " ".join(f"--{name.replace('_', '-')} {text}" for name, text in README_SWEEP.items())
-        rows.append(measure(f"the README's large sweep ({flags})", readme_sweep(), None, **options))
+        flags = " ".join(f"--{name.replace('_', '-')} {text}" for name, text in GUIDE_SWEEP.items())
+        rows.append(measure(f"the sweeps guide's large sweep ({flags})", guide_sweep(), None, **options))
     if fit_of is not None:
         truth, start, incidences = fit_of
         rows.append(measure_fit(f"fit of {', '.join(start)} to a {len(incidences)}-incidence Kharaz curve "
