@@ -130,3 +130,21 @@ def test_history_and_plot_from_the_command_line(tmp_path, capsys):
     assert run([*args, "--plot", str(tmp_path / "h.txt")]) == 2
     assert run([*args, "--samples", "1", "--history", str(tmp_path / "x.csv")]) == 2
     assert "samples must be an integer >= 2" in capsys.readouterr().err
+
+
+def test_the_command_line_imports_what_a_subcommand_needs_when_it_needs_it():
+    """Issue 43: `sphereimpact` imported the fit (pandas, scipy.optimize, scipy.stats) before parsing its
+    arguments. Now loading the command line imports none of them, and `simulate` neither pandas nor the fit."""
+    import subprocess
+    import sys
+
+    probe = ("import sys, io, contextlib\n"
+             "import sphereimpact.cli as cli\n"
+             "loaded = [m for m in ('pandas', 'scipy.optimize', 'scipy.stats', 'matplotlib') if m in sys.modules]\n"
+             "with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):\n"
+             "    cli.run(['simulate', '--json', '--angle', '60'])\n"
+             "after = [m for m in ('pandas', 'scipy.stats', 'matplotlib', 'sphereimpact.fit.least_squares')\n"
+             "         if m in sys.modules]\n"
+             "print(loaded, after)\n")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[] []"

@@ -32,15 +32,8 @@ from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
 from .measured import MEASURABLE, SOURCES, Measured, quantity
+from .names import FREE
 
-#: Parameters a fit may free -> (lower bound, upper bound, fitted in its logarithm).
-FREE = {
-    "mu": (0.0, math.inf, False), "kappa": (0.0, math.inf, True), "k": (0.0, math.inf, True),
-    "modulus": (0.0, math.inf, True), "b": (0.0, math.inf, True), "chi": (0.0, math.inf, True),
-    "cor": (1e-6, 1.0 - 1e-9, False), "inertia_factor": (1e-6, 2.0 / 3.0, False), "exponent": (1.0, 3.0, False),
-}
-#: The files of a fit's folder (``sphereimpact fit --out DIR``, the pipeline's fits).
-FIT_FILES = ("ball.json", "fit.json", "residuals.csv", "fit.png")
 #: Relative step of the forward-difference Jacobian.  The model is accurate to the sweep's target (1e-8), so a
 #: difference over this step carries about 1e-4 relative of its noise, as much as the forward difference's own
 #: error (half the step times the curvature): a central difference, twice the evaluations, would gain nothing.

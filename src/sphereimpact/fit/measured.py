@@ -18,15 +18,9 @@ import numpy as np
 import pandas as pd
 
 from ..impact.ball import APPROACH
-from ..impact.outcome import NUMERIC_OUTPUTS, OUTPUT_UNITS
-from ..impact.pair import PARTNER_UNITS
 from ..sweep.scenes import approach_speeds
+from .names import MEASURABLE
 
-#: Measured quantities that are not outputs of ``simulate`` but follow from them and the approach: the
-#: tangential coefficient of restitution of the centre, v_t' / v_t [-], and the rebound spin's magnitude.
-DERIVED = {"e_t": "-", "abs_omega_f": "rad/s"}
-#: Every quantity a measured table may give, with its unit.
-MEASURABLE = {name: OUTPUT_UNITS[name] for name in NUMERIC_OUTPUTS} | PARTNER_UNITS | DERIVED
 #: The long layout's quantities (Kharaz's digitised curves) -> the quantity they measure.
 LONG_QUANTITIES = {"e_t": "e_t", "omega_rad_s": "abs_omega_f", "rebound_angle_deg": "rebound_angle"}
 #: The long layout's columns, and those it may add: each value's standard uncertainty (its quantity's unit) and
