@@ -37,6 +37,7 @@ def test_every_command_of_the_quick_start_runs(tmp_path, monkeypatch, capsys):
     written for two of its tests only, to keep the suite short (tests/test_chung_ooi.py writes every test)."""
     monkeypatch.chdir(tmp_path)
     shutil.copytree(ROOT / "data", "data")
+    shutil.copytree(ROOT / "config", "config")
     for command in quick_start():
         if command[0] == "snakemake":
             assert command[1:3] == ["--cores", "2"]

@@ -66,26 +66,16 @@ def test_a_changed_untimed_cell_or_line_disagrees():
 
 def test_check_and_update_round_trip(tmp_path):
     readme = tmp_path / "README.md"
-    readme.write_text("# T\n<!-- BEGIN GENERATED speed: x -->\nold\n<!-- END GENERATED speed -->\n"
-                      "<!-- BEGIN GENERATED replication -->\nold\n<!-- END GENERATED replication -->\n"
-                      "<!-- BEGIN GENERATED validation -->\nold\n<!-- END GENERATED validation -->\n"
-                      "<!-- BEGIN GENERATED consistency -->\nold\n<!-- END GENERATED consistency -->\n"
-                      "<!-- BEGIN GENERATED runtime -->\nold\n<!-- END GENERATED runtime -->\n"
-                      "<!-- BEGIN GENERATED fit -->\nold\n<!-- END GENERATED fit -->\n"
-                      "<!-- BEGIN GENERATED chung_ooi -->\nold\n<!-- END GENERATED chung_ooi -->\n")
+    readme.write_text("# T\n" + "".join(f"<!-- BEGIN GENERATED {name}: x -->\nold\n<!-- END GENERATED {name} -->\n"
+                                        for name in BLOCKS))
     snippets = tmp_path / "snippets"
     snippets.mkdir()
-    (snippets / "speed.md").write_text(TABLE)
-    (snippets / "validation.md").write_text("measured\n")
-    (snippets / "consistency.md").write_text("compared\n")
-    (snippets / "runtime.md").write_text("took\n")
-    (snippets / "fit.md").write_text("fitted\n")
-    (snippets / "chung_ooi.md").write_text("benchmarked\n")
-    (snippets / "replication.md").write_text("fresh\n")
+    for name in BLOCKS:
+        (snippets / f"{name}.md").write_text(TABLE if name == "speed" else f"fresh {name}\n")
     assert check(str(readme), str(snippets))
     readme.write_text(update(str(readme), str(snippets)))
     assert check(str(readme), str(snippets)) == []
-    assert "fresh\n<!-- END GENERATED replication -->" in readme.read_text()
+    assert "fresh replication\n<!-- END GENERATED replication -->" in readme.read_text()
 
 
 def test_check_reports_a_missing_block_or_snippet(tmp_path):

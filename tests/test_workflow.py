@@ -265,7 +265,7 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
     run, scratch, before = own.result, own.copy, own.before
     assert run.returncode == 0, run.stderr[-3000:]
     assert set(planned(run)) <= {"own_fit", "own_ball", "own_bounces", "own_speed", "own_maps", "own_bounce_figure",
-                                  "own_figures", "own_page", "all", "total"}, planned(run)
+                                  "own_figures", "own_plan", "own_page", "all", "total"}, planned(run)
     after = files(scratch)
     changed = {p for p in before if after.get(p) != before[p]}
     added = set(after) - set(before)
@@ -274,10 +274,12 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
     study = scratch / "results/studies/tennis"
     for name in ("index.html", "index.md", "ball.json", "outcomes.csv", "speed.csv", "maps.csv",
                  "histories/topspin-drive.csv", "figures/topspin-drive.png", "figures/speed.png",
-                 "figures/spin_map.png", "figures/rebound_map.png"):
+                 "figures/spin_map.png", "figures/rebound_map.png", "plan/plan.csv", "plan/plan.json",
+                 "plan/candidates.csv", "plan/plan.png"):
         assert (study / name).stat().st_size > 0, name
-    took = sorted(p.name for p in (study / "benchmarks").iterdir())  # 6 jobs and a figure per bounce
-    assert len(took) == 6 + 5 and "jobs took" in (study / "index.md").read_text(), took
+    took = sorted(p.name for p in (study / "benchmarks").iterdir())  # 7 jobs and a figure per bounce
+    assert len(took) == 7 + 5 and "jobs took" in (study / "index.md").read_text(), took
+    assert "Which bounces to measure" in (study / "index.md").read_text()  # the config's plan section
     import json
 
     import pandas as pd

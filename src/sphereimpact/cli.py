@@ -33,7 +33,7 @@ from .impact.solve import BODIES, simulate
 from .contact.declared import own_parameters, settings as declared_settings
 from .contact.materials import material_fields
 from .contact.tangential import STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS
-from .fit import FIT_FILES, FREE, MEASURABLE
+from .fit import FIT_FILES, FREE, MEASURABLE, PLAN_FILES
 
 _D = Scene()
 _O = SolverOptions()
@@ -369,6 +369,35 @@ def _parser() -> argparse.ArgumentParser:
                           "--ball, load_ball and a study's ball_file, the residuals and data against model")
     fit.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
 
+    pln = sub.add_parser(
+        "plan", help="which bounces to measure: a plan's expected errors, and the best plan", formatter_class=_Help,
+        description="Before measuring: the expected standard error of each --free parameter that a fit of bounces "
+                    "would give, for the ball described as for fit (its parameters at the values you expect), with "
+                    "the --noise of each output you will measure; and the best plan of --size bounces chosen from "
+                    "CANDIDATES (a CSV of approaches in fit's columns: speed, incidence or angle_to_surface or angle, "
+                    "spin), beside as many spread evenly. Linearised: the Fisher information of fit's Jacobian.",
+        epilog=OUTPUT_ANGLES)
+    pln.add_argument("candidates", metavar="CANDIDATES", help="the bounces you could measure, a CSV file")
+    pln.add_argument("--free", required=True, metavar="NAMES",
+                     help=f"comma-separated parameters to be fitted, of {', '.join(FREE)}, or a plug-in model's own")
+    pln.add_argument("--noise", required=True, metavar="OUTPUT=SIGMA,...",
+                     help=f"each output you will measure and its noise: absolute in its unit (e_t=0.02) or relative "
+                          f"(abs_omega_f=5%%); outputs of {', '.join(MEASURABLE)}")
+    pln.add_argument("--size", type=int, default=None, metavar="N",
+                     help="bounces in the plan, from the free parameters' number to the candidates' (default: all)")
+    pln.add_argument("--criterion", default="D", choices=("D", "A"),
+                     help="D: the largest determinant of the information (default); A: the smallest sum of squared "
+                          "relative standard errors")
+    _scene_options(pln)
+    pln.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every model value, in "
+                     "[1e-12, 1e-3]")
+    pln.add_argument("--json", action="store_true", help="print one JSON object (the chosen bounces, the expected "
+                     "errors of the plan, of as many evenly spread and of every candidate, correlations, notes)")
+    pln.add_argument("--out", default=None, metavar="DIR",
+                     help="also write plan.csv (the chosen bounces for fit, each output to fill in), plan.json, "
+                          "candidates.csv and plan.png into DIR (made if missing)")
+    pln.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
+
     bench = sub.add_parser(
         "benchmark", help="the field's benchmark tests, exact, and a DEM code's deviation from them",
         description="Reference files of Chung & Ooi's eight DEM benchmark tests (Granular Matter 13, 2011), solved "
@@ -702,7 +731,7 @@ def _described(args, command: str) -> None:
     simulate takes the chapter's ball unasked; --ball FILE and --chapter-ball describe it too."""
     missing = [] if args.ball is not None or args.chapter_ball else undescribed(args.given, args.model)
     if missing:
-        whose = "the ball you measured" if command == "fit" else "your ball"
+        whose = {"fit": "the ball you measured", "plan": "the ball you will measure"}.get(command, "your ball")
         raise ValueError(f"{command}: describe {whose}: give {_as_options(missing)} (or --ball FILE, or "
                          "--chapter-ball for the chapter's); only simulate takes the chapter's ball unasked")
 
@@ -717,6 +746,34 @@ def _defaults(scene: Scene, names) -> str:
     units = {"mass": "kg", "diameter": "m", "k": "N/m", "b": "N s/m"}
     shown = [name.split(" or ")[0] for name in names]
     return ", ".join(f"{name} {getattr(scene, name):g} {units.get(name, '')}".rstrip() for name in shown)
+
+
+def _check_out_files(folder: str, names, force: bool) -> None:
+    """Refuse, before any work, a folder ``names`` cannot be written into (existing files without ``force``)."""
+    check_out_folder(folder)
+    if os.path.isdir(folder):
+        for name in names:
+            check_out(os.path.join(folder, name), force, (os.path.splitext(name)[1],))
+    else:  # made once the work has succeeded, so a failure leaves nothing behind: its parent must take it
+        check_out(os.path.abspath(folder) + ".json", True, (".json",))
+
+
+def _user_ball(args) -> Ball:
+    """The ball of ``fit`` and ``plan``: a ball file's (its approach replaced by the options that give one) or the
+    options' own, with their solver settings and plug-ins."""
+    ball = _ball(args)
+    approach = {name: getattr(args, name) for name in APPROACH if name in args.given}
+    if ball is None:
+        return Ball(Scene(**_ball_fields(args), **{name: getattr(args, name) for name in APPROACH}),
+                    options=SolverOptions(settings=_settings(args)), plugins=tuple(args.plugin or ()))
+    if approach or _partner(args):
+        return replace(ball, scene=ball_scene(ball, **approach).with_(**_partner(args)))
+    return ball
+
+
+def _names(text: str) -> list[str]:
+    """A comma-separated list of names (``--free``)."""
+    return [name.strip() for name in text.split(",") if name.strip()]
 
 
 def _fit(args) -> None:
@@ -735,20 +792,9 @@ def _fit(args) -> None:
     if not (math.isfinite(args.target) and 1e-12 <= args.target <= 1e-3):
         raise ValueError(f"target must be a finite number in [1e-12, 1e-3]; got {args.target!r}")
     if args.out is not None:
-        check_out_folder(args.out)
-        if os.path.isdir(args.out):
-            for name in FIT_FILES:
-                check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
-        else:  # made once the fit has succeeded, so a failed one leaves nothing behind: its parent must take it
-            check_out(os.path.abspath(args.out) + ".json", True, (".json",))
-    ball = _ball(args)
-    approach = {name: getattr(args, name) for name in APPROACH if name in args.given}
-    if ball is None:
-        ball = Ball(Scene(**_ball_fields(args), **{name: getattr(args, name) for name in APPROACH}),
-                    options=SolverOptions(settings=_settings(args)), plugins=tuple(args.plugin or ()))
-    elif approach or _partner(args):
-        ball = replace(ball, scene=ball_scene(ball, **approach).with_(**_partner(args)))
-    free = [name.strip() for name in args.free.split(",") if name.strip()]
+        _check_out_files(args.out, FIT_FILES, args.force)
+    ball = _user_ball(args)
+    free = _names(args.free)
     measured = read_measured(args.measured)
     if "speed" not in measured.bounces and "speed" not in args.given:
         raise ValueError(f"fit: {args.measured!r} has no speed column: give the bounces' approach speed along the "
@@ -770,6 +816,41 @@ def _fit(args) -> None:
                     "no test of the fit") if stats["weights"] == "scatter" else ""
     lines.append(f"chi2 / dof       {stats['reduced_chi2']:.4g} ({stats['dof']} degrees of freedom{construction})")
     lines += [f"rms {q:<12}{v:>16.6g} {MEASURABLE[q]}" for q, v in stats["rms"].items()]
+    lines += [f"note: {note}" for note in result.notes]
+    sys.stdout.write("\n".join(lines) + "\n")
+
+
+def _plan(args) -> None:
+    """``sphereimpact plan``: the ball from the options (described, as for fit), the candidates from CANDIDATES,
+    the plan's expected errors printed (and written with --out)."""
+    from .fit.plan import plan
+    from .study.fitting import finite
+    from .study.planning import write_plan
+
+    _described(args, "plan")
+    if args.out is not None:
+        _check_out_files(args.out, PLAN_FILES, args.force)
+    result = plan(args.candidates, _user_ball(args), _names(args.free), args.noise, args.size, args.criterion,
+                  args.target)
+    if args.out is not None:
+        write_plan(result, args.out)
+    if args.json:
+        json.dump(finite(result.as_dict()), sys.stdout, indent=2)
+        sys.stdout.write("\n")
+        return
+    size, total = len(result.chosen), len(result.candidates)
+    lines = [f"{result.criterion}-optimal plan of {size} bounces of {total} candidates ({args.candidates}); noise "
+             + ", ".join(f"{name} {noise}" for name, noise in result.noise.items()),
+             f"{'parameter':<16}{'expected':>14}{'plan':>14}{'evenly spread':>16}{'every candidate':>18}"]
+    for name in result.free:
+        errors = [result.stderr[label][name] for label in ("chosen", "even", "all")]
+        lines.append(f"{name:<16}{result.values[name]:>14.6g}" + "".join(
+            f"{e:>{w}.3g}" if math.isfinite(e) else f"{'unbounded':>{w}}" for e, w in zip(errors, (14, 16, 18))))
+    chosen = result.candidates.iloc[list(result.chosen)]
+    lines.append("chosen: " + "; ".join(
+        f"incidence {row.incidence_deg:.4g} deg" + "".join(f", {c} {getattr(row, c):g}" for c in ("speed", "spin")
+                                                          if c in chosen)
+        for row in chosen.itertuples()))
     lines += [f"note: {note}" for note in result.notes]
     sys.stdout.write("\n".join(lines) + "\n")
 
@@ -825,7 +906,8 @@ def run(argv=None) -> int:
             parser = _parser()
             args = parser.parse_args(_values_as_one_token(argv, parser))
             args.given = _given(argv, parser, args.command)
-            status = {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "benchmark": _benchmark}[args.command](args)
+            status = {"sweep": _sweep, "simulate": _simulate, "fit": _fit, "plan": _plan,
+                      "benchmark": _benchmark}[args.command](args)
         _say(caught, getattr(args, "strict", False))
     except (UsageError, ValueError, TypeError, ImpactError) as err:
         return _fail(2, err)

@@ -5,7 +5,7 @@ from snakemake.utils import validate
 
 from sphereimpact.figures.captions import CAPTIONS
 from sphereimpact.figures.catalog import FIGURES
-from sphereimpact.fit import FIT_FILES
+from sphereimpact.fit import FIT_FILES, PLAN_FILES
 from sphereimpact.study.config_check import check_config
 from sphereimpact.study.readme import TIMING_CHARTS
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest
@@ -152,6 +152,10 @@ def chapter_outputs():
         *expand("paper_figures/{fig}.png", fig=["laws_cor_speed", "laws_force"]),
         *expand("paper_figures/{fig}.png", fig=["validation_kharaz", "validation_maw", "compliance_map"]),
         "paper_figures/README.md",
+        "paper_figures/plan_kharaz.png",
+        "results/plan/checks.csv",
+        "results/readme/plan.md",
+        "results/readme/plan_checks.md",
         "results/readme/replication.md",
         "results/readme/speed.md",
         "results/readme/validation.md",

@@ -7,6 +7,8 @@ OWN = f"results/studies/{config['study']}"
 BOUNCES = list(config["bounces"])
 #: The fit's files when the study fits its ball to measured bounces (config section `fit`).
 FIT = [f"{OWN}/fit/{name}" for name in FIT_FILES] if config.get("fit") else []
+#: The plan's files when the study plans its measurements (config section `plan`).
+PLAN = [f"{OWN}/plan/{name}" for name in PLAN_FILES] if config.get("plan") else []
 
 
 rule own_fit:
@@ -30,6 +32,29 @@ rule own_fit:
         ENV
     script:
         "../scripts/own_fit.py"
+
+
+rule own_plan:
+    """Which bounces to measure: the config's `plan` section for the study's ball (sphereimpact plan)."""
+    input:
+        candidates=config["plan"]["candidates"] if config.get("plan") else [],
+        ball=f"{OWN}/ball.json",
+    output:
+        table=f"{OWN}/plan/plan.csv",
+        summary=f"{OWN}/plan/plan.json",
+        candidates=f"{OWN}/plan/candidates.csv",
+        png=report(f"{OWN}/plan/plan.png", caption="../report/own.rst", category="Own study"),
+    params:
+        code=code("workflow/scripts/own_plan.py"),
+        config=params_for("own_plan"),
+    benchmark:
+        f"{OWN}/benchmarks/plan.tsv",
+    log:
+        f"logs/studies/{config['study']}/plan.log",
+    conda:
+        ENV
+    script:
+        "../scripts/own_plan.py"
 
 
 rule own_ball:
@@ -164,8 +189,10 @@ rule own_page:
                  *(f"{OWN}/figures/{name}.png" for name in ("speed", "spin_map", "rebound_map"))],
         benchmarks=[*(f"{OWN}/benchmarks/{name}.tsv" for name in ("ball", "bounces", "speed", "maps", "figures")),
                     *expand(f"{OWN}/benchmarks/figure_{{bounce}}.tsv", bounce=BOUNCES),
-                    *([f"{OWN}/benchmarks/fit.tsv"] if FIT else [])],
+                    *([f"{OWN}/benchmarks/fit.tsv"] if FIT else []),
+                    *([f"{OWN}/benchmarks/plan.tsv"] if PLAN else [])],
         fit=FIT,
+        plan=PLAN,
     output:
         md=f"{OWN}/index.md",
         html=report(f"{OWN}/index.html", caption="../report/own.rst", category="Own study"),

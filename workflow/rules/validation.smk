@@ -87,3 +87,32 @@ rule validation_figures:
         ENV
     script:
         "../scripts/validation_figures.py"
+
+
+rule planning:
+    """Which bounces to measure (sphereimpact plan): the Kharaz ball's best incidences against the measured ones,
+    the predicted errors checked by fits of synthetic bounces, and the README's tennis example."""
+    input:
+        data=config["validation"]["data"],
+        schema="config/schema.yaml",
+        study=config["planning"]["tennis"]["study"],
+        candidates=config["planning"]["tennis"]["candidates"],
+    output:
+        kharaz=[f"results/plan/kharaz/{name}" for name in PLAN_FILES],
+        figure=report("paper_figures/plan_kharaz.png", caption="../report/figure.rst", category="Validation"),
+        checks=report("results/plan/checks.csv", caption="../report/planning.rst", category="Validation"),
+        tennis=[f"results/plan/tennis/{name}" for name in PLAN_FILES],
+        plan_md="results/readme/plan.md",
+        checks_md="results/readme/plan_checks.md",
+    params:
+        code=code("workflow/scripts/planning.py"),
+        config=params_for("planning"),
+        captions=captions("plan_kharaz"),
+    benchmark:
+        "results/benchmarks/validation/planning.tsv"
+    log:
+        "logs/validation/planning.log",
+    conda:
+        ENV
+    script:
+        "../scripts/planning.py"

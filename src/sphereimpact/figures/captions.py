@@ -55,6 +55,11 @@ CAPTIONS = {
     "validation_maw": ("Validation", "The same data and models in Maw's normalised variables ψ1 (incidence) and ψ2 "
                                      "(the contact point's rebound): the rigid contact is a broken line, negative ψ2 a "
                                      "reversed contact point."),
+    "plan_kharaz": ("Validation",
+                    "Which bounces to measure for the Kharaz ball (exact microslip; mu and kappa free): each "
+                    "parameter's standard error from one bounce alone against incidence (a gap where a bounce does "
+                    "not inform it), the D-optimal plan's bounces circled, and the expected errors of the plan, of "
+                    "as many bounces evenly spread and of every candidate (sphereimpact plan; results/plan/kharaz/)."),
     "compliance_map": ("Validation",
                        "Where the rigid tangential contact is enough for the chapter's ball: the signed spin difference "
                        "of each compliant contact from the rigid one over angle and κ (left; the tangential spring "

@@ -5,13 +5,14 @@ reuses (``save_ball``, ``--ball``, a study's ``ball_file``).  The names (:mod:`.
 (pandas, scipy.optimize, scipy.stats) on first use, so that a command which only names them starts fast.
 """
 
-from .names import FIT_FILES, FREE, MEASURABLE
+from .names import FIT_FILES, FREE, MEASURABLE, PLAN_FILES
 
 #: Attribute -> the module that defines it, imported when first asked for.
 _LAZY = {"FitResult": "least_squares", "Parameter": "least_squares", "fit": "least_squares",
          "with_values": "least_squares", "Measured": "measured", "read_measured": "measured"}
 
-__all__ = ["FIT_FILES", "FREE", "MEASURABLE", "FitResult", "Measured", "Parameter", "fit", "read_measured", "with_values"]
+__all__ = ["FIT_FILES", "FREE", "MEASURABLE", "PLAN_FILES", "FitResult", "Measured", "Parameter", "fit", "read_measured",
+           "with_values"]
 
 
 def __getattr__(name: str):

@@ -16,6 +16,8 @@ FREE = {
 }
 #: The files of a fit's folder (``sphereimpact fit --out DIR``, the pipeline's fits).
 FIT_FILES = ("ball.json", "fit.json", "residuals.csv", "fit.png")
+#: The files of a measurement plan's folder (``sphereimpact plan --out DIR``, a study's ``plan`` section).
+PLAN_FILES = ("plan.csv", "plan.json", "candidates.csv", "plan.png")
 #: Measured quantities that are not outputs of ``simulate`` but follow from them and the approach: the
 #: tangential coefficient of restitution of the centre, v_t' / v_t [-], and the rebound spin's magnitude.
 DERIVED = {"e_t": "-", "abs_omega_f": "rad/s"}

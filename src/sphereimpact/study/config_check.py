@@ -15,7 +15,7 @@ from .own import CHAPTER
 
 
 #: Sections only a study of one's own ball reads.
-OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges", "fit")
+OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges", "fit", "plan")
 
 
 def config_errors(config: dict, schema_path: str) -> list[str]:
@@ -56,7 +56,40 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
                   + own_errors(filled))
         if config.get("fit"):
             lines += _fit_errors(filled)
+        if config.get("plan"):
+            lines += _plan_errors(filled)
     return lines
+
+
+def _plan_errors(config: dict) -> list[str]:
+    """An own study's ``plan`` section: its candidates unreadable, a free parameter the study's ball cannot free,
+    a noise or size its job would refuse (checked on the ball as described, without calibrating it)."""
+    from ..fit.least_squares import free_names
+    from ..fit.plan import parse_noise, read_candidates
+    from .own import described_ball
+
+    section, errors = config["plan"], []
+    try:
+        candidates = read_candidates(section["candidates"])
+    except ValueError as err:
+        errors.append(f"config key plan.candidates: {err}")
+        candidates = None
+    try:
+        parse_noise(section["noise"])
+    except ValueError as err:
+        errors.append(f"config key plan.noise: {err}")
+    try:
+        names = free_names(described_ball(config), section["free"])
+    except ValueError as err:
+        errors.append(f"config key plan.free: {err}")
+        names = None
+    except TypeError:
+        names = None
+    size = section.get("size")
+    if size is not None and candidates is not None and names is not None and not len(names) <= size <= len(candidates):
+        errors.append(f"config key plan.size: must be in [{len(names)}, {len(candidates)}] (the free parameters to "
+                      f"the candidates); got {size}")
+    return errors
 
 
 def _fit_errors(config: dict) -> list[str]:

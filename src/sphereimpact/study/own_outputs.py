@@ -115,12 +115,14 @@ def ball_parameters(ball) -> list[tuple[str, str]]:
 
 
 def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, maps_csv: str, figures: dict,
-               md_path: str, html_path: str, benchmarks=(), fit: tuple[str, str] | None = None) -> None:
+               md_path: str, html_path: str, benchmarks=(), fit: tuple[str, str] | None = None,
+               plan: tuple[str, str] | None = None) -> None:
     """One page, Markdown and HTML, that shows the study: the ball and what was fitted, each bounce's outputs
     and figure, the speed curve and the maps (``figures``: name -> path relative to the page), each figure with
     its caption, a line for every bounce far from the calibration's speed, and what the study's jobs took
     (``benchmarks``: Snakemake's benchmark files of its jobs, the page's own aside); with a ``fit`` section, the
-    fit (``fit``: its ``fit.json`` and its figure's path relative to the page)."""
+    fit (``fit``: its ``fit.json`` and its figure's path relative to the page); with a ``plan`` section, the plan
+    (``plan``: its ``plan.json`` and its figure's path)."""
     ball, outcomes = load_ball(ball_json, config.get("plugins", ())), read_history(outcomes_csv)
     scene, speed, maps = ball.scene, pd.read_csv(speed_csv), pd.read_csv(maps_csv)
     measured = ball.measurement
@@ -145,6 +147,7 @@ def write_page(config: dict, ball_json: str, outcomes_csv: str, speed_csv: str, 
                        f"longest {max(took):.3g} s (Snakemake's benchmarks, `benchmarks/`).")] if took else []),
               ("table", (["parameter", "value"], ball_parameters(ball))),
               *(_fit_blocks(config["fit"], *fit) if fit else []),
+              *(_plan_blocks(*plan) if plan else []),
               ("h2", "Bounces (`outcomes.csv`, histories in `histories/`)"),
               ("table", (header, [[_cell(v) for v in row] for row in outcomes[shown].itertuples(index=False)]))]
     blocks += [("p", "Outside the calibration: " + line) for line in far]
@@ -182,6 +185,32 @@ def _fit_blocks(section: dict, fit_json: str, figure: str) -> list:
             *[("p", "Note: " + note) for note in record["notes"]],
             ("figure", (figure, 640, "Measured values against the fitted model at each bounce; the band is ±2 "
                         "standard errors of the model from the parameters' covariance."))]
+
+
+def _plan_blocks(plan_json: str, figure: str) -> list:
+    """The page's account of the measurement plan: each free parameter's expected standard error from the plan,
+    from as many bounces spread evenly and from every candidate, the chosen bounces, the notes and the figure."""
+    import json
+
+    record = json.loads(Path(plan_json).read_text(encoding="utf-8"))
+
+    def shown(value):
+        return "unbounded" if value is None else f"{value:.3g}"
+
+    rows = [[name, f"{record['values'][name]:.6g}",
+             *(shown(record["stderr"][label][name]) for label in ("chosen", "even", "all"))]
+            for name in record["free"]]
+    chosen = "; ".join(f"{row['incidence_deg']:.4g}°" for row in record["chosen"])
+    return [("h2", f"Which bounces to measure (`plan/`, from `{record['candidates_file']}`)"),
+            ("p", f"{record['criterion']}-optimal plan of {record['size']} bounces of {record['candidates']} "
+                  f"candidates, noise " + ", ".join(f"{k} {v}" for k, v in record["noise"].items())
+                  + f"; incidences from the normal: {chosen}. `plan/plan.csv` holds them in `fit`'s columns, each "
+                  "output to fill in once measured."),
+            ("table", (["parameter", "expected value", "plan", "as many, evenly spread", "every candidate"], rows)),
+            *[("p", "Note: " + note) for note in record["notes"]],
+            ("figure", (figure, 640, "Each parameter's standard error from one bounce alone against incidence, the "
+                        "chosen bounces circled, and the expected errors of the plan, of as many evenly spread bounces "
+                        "and of every candidate."))]
 
 
 def _bounce_caption(name: str, row) -> str:

@@ -31,7 +31,7 @@ from .tables import text_table
 from .workflow import job_seconds
 
 #: Generated blocks of the README and docs/.
-BLOCKS = ("replication", "speed", "validation", "fit", "chung_ooi", "consistency", "runtime")
+BLOCKS = ("replication", "speed", "validation", "fit", "chung_ooi", "consistency", "runtime", "plan", "plan_checks")
 #: Charts of timings: written to results/figures/ by every run, recorded in paper_figures/ by ``--update``.
 TIMING_CHARTS = ("work_precision", "microslip_resolution", "sweep_paths")
 #: A timed cell of a fresh run may differ from the README's by up to this factor either way.  Measured on

@@ -52,6 +52,7 @@ RULE_KEYS = {
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
     "validation": ("validation",),
     "kharaz_fit": ("validation", "kharaz_fit"),
+    "planning": ("validation", "planning"),
     "compliance_map": (*_SCENE, "compliance", "primary"),
     "validation_figures": ("compliance",),
     "own_fit": ("study", "plugins", "ball_file", "ball", "surface", "contact", "fit"),
@@ -60,13 +61,14 @@ RULE_KEYS = {
     "own_speed": ("study", "plugins", "ranges"),
     "own_maps": ("study", "plugins", "ranges"),
     "own_bounce_figure": ("study", "contact.separation"),
+    "own_plan": ("study", "plugins", "plan"),
     "own_figures": ("study", "plugins"),
     "own_page": ("study", "plugins", "contact", "bounces", "fit"),
 }
 
 
 #: Config sections without a schema default: absent unless the config gives them.
-OPTIONAL = ("fit",)
+OPTIONAL = ("fit", "plan")
 
 
 def config_subset(config: dict, rule: str, case: str | None = None) -> dict:
