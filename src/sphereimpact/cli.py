@@ -781,7 +781,7 @@ def _fit(args) -> None:
     written with --out).  The ball is the user's: described by the options or a ball file, never the chapter's
     by default; so is the bounces' speed, from MEASURED or --speed."""
     from .fit import fit, read_measured
-    from .study.fitting import finite, write_fit
+    from .study.fitting import write_fit
 
     _described(args, "fit")
 
@@ -800,11 +800,7 @@ def _fit(args) -> None:
         raise ValueError(f"fit: {args.measured!r} has no speed column: give the bounces' approach speed along the "
                          "path with --speed [m/s]")
     result = fit(measured, ball, free, args.bootstrap, args.seed, args.target)
-    if args.out is not None:
-        write_fit(result, args.out)
-    if args.json:
-        json.dump(finite(result.as_dict()), sys.stdout, indent=2)
-        sys.stdout.write("\n")
+    if _delivered(result, args, write_fit):
         return
     stats = result.statistics
     lines = [f"fitted to {stats['values']} measured values of {stats['bounces']} bounces ({args.measured})"]
@@ -820,11 +816,23 @@ def _fit(args) -> None:
     sys.stdout.write("\n".join(lines) + "\n")
 
 
+def _delivered(result, args, write) -> bool:
+    """Write ``result`` into ``--out`` with ``write`` and, with ``--json``, print its ``as_dict`` (True: printed,
+    nothing more to say)."""
+    from .study.fitting import finite
+
+    if args.out is not None:
+        write(result, args.out)
+    if args.json:
+        json.dump(finite(result.as_dict()), sys.stdout, indent=2)
+        sys.stdout.write("\n")
+    return args.json
+
+
 def _plan(args) -> None:
     """``sphereimpact plan``: the ball from the options (described, as for fit), the candidates from CANDIDATES,
     the plan's expected errors printed (and written with --out)."""
     from .fit.plan import plan
-    from .study.fitting import finite
     from .study.planning import write_plan
 
     _described(args, "plan")
@@ -832,11 +840,7 @@ def _plan(args) -> None:
         _check_out_files(args.out, PLAN_FILES, args.force)
     result = plan(args.candidates, _user_ball(args), _names(args.free), args.noise, args.size, args.criterion,
                   args.target)
-    if args.out is not None:
-        write_plan(result, args.out)
-    if args.json:
-        json.dump(finite(result.as_dict()), sys.stdout, indent=2)
-        sys.stdout.write("\n")
+    if _delivered(result, args, write_plan):
         return
     size, total = len(result.chosen), len(result.candidates)
     lines = [f"{result.criterion}-optimal plan of {size} bounces of {total} candidates ({args.candidates}); noise "
