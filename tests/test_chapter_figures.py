@@ -100,3 +100,13 @@ def test_figure_legend_names_the_criteria(runs, tmp_path):
     labels = [text.get_text() for text in fig.axes[0].get_legend().get_texts()]
     assert any(label.startswith("contact ends: P returns to 0 (force criterion), 4.799") for label in labels)
     assert any(label.startswith("δ returns to 0 (penetration criterion): 4.891") for label in labels)
+
+
+def test_drawn_under_the_penetration_criterion_the_pull_is_the_curve_itself(runs):
+    """With primary.separation = penetration the curves reach δ = 0 themselves: their least force is the pull,
+    and nothing is "held" further."""
+    frames, _ = runs
+    text = _facts(runs, "fig4_7", "penetration")
+    least = criterion_history(frames["normal", "modified"], "penetration")["force"].min()
+    assert f"its least force {least:.4g} N".replace("-", "−") in text
+    assert "held to δ = 0" not in text
