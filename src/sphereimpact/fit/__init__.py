@@ -8,10 +8,10 @@ reuses (``save_ball``, ``--ball``, a study's ``ball_file``).  The names (:mod:`.
 from .names import FIT_FILES, FREE, MEASURABLE, PLAN_FILES
 
 #: Attribute -> the module that defines it, imported when first asked for.
-_LAZY = {"FitResult": "least_squares", "Parameter": "least_squares", "fit": "least_squares",
+_LAZY = {"FitResult": "least_squares", "FittedParameter": "least_squares", "fit": "least_squares",
          "with_values": "least_squares", "Measured": "measured", "read_measured": "measured"}
 
-__all__ = ["FIT_FILES", "FREE", "MEASURABLE", "PLAN_FILES", "FitResult", "Measured", "Parameter", "fit", "read_measured",
+__all__ = ["FIT_FILES", "FREE", "MEASURABLE", "PLAN_FILES", "FitResult", "Measured", "FittedParameter", "fit", "read_measured",
            "with_values"]
 
 

@@ -46,7 +46,7 @@ UNIDENTIFIABLE = 1.0
 
 
 @dataclass(frozen=True)
-class Parameter:
+class FittedParameter:
     """One fitted parameter: its value, standard error (Jacobian), bootstrap standard error (NaN without a
     bootstrap) and whether the data pin it down."""
 
@@ -65,7 +65,7 @@ class FitResult:
     ball : Ball
         The ball with the fitted values (``fitted`` lists them; ``source`` says from which data).
     parameters : dict
-        Name -> :class:`Parameter`.
+        Name -> :class:`FittedParameter`.
     correlation : DataFrame
         The free parameters' correlation matrix.
     residuals : DataFrame
@@ -312,7 +312,7 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     if weights == "given" and dof > 0 and chi2_distribution.sf(chi2, dof) < MISFIT_P:
         notes.append(f"the model misses the data beyond their stated uncertainties: chi2/dof {chi2 / dof:.3g} "
                      f"({dof} degrees of freedom, p = {chi2_distribution.sf(chi2, dof):.2g})")
-    parameters = {n: Parameter(float(v), float(e), float(b), bool(ok))
+    parameters = {n: FittedParameter(float(v), float(e), float(b), bool(ok))
                   for n, v, e, b, ok in zip(names, x, stderr, boot, identifiable)}
     return FitResult(fitted, parameters, pd.DataFrame(correlation, index=names, columns=names), residuals,
                      statistics, notes)

@@ -221,7 +221,7 @@ MODULUS = Parameter("modulus", "Pa", "effective modulus E* of ball and flat (ins
                     "a finite number > 0", lambda x: x > 0)
 
 
-class Registry(BaseRegistry):
+class LawRegistry(BaseRegistry):
     """Name -> ContactLaw.  :meth:`register` adds a law; nothing else needs to change."""
 
     def __init__(self):
@@ -233,4 +233,4 @@ class Registry(BaseRegistry):
 
 
 #: The registered laws (filled by :mod:`sphereimpact.contact.laws`).
-LAWS = Registry()
+LAWS = LawRegistry()

@@ -180,7 +180,7 @@ def _names(registry, spring: str) -> str:
     return ", ".join(f"'{n}'" for n in names) if registry is TANGENTIALS else ", ".join(names)
 
 
-class Registry(BaseRegistry):
+class TangentialRegistry(BaseRegistry):
     """Name -> TangentialModel.  :meth:`register` adds a model; nothing else needs to change."""
 
     def __init__(self):
@@ -196,4 +196,4 @@ class Registry(BaseRegistry):
 
 
 #: The registered tangential models (filled by :mod:`sphereimpact.contact.tangential`).
-TANGENTIALS = Registry()
+TANGENTIALS = TangentialRegistry()
