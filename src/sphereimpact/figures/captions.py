@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..contact.separation import Separation
 from .catalog import CRITERIA, EQUATIONS, FIGURES
 
 #: Figure (file stem in ``paper_figures/``) -> (section, caption).  The chapter's figures first, in its order.
@@ -127,7 +128,7 @@ def chapter_facts(name: str, histories: list, separation: str) -> str:
             lowest = drawn["force"].min()
             text += f", its least force {_g(lowest)} N" if lowest < -1e-9 * scale else ", never pulling"
             for other, end in contact_ends(history).items():
-                if other == "penetration" and end["t"] - last["t"] > 1e-12:  # held on to delta = 0
+                if Separation(other).pulls and end["t"] - last["t"] > 1e-12:  # held on to delta = 0
                     held = history[history["separation"] == other]["force"].min()
                     text += (f"; held to δ = 0 ({other} criterion) it would pull to {_g(held)} N"
                              if held < -1e-9 * scale else f"; held to δ = 0 ({other} criterion) it would not pull")

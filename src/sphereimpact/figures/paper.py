@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..study.replication import load_published
 from .captions import criterion_history, contact_ends
+from ..contact.separation import Separation
 from .catalog import CRITERIA, EQUATIONS, FIGURES
 from .style import RC, save
 
@@ -115,7 +116,7 @@ def force_deflection(previous_csv: str, modified_csv: str, published: list[dict]
                     label=f"{EQUATIONS[model]} ({'previous' if model == 'kelvin-voigt' else 'modified'}), "
                           f"{separation} criterion")
             for other, end in contact_ends(runs).items():
-                if other == "penetration" and end["t"] - h["t"].iloc[-1] > 1e-12:  # held on to delta = 0
+                if Separation(other).pulls and end["t"] - h["t"].iloc[-1] > 1e-12:  # held on to delta = 0
                     held = runs[runs["separation"] == other]
                     ax.plot(held["delta"] * 1e3, held["force"], style, color=colour, linewidth=0.7,
                             label=f"{EQUATIONS[model]} held to δ = 0 ({other} criterion): least P "
