@@ -66,7 +66,7 @@ def _texts(fig):
 def layout_problems(fig) -> list[str]:
     """What would not read in ``fig`` at its size: a text reaching outside the page, or two texts of different
     owners (panels, legends, the figure's title) overlapping.  Empty when the figure reads."""
-    fig.canvas.draw()
+    fig.draw_without_rendering()  # the layout and every text's box, no pixels
     page = fig.bbox
     texts = _texts(fig)
     problems = [f"{owner}: {label!r} reaches outside the page" for owner, label, box in texts
