@@ -358,8 +358,13 @@ def _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target):
     low = np.where(logs, -np.inf, lower)
     high = np.where(logs, np.inf, upper)
 
+    expected = dict(zip(names, x))
+
     def values(point):
-        current = with_values(ball, dict(zip(names, np.where(logs, np.exp(point), point))))
+        # Only what moved from the ball's own values: a ball calibrated to a measured COR is calibrated again only
+        # when the COR or a normal-law parameter moves, not for each step in friction or the tangential stiffness.
+        trial = dict(zip(names, np.where(logs, np.exp(point), point)))
+        current = with_values(ball, {n: v for n, v in trial.items() if v != expected[n]})
         out = sweep(rows.assign(**ball_columns(current)), target=target, outputs=sources,
                     settings=dict(current.options.settings))
         return np.column_stack([quantity(name, out) for name in outputs])
