@@ -27,6 +27,13 @@ def replacing(path):
         raise
 
 
+def copy_file(source, path) -> None:
+    """Copy the file ``source`` to ``path``, written whole or not at all (:func:`replacing`)."""
+    data = Path(source).read_bytes()
+    with replacing(path) as partial:
+        Path(partial).write_bytes(data)
+
+
 def write_text(path, text: str) -> None:
     """Write ``text`` (UTF-8) to ``path`` whole or not at all (:func:`replacing`)."""
     with replacing(path) as partial:

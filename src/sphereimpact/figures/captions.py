@@ -129,7 +129,7 @@ def chapter_facts(name: str, histories: list, separation: str) -> str:
             text += f", its least force {_g(lowest)} N" if lowest < -1e-9 * scale else ", never pulling"
             for other, end in contact_ends(history).items():
                 if Separation(other).pulls and end["t"] - last["t"] > 1e-12:  # held on to delta = 0
-                    held = history[history["separation"] == other]["force"].min()
+                    held = criterion_history(history, other)["force"].min()
                     text += (f"; held to δ = 0 ({other} criterion) it would pull to {_g(held)} N"
                              if held < -1e-9 * scale else f"; held to δ = 0 ({other} criterion) it would not pull")
             facts.append(text)

@@ -117,7 +117,7 @@ def force_deflection(previous_csv: str, modified_csv: str, published: list[dict]
                           f"{separation} criterion")
             for other, end in contact_ends(runs).items():
                 if Separation(other).pulls and end["t"] - h["t"].iloc[-1] > 1e-12:  # held on to delta = 0
-                    held = runs[runs["separation"] == other]
+                    held = criterion_history(runs, other)
                     ax.plot(held["delta"] * 1e3, held["force"], style, color=colour, linewidth=0.7,
                             label=f"{EQUATIONS[model]} held to δ = 0 ({other} criterion): least P "
                                   f"{held['force'].min():.3g} N")

@@ -148,6 +148,14 @@ def fit_range(parameter) -> tuple[float, float, bool]:
     return (0.0, math.inf, True) if positive else (-math.inf, math.inf, False)
 
 
+def fit_limits(ball: Ball, names) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(lower bounds, upper bounds, fitted in its logarithm) of the parameters ``names`` of ``ball`` (:data:`FREE`
+    and :func:`own_bounds`), as arrays in their order: the fit's variables, which a plan linearises in too."""
+    limits = FREE | own_bounds(ball)
+    lower, upper, logs = (np.array([limits[n][i] for n in names]) for i in range(3))
+    return lower, upper, logs.astype(bool)
+
+
 def free_names(ball: Ball, free) -> list[str]:
     """The names of ``free`` checked against what ``ball`` can free (:data:`FREE`, its law's and tangential
     model's parameters and own parameters, ``cor`` only for a ball calibrated to a measured COR), without
@@ -223,9 +231,7 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     if (theta_incidence[values.loc[e_t_rows, "bounce"].to_numpy()] == 0).any():
         raise ValueError("measured: e_t of a normal impact (incidence 0) is undefined; leave it out")
     outputs = sorted({SOURCES.get(q, q) for q in values["quantity"]})
-    limits = FREE | own_bounds(ball)
-    lower, upper, logs = (np.array([limits[n][i] for n in names]) for i in range(3))
-    logs = logs.astype(bool)
+    lower, upper, logs = fit_limits(ball, names)
 
     evaluations = 0  # of the model: the optimiser's, its Jacobians' and the bootstrap's
 

@@ -29,9 +29,9 @@ from ..impact.ball import APPROACH, Ball, ball_columns
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
-from .least_squares import DIFF_STEP, _bounces, _start, _uncertainties, free_names, own_bounds
+from .least_squares import DIFF_STEP, _bounces, _start, _uncertainties, fit_limits, free_names
 from .measured import SOURCES, quantity
-from .names import FREE, MEASURABLE
+from .names import MEASURABLE
 
 #: Criteria of the best plan: ``D`` (largest determinant of the information) and ``A`` (smallest sum of squared
 #: relative standard errors).
@@ -195,20 +195,26 @@ class Plan:
         return table
 
     def as_dict(self) -> dict:
-        """Everything but the candidate table as plain JSON types (inf and NaN as None)."""
-        def number(v):
-            return float(v) if math.isfinite(v) else None
-
+        """Everything but the candidate table as plain Python types, as :meth:`FitResult.as_dict` (an unbounded
+        error is inf: ``study.fitting.finite`` writes it as JSON's null)."""
         return {"free": list(self.free), "values": {k: float(v) for k, v in self.values.items()},
                 "noise": {k: str(v) for k, v in self.noise.items()}, "criterion": self.criterion,
                 "size": len(self.chosen), "candidates": len(self.candidates),
-                "chosen": [{k: number(float(v)) for k, v in row.items()} for row in
+                "chosen": [{k: float(v) for k, v in row.items()} for row in
                            self.candidates.iloc[list(self.chosen)][
                                [c for c in (*APPROACH, "incidence_deg") if c in self.candidates]].to_dict("records")],
-                "stderr": {plan: {k: number(v) for k, v in errors.items()} for plan, errors in self.stderr.items()},
-                "correlation": {a: {b: number(float(self.correlation.loc[a, b])) for b in self.correlation.columns}
+                "stderr": {plan: dict(errors) for plan, errors in self.stderr.items()},
+                "correlation": {a: {b: float(self.correlation.loc[a, b]) for b in self.correlation.columns}
                                 for a in self.correlation.index},
                 "notes": list(self.notes)}
+
+
+def size_problem(size, free: int, candidates: int) -> str | None:
+    """What is wrong with a plan of ``size`` bounces for ``free`` parameters from ``candidates`` (None: nothing)."""
+    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not free <= size <= candidates:
+        return (f"must be an integer in [{free}, {candidates}] (the free parameters to the candidates); "
+                f"got {size!r}")
+    return None
 
 
 def plan(candidates, ball: Ball, free, noise, size: int | None = None, criterion: str = "D",
@@ -244,9 +250,9 @@ def plan(candidates, ball: Ball, free, noise, size: int | None = None, criterion
     if criterion not in CRITERIA:
         raise ValueError(f"criterion must be one of {', '.join(CRITERIA)}; got {criterion!r}")
     size = len(table) if size is None else size
-    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not len(names) <= size <= len(table):
-        raise ValueError(f"size must be an integer in [{len(names)}, {len(table)}] (the free parameters to the "
-                         f"candidates); got {size!r}")
+    problem = size_problem(size, len(names), len(table))
+    if problem:
+        raise ValueError(f"size {problem}")
     if not (math.isfinite(target) and 1e-12 <= target <= 1e-3):
         raise ValueError(f"target must be a finite number in [1e-12, 1e-3]; got {target!r}")
     design = _design(table, ball, names, noise, target)
@@ -309,17 +315,16 @@ class _Design:
     weighted: np.ndarray
 
 
-def _design(table: pd.DataFrame, ball: Ball, names: list, noise: dict, target: float) -> _Design:
+def _design(table: pd.DataFrame, ball: Ball, names: list, noise: dict, target: float, bending: bool = True) -> _Design:
     """Each candidate's planned outputs, their noise and their differences in the fit's variables; a value the
-    noise cannot weigh (a relative noise of zero, an undefined output) gets weight 0."""
+    noise cannot weigh (a relative noise of zero, an undefined output) gets weight 0.  ``bending``: also the
+    backward differences that tell where the linearisation does not hold (NaN without)."""
     rows = _bounces(table, ball)
     outputs = list(noise)
-    limits = FREE | own_bounds(ball)
-    lower, upper, logs = (np.array([limits[n][i] for n in names]) for i in range(3))
-    logs = logs.astype(bool)
+    lower, upper, logs = fit_limits(ball, names)
     x = _start(ball, names)
     with reusing_normal_motions():
-        forward, backward, model = _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target)
+        forward, backward, model = _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target, bending)
     sigma = np.column_stack([noise[name].of(model[:, j]) for j, name in enumerate(outputs)])
     usable = np.isfinite(model) & (sigma > 0)
     weights = np.where(usable, 1.0 / np.where(usable, sigma, 1.0), 0.0)  # 1/sigma; 0 where the value says nothing
@@ -340,17 +345,19 @@ def expected_errors(bounces, ball: Ball, free, noise, target: float = 1e-8) -> d
     for name, part in frame.groupby("quantity", sort=True):
         if name not in noise:
             raise ValueError(f"noise: give the noise of {name!r}, which the bounces measure")
-        design = _design(read_candidates(part.drop(columns="quantity")), ball, names, {name: noise[name]}, target)
+        design = _design(read_candidates(part.drop(columns="quantity")), ball, names, {name: noise[name]}, target,
+                         bending=False)
         blocks.append(design.weighted.reshape(-1, len(names)))
         x, logs = design.x, design.logs
     _, errors, _, _ = _uncertainties(np.vstack(blocks), x, logs)
     return dict(zip(names, map(float, errors)))
 
 
-def _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target):
-    """The model's planned outputs at ``x`` and their forward and backward differences in the fit's variables (a
-    positive scale's logarithm), each with the fit's step: (forward, backward, model), shapes (rows, outputs,
-    parameters) and (rows, outputs).  The backward difference is NaN where it would leave the bounds."""
+def _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target, bending=True):
+    """The model's planned outputs at ``x`` and their forward and, with ``bending``, backward differences in the
+    fit's variables (a positive scale's logarithm), each with the fit's step: (forward, backward, model), shapes
+    (rows, outputs, parameters) and (rows, outputs).  The backward difference is NaN where it would leave the
+    bounds, or without ``bending``."""
     from .least_squares import with_values
 
     sources = sorted({SOURCES.get(name, name) for name in outputs})
@@ -380,7 +387,7 @@ def _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target):
         shifted[j] += step
         forward[:, :, j] = (values(shifted) - model) / step
         shifted[j] = theta[j] - step
-        if low[j] <= shifted[j] <= high[j]:
+        if bending and low[j] <= shifted[j] <= high[j]:
             backward[:, :, j] = (model - values(shifted)) / step
         # A difference within the model values' own accuracy over the step is noise, not a dependence: zero.
         floor = NOISE_FLOOR * target * np.abs(model) / abs(step)

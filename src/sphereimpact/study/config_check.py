@@ -65,7 +65,7 @@ def _plan_errors(config: dict) -> list[str]:
     """An own study's ``plan`` section: its candidates unreadable, a free parameter the study's ball cannot free,
     a noise or size its job would refuse (checked on the ball as described, without calibrating it)."""
     from ..fit.least_squares import free_names
-    from ..fit.plan import parse_noise, read_candidates
+    from ..fit.plan import parse_noise, read_candidates, size_problem
     from .own import described_ball
 
     section, errors = config["plan"], []
@@ -86,9 +86,10 @@ def _plan_errors(config: dict) -> list[str]:
     except TypeError:
         names = None
     size = section.get("size")
-    if size is not None and candidates is not None and names is not None and not len(names) <= size <= len(candidates):
-        errors.append(f"config key plan.size: must be in [{len(names)}, {len(candidates)}] (the free parameters to "
-                      f"the candidates); got {size}")
+    if size is not None and candidates is not None and names is not None:
+        problem = size_problem(size, len(names), len(candidates))
+        if problem:
+            errors.append(f"config key plan.size: {problem}")
     return errors
 
 

@@ -43,19 +43,15 @@ def write_plan(plan, folder, extra: dict | None = None) -> None:
 def kharaz_ball(section: dict, tangential: str):
     """The Kharaz experiment's ball (``validation`` section: alumina on glass, its e_n the measured COR the
     damping is calibrated to, so that ``cor`` may be freed) with ``tangential`` contact, kappa = 4 G*/E*."""
-    import math
-
-    from ..contact.materials import effective_moduli
     from ..impact.ball import Measurement, calibrated_ball
+    from .validation import experiment
 
-    sphere, anvil = section["sphere"], section["anvil"]
-    e_star, g_star = effective_moduli(sphere["modulus"], sphere["poisson"], anvil["modulus"], anvil["poisson"])
-    mass = sphere["density"] * math.pi * sphere["diameter"] ** 3 / 6.0
-    compliant = {} if tangential == "rigid" else {"kappa": 4.0 * g_star / e_star}
+    exp = experiment(section)  # the materials' E*, kappa and the sphere's mass, as the validation has them
+    compliant = {} if tangential == "rigid" else {"kappa": exp.kappa}
     return calibrated_ball(Measurement(cor=section["cor"], speed=section["speed"]), model=section["model"],
-                           modulus=e_star, mass=mass, diameter=sphere["diameter"], inertia_factor=0.4, mu=section["mu"],
-                           tangential=tangential, speed=section["speed"], incidence=20.0,
-                           source="Kharaz et al. (2001)", **compliant)
+                           modulus=exp.e_star, mass=exp.scene.mass, diameter=exp.scene.diameter,
+                           inertia_factor=exp.scene.inertia_factor, mu=section["mu"], tangential=tangential,
+                           speed=section["speed"], incidence=20.0, source="Kharaz et al. (2001)", **compliant)
 
 
 def planning_study(config: dict, data_csv: str, schema_yaml: str, out: dict) -> None:
@@ -73,8 +69,7 @@ def planning_study(config: dict, data_csv: str, schema_yaml: str, out: dict) -> 
     import pandas as pd
     import yaml
 
-    from ..figures.plan import plan_figure
-    from ..files import replacing, write_text
+    from ..files import copy_file, replacing, write_text
     from ..fit.plan import expected_errors, plan, realised_spread
     from ..parsing import parse_range
     from .config import with_defaults
@@ -95,7 +90,7 @@ def planning_study(config: dict, data_csv: str, schema_yaml: str, out: dict) -> 
     write_plan(chosen, out["kharaz"], {"measured": {"values": len(measured), "stderr": errors,
                                                     "source": "the incidences and quantities Kharaz et al. (2001) "
                                                               "measured, each with the planned noise"}})
-    plan_figure(chosen, [out["figure"]])
+    copy_file(Path(out["kharaz"]) / "plan.png", out["figure"])  # the plan's own figure, not drawn twice
 
     rows = []
     for check in section["checks"]:

@@ -316,12 +316,10 @@ def update(readme: str, snippets: str) -> str:
 def record_charts(figures: str, into: str) -> None:
     """Copy each chart of :data:`TIMING_CHARTS` from ``figures`` (a run's ``results/figures``) into ``into``
     (``paper_figures``), each written whole or not at all."""
-    from ..files import replacing
+    from ..files import copy_file
 
     for name in TIMING_CHARTS:
-        data = Path(figures, f"{name}.png").read_bytes()
-        with replacing(Path(into, f"{name}.png")) as partial:
-            Path(partial).write_bytes(data)
+        copy_file(Path(figures, f"{name}.png"), Path(into, f"{name}.png"))
 
 
 def recorded_chart_problems(into: str) -> list[str]:
