@@ -8,6 +8,8 @@ as the Scene does; :func:`numbers` gives each row the numbers that choose and dr
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from dataclasses import dataclass, fields
 from types import SimpleNamespace
 
@@ -87,12 +89,29 @@ def scene_table(scenes) -> pd.DataFrame:
 
 def given_table(scenes) -> pd.DataFrame:
     """The scenes as given, one per row: a DataFrame as is, a dict every combination of its values (:func:`grid`),
-    sized before the grid is made, as the command line sizes its ranges."""
+    sized before the grid is made, as the command line sizes its ranges.  A ``parameters`` column (rows of
+    :meth:`Scene.as_dict <sphereimpact.Scene.as_dict>`: each a mapping of own parameters, or empty) becomes one
+    column per own parameter, as a table names them."""
     if not isinstance(scenes, dict):
-        return pd.DataFrame(scenes)
+        return _own_columns(pd.DataFrame(scenes))
     check_size({name: int(np.size(values)) for name, values in scenes.items()},
                "sweep shards of it (span= keeps them one sweep) or coarser values")
     return grid(**scenes)
+
+
+def _own_columns(table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` with its ``parameters`` column (mappings, or empty cells) spread into one column per name."""
+    if "parameters" not in table:
+        return table
+    cells = [value if isinstance(value, Mapping) else {} for value in table["parameters"].tolist()]
+    if any(not isinstance(v, Mapping) and not (v is None or (isinstance(v, float) and v != v))
+           for v in table["parameters"].tolist()):
+        raise ValueError("parameters must hold a mapping of own parameter name to value in each row (or nothing)")
+    spread = pd.DataFrame(cells, index=table.index)
+    twice = [name for name in spread.columns if name in table]
+    if twice:
+        raise ValueError(f"{twice[0]} is given twice: as a column and in parameters")
+    return pd.concat([table.drop(columns="parameters"), spread], axis=1)
 
 
 def _defaulted(values: np.ndarray, default) -> np.ndarray:

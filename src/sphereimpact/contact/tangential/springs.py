@@ -5,7 +5,8 @@ first deforms tangentially: while it sticks it stores tangential strain and give
 reverse the contact point's tangential velocity before the ball leaves (Maw, Barber & Fawcett 1976,
 Wear 38:101-114).  Here the tangential force F on the ball (along t, the down-slope direction) obeys
 
-- sticking, |F| < mu P+:  dF/dt = -k_t s + rho F,  s = v_t - omega R the contact point's slip velocity;
+- sticking, |F| < mu P+:  dF/dt = -k_t s + rho F,  s = v_t - omega R the contact point's slip velocity
+  (with a dashpot, F = F_s - c_t s and this rule is F_s's);
 - sliding, |F| = mu P+:   F = -sigma mu P+, sigma = +1 or -1 the direction of slip,
 
 with P+ = max(P, 0) the normal force, k_t the tangential stiffness and rho a history rule:
@@ -28,6 +29,13 @@ with P+ = max(P, 0) the normal force, k_t the tangential stiffness and rho a his
     (no slip) rule (Di Renzo & Di Maio 2004, Chem. Eng. Sci. 59:525-541).  While the contact grows at a
     fixed displacement its force grows with k_t, so it stores more energy than the displacement put in.
 
+``linear`` and ``mindlin`` take a tangential dashpot as the DEM codes have it (:mod:`.dashpot`): F = F_s - c_t s,
+F_s the spring's force as above, c_t = 2 gamma sqrt(m* k_t) with gamma set from a normal COR ``dashpot_cor`` as
+Kratos sets it, and the total |F| capped at mu P+ (1, the default: no dashpot); ``mindlin`` with it is Kratos's
+``DEM_D_Hertz_viscous_Coulomb``.  ``mindlin-displacement`` takes none: its spring scales with k_t the force the
+dashpot's slip stored while sliding (F_s ~ delta^(1/2) against c_t s ~ delta^(1/4)), so from first touch the
+contact would switch between sticking and sliding without end.
+
 kappa = k_t / k_n is the ratio of tangential to normal contact stiffness, 2 (1 - nu) / (2 - nu) for
 like elastic materials (2/3 for rubber, nu = 0.5).  Maw's parameter psi_1 = kappa tan(theta) / mu
 decides how an impact at incidence theta begins: sliding for psi_1 > 1, sticking below.
@@ -43,11 +51,17 @@ ends when the stick rule would no longer push |F| past the moving cap, i.e. when
     g = sigma s - (d(mu P+)/dt - rho mu P+) / k_t
 
 falls through zero (a root on the normal motion's grid; d P/dt from the law, see
-:func:`sphereimpact.contact.laws.force_rate`).
+:func:`sphereimpact.contact.laws.force_rate`).  A dashpot adds sigma (dc_t/dt s + c_t ds/dt - rho c_t s) / k_t to g,
+with ds/dt = g_t - sigma mu P+ (1 + 1/alpha) / m while sliding: the same condition on F = F_s - c_t s, F_s holding
+-sigma (mu P+ - c_t |s|).  While c_t |s| exceeds mu P+ the spring holds nothing and the contact slides on.  That is
+the limit of Kratos's step as the time step vanishes (it scales spring and dashpot forces alike onto the cap, which
+drives the spring's force to max(mu P+ - c_t |s|, 0)); LAMMPS instead keeps -sigma mu P+ + c_t s in the spring, which
+can point along the slip.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -58,6 +72,7 @@ from ...errors import ImpactError
 from ...ode.events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
 from ..motion import NormalMotion
+from .dashpot import DASHPOT_COR, dashpot_ratio
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
 from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
@@ -104,6 +119,8 @@ class CompliantTangential:
         Tolerances of the sticking phases' integration (rtol, atol on the scaled state).
     rescale : str
         The history rule, one of :data:`RESCALE`.
+    dashpot : bool
+        The model takes a tangential dashpot, set by the scene's ``dashpot_cor`` (:mod:`.dashpot`); False: none.
 
     Attributes
     ----------
@@ -117,7 +134,7 @@ class CompliantTangential:
         Number of stick/slip switches.
     """
 
-    def __init__(self, normal: NormalMotion, options, rescale: str):
+    def __init__(self, normal: NormalMotion, options, rescale: str, dashpot: bool = False):
         s = normal.scene
         if rescale not in RESCALE:
             raise ValueError(f"rescale must be one of {', '.join(RESCALE)}; got {rescale!r}")
@@ -128,6 +145,9 @@ class CompliantTangential:
         self._fs = s.mass * s.speed * self._w  # force scale [N]
         self._js = s.mass * s.speed  # impulse scale [N s]
         self._options = options
+        # c_t = root_m sqrt(k_t): the dashpot's coefficient per root of stiffness [sqrt(kg)] (0: no dashpot)
+        gamma = dashpot_ratio(s.parameters["dashpot_cor"], self._law.spring) if dashpot else 0.0
+        self._root_m = 2.0 * gamma * np.sqrt(s.mass)
         t_f = normal.t_f
         # An undamped tangential spring rings: each half-period can stick and slip once more as P falls, so
         # the bound on switches grows with the number of tangential half-periods in the contact.
@@ -160,6 +180,12 @@ class CompliantTangential:
         delta, _ = self.normal.state(t)
         return self.scene.kappa * spring_stiffness(self._law, delta, self.scene)
 
+    def dashpot(self, t):
+        """The tangential dashpot's coefficient c_t(t) = 2 gamma sqrt(m* k_t) [N s/m] (0 without one)."""
+        if not self._root_m:
+            return 0.0 if is_instant(t) else np.zeros_like(np.asarray(t, dtype=float))
+        return self._root_m * np.sqrt(self.stiffness(t))
+
     def _rho(self, delta, delta_dot):
         """History rule rho [1/s]: 0 without rescaling; (dk_t/dt)/k_t = (n-1) delta_dot / delta while
         unloading (``rescale='unloading'``) or at every instant (``always``)."""
@@ -187,8 +213,18 @@ class CompliantTangential:
             cap_rate = np.where(force > 0, s.mu * force_rate(law, delta, delta_dot, accel, s), 0.0)
             k_t = s.kappa * spring_stiffness(law, delta, s)
             v, omega = self._evaluate(p, t, with_x=False)
+            slip, rho = v - omega * s.radius, self._rho(delta, delta_dot)
             with np.errstate(divide="ignore", invalid="ignore"):
-                gap = sigma * (v - omega * s.radius) - (cap_rate - self._rho(delta, delta_dot) * cap) / k_t
+                gap = sigma * slip - (cap_rate - rho * cap) / k_t
+                if self._root_m:  # F = F_s - c_t s: the dashpot's share of the stick rule's rate
+                    c_t = self._root_m * np.sqrt(k_t)
+                    c_rate = (0.0 if self._n == 1.0 else  # c_t ~ delta^((n - 1) / 2)
+                              np.where(delta > 0, 0.5 * (self._n - 1.0) * c_t * delta_dot / delta, 0.0))
+                    slip_rate = s.g_tangent - sigma * cap * slip_per_impulse(s.mass, s.inertia_factor)
+                    gap = gap + sigma * (c_rate * slip + c_t * slip_rate - rho * c_t * slip) / k_t
+                    # the dashpot alone exceeds the cap: slide on, while the slip keeps its sense (a slip that
+                    # turns between two grid points leaves the formula's sign there, so the root is found)
+                    gap = np.where((c_t * np.abs(slip) > cap) & (sigma * slip > 0), 1.0, gap)
             return np.where((force > 0) & (k_t > 0), gap, 1.0)  # no cap or no spring: nothing to stick
 
         return g
@@ -198,11 +234,13 @@ class CompliantTangential:
         """Sticking, unless the stick trial force outgrows the cap from the first instant (psi_1 > 1)."""
         s, t_f = self.scene, self.normal.t_f
         slip0 = s.slip0  # the incoming spin's share: v_t - omega_0 R
-        if float(self.cap(0.0)) > 0:  # the cap starts finite (kelvin-voigt): F = 0 sticks
-            return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, s.spin, 0.0)
+        if float(self.cap(0.0)) > 0:  # the cap starts finite (kelvin-voigt): F = -c_t s0 sticks within it
+            if abs(slip0) * float(self.dashpot(0.0)) <= float(self.cap(0.0)):
+                return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, s.spin, 0.0)
+            return CompliantPhase(SLIDING, 0.0, t_f, s.v_tangent, s.spin, 0.0, sigma=float(np.sign(slip0)))
         eps = START_PROBE / self._w
-        # near t = 0, delta ~ v_n t and k_t ~ t^(n - 1), so the stick rule gives |F| = |s0| k_t(eps) eps / n
-        trial = abs(slip0) * float(self.stiffness(eps)) * eps / self._n
+        # near t = 0, delta ~ v_n t and k_t ~ t^(n - 1), so the stick rule gives |F| = |s0| (k_t(eps) eps / n + c_t(eps))
+        trial = abs(slip0) * (float(self.stiffness(eps)) * eps / self._n + float(self.dashpot(eps)))
         if trial > float(self.cap(eps)):
             return CompliantPhase(SLIDING, 0.0, t_f, s.v_tangent, s.spin, 0.0, sigma=float(np.sign(slip0)))
         return CompliantPhase(STICKING, 0.0, t_f, s.v_tangent, s.spin, 0.0)
@@ -218,27 +256,37 @@ class CompliantTangential:
                 return replace(p, t1=t_f), None
             done = replace(p, t1=t_switch)
             v, omega, x = (float(q) for q in self._evaluate(done, t_switch))
-            return done, CompliantPhase(STICKING, t_switch, t_f, v, omega, x,
-                                        force0=-p.sigma * float(self.cap(t_switch)))
+            spring = -p.sigma * float(self.cap(t_switch)) + float(self.dashpot(t_switch)) * (v - omega * s.radius)
+            return done, CompliantPhase(STICKING, t_switch, t_f, v, omega, x, force0=spring)
         w, opts = self._w, self._options
         slip0, inverse_mass = p.v0 - p.omega0 * s.radius, slip_per_impulse(s.mass, s.inertia_factor)
         fs, js = self._fs, self._js
 
         g_t = s.g_tangent
 
-        def rhs(tau, z):  # plain floats: DOP853-scalar's right-hand side
+        root_m = self._root_m
+
+        def rhs(tau, z):  # plain floats: DOP853-scalar's right-hand side; z[0] the spring's force F_s / fs
             t = tau / w
             delta, delta_dot = normal.state(t)
             delta, delta_dot = float(delta), float(delta_dot)
             k_t = s.kappa * spring_stiffness(self._law, delta, s)
             slip = slip0 + g_t * (t - p.t0) + inverse_mass * z[1] * js
-            return [(-k_t * slip + self._rho(delta, delta_dot) * z[0] * fs) / (w * fs), z[0], z[1]]
+            force = z[0] - root_m * math.sqrt(k_t) * slip / fs if root_m else z[0]  # F / fs
+            return [(-k_t * slip + self._rho(delta, delta_dot) * z[0] * fs) / (w * fs), force, z[1]]
+
+        def total(tau, z):  # F / fs: the spring's force less the dashpot's
+            if not root_m:
+                return z[0]
+            t = tau / w
+            slip = slip0 + g_t * (t - p.t0) + inverse_mass * z[1] * js
+            return z[0] - float(self.dashpot(t)) * slip / fs
 
         def upper(tau, z):  # F reaching +mu P+ (pushing the ball forward)
-            return float(self.cap(tau / w)) / fs - z[0]
+            return float(self.cap(tau / w)) / fs - total(tau, z)
 
         def lower(tau, z):  # F reaching -mu P+
-            return float(self.cap(tau / w)) / fs + z[0]
+            return float(self.cap(tau / w)) / fs + total(tau, z)
 
         for event in (upper, lower):
             event.terminal, event.direction = True, -1
@@ -264,7 +312,12 @@ class CompliantTangential:
         return done, CompliantPhase(SLIDING, t_switch, t_f, v, omega, x, sigma=sigma)
 
     def _stick_force(self, p: CompliantPhase, t):
-        return p.solution(np.asarray(t, dtype=float) * self._w)[0] * self._fs
+        """F [N] of a sticking phase at t: the spring's force less the dashpot's."""
+        spring = p.solution(np.asarray(t, dtype=float) * self._w)[0] * self._fs
+        if not self._root_m:
+            return spring
+        v, omega = self._evaluate(p, t, with_x=False)
+        return spring - self.dashpot(t) * (v - omega * self.scene.radius)
 
     def _evaluate(self, p: CompliantPhase, t, with_x: bool = True):
         """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p; (v_t, omega) only without ``with_x``
@@ -296,13 +349,15 @@ class CompliantTangential:
 
 LINEAR = TANGENTIALS.register(TangentialModel(
     "linear", doc="spring k_t = kappa k capped by mu P, linear-spring laws", stiffness="k_t = kappa k, constant",
-    parameters=(KAPPA, POISSON), spring="linear",
-    motion=lambda normal, options: CompliantTangential(normal, options, rescale="never"), scale_free=True))
+    parameters=(KAPPA, POISSON, DASHPOT_COR), spring="linear",
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="never", dashpot=True),
+    scale_free=True))
 MINDLIN = TANGENTIALS.register(TangentialModel(
     "mindlin", doc="k_t = 8 G* a on force increments, rescaled while unloading, capped by mu P, Hertz laws",
     stiffness="k_t = 8 G* a",
-    parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
-    motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading"), scale_free=True))
+    parameters=(KAPPA, POISSON, SHEAR_MODULUS, DASHPOT_COR), spring="hertz",
+    motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading", dashpot=True),
+    scale_free=True))
 MINDLIN_DISPLACEMENT = TANGENTIALS.register(TangentialModel(
     "mindlin-displacement", doc="k_t = 8 G* a on the total displacement, capped by mu P, Hertz laws",
     stiffness="F = -8 G* a xi", parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
