@@ -89,3 +89,16 @@ if len(deviations):
 for number in numbers:
     display(Markdown(f"**Test {number}**: {tests[number]['title']}"))
     display(Image(f"paper_figures/chung_ooi_test{number}.png"))
+
+# %% [markdown]
+# ## What a DEM code's tangential rule costs
+#
+# Each rule's largest departure from the exact elastic microslip contact on the oblique tests on a plane and on the
+# Kharaz ball over the validation's incidences (`+dashpot`: Kratos' tangential dashpot set from the scenes' normal
+# COR), relative to the exact quantity's largest magnitude.
+
+# %%
+departure = pd.read_csv("results/chung_ooi/departure.csv")
+display(departure.pivot_table(index="rule", columns=["scenes", "quantity"], values="max_rel", sort=False)
+        .style.format("{:.2g}"))
+display(Image("paper_figures/dem_departure.png"))

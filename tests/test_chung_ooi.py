@@ -3,6 +3,7 @@ through the API and the command line."""
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -65,7 +66,7 @@ def test_compare_reports_the_deviation_of_a_dem_rule(tmp_path):
     exact = reference(5)
     write_table(exact, mine / "test5.csv")
     rules = dem_rules(5)
-    mindlin = rules[rules["tangential"] == "mindlin"].reset_index(drop=True)
+    mindlin = rules[rules["rule"] == "mindlin"].reset_index(drop=True)
     write_table(mindlin, theirs / "test5.csv")
     verdict = compare(mine, theirs)
     report = verdict.table.set_index("quantity")
@@ -75,7 +76,7 @@ def test_compare_reports_the_deviation_of_a_dem_rule(tmp_path):
         assert report.loc[quantity, "max_abs"] == pytest.approx(diff.max(), rel=1e-9)
         assert report.loc[quantity, "max_rel"] == pytest.approx(diff.max() / np.abs(written[quantity]).max(), rel=1e-9)
     assert report.loc["omega_f", "max_rel"] == pytest.approx(
-        deviations(rules, exact).set_index(["tangential", "quantity"]).loc[("mindlin", "omega_f"), "max_rel"], rel=1e-9)
+        deviations(rules, exact).set_index(["rule", "quantity"]).loc[("mindlin", "omega_f"), "max_rel"], rel=1e-9)
     assert report.loc["t_f", "max_abs"] < 1e-15  # the normal motion is the same
     worst = report["max_rel"].max()
     assert verdict.passed == (worst <= 0.02) and compare(mine, theirs, {"*": 1.01 * worst}).passed
@@ -164,3 +165,53 @@ def test_the_files_give_the_dem_codes_frames_and_normalised_quantities():
     sliding = solve(five[five["v_t"] >= 50.0])  # the last rows: sliding throughout
     line = -1.0 + 3.5 * sliding["mu"] * (1 + sliding["cor"]) * sliding["v_n"] / sliding["slip"]
     assert np.allclose(sliding["beta"], line, rtol=1e-6) and np.allclose(sliding["spin_ratio"], 5.0, rtol=1e-6)
+
+
+def test_damped_mindlin_variant_is_the_dem_codes_contact(tmp_path, capsys):
+    """The reference's second variant (issue 41): the DEM codes' Mindlin spring with Kratos's tangential dashpot set
+    from the test's COR.  Test 7's spheres do not slip, so the dashpot is idle and the paper's V'ct = 0, omega' =
+    omega hold in it too; test 6's answer depends on the tangential damping: the damped spring departs from the
+    exact elastic contact by more than the default tolerance.  Written by the command line, named in its rows,
+    refused for a test without it."""
+    out = tmp_path / "damped"
+    assert run(["benchmark", "chung-ooi", "--out", str(out), "--tests", "5,7", "--variant", "damped-mindlin"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["test7.csv"]  # test 5 is elastic: one reference
+    seven = read_table(out / "test7.csv")
+    assert set(seven["rule"]) == {"mindlin+dashpot"} and set(seven["tangential"]) == {"mindlin"}
+    assert np.allclose(seven["dashpot_cor"], 0.5)
+    assert np.max(np.abs(seven["vc_t"])) < 1e-9 * np.max(seven["spin"] * 0.05)
+    assert np.allclose(seven["omega_f"], seven["spin"], rtol=1e-9)
+    capsys.readouterr()
+    assert run(["benchmark", "chung-ooi", "--out", str(tmp_path / "none"), "--tests", "5",
+                "--variant", "damped-mindlin"]) == 2
+    assert "none of 5 has a 'damped-mindlin' reference" in capsys.readouterr().err
+    exact, damped = reference(6), reference(6, variant="damped-mindlin")
+    assert set(exact["rule"]) == {"microslip"} and np.isnan(exact["dashpot_cor"]).all()
+    assert pd.testing.assert_series_equal(exact["t_f"], damped["t_f"]) is None  # one normal motion
+    departure = np.max(np.abs(damped["vc_t"] - exact["vc_t"])) / np.max(np.abs(exact["vc_t"]))
+    assert departure > 0.1  # measured 0.23: the tangential damping decides the answer at e = 0.5
+    with pytest.raises(ValueError, match="test 5 has no 'damped-mindlin' reference"):
+        reference(5, variant="damped-mindlin")
+
+
+def test_departure_of_the_dem_rules_on_the_kharaz_ball():
+    """The departure study's API (issue 41 item 6): the Kharaz ball's rules each against the exact contact at the same
+    incidences, the damped rule with the measured e_n; Chung & Ooi's rows taken from the study's deviations."""
+    import yaml
+
+    from sphereimpact.study.departure import departures, kharaz_table
+
+    config = Path(__file__).resolve().parents[1] / "config" / "config.yaml"
+    section = yaml.safe_load(config.read_text(encoding="utf-8"))["validation"]
+    table = kharaz_table(section, [10.0, 30.0], rules=("mindlin", "mindlin+dashpot"))
+    assert list(dict.fromkeys(table["rule"])) == ["microslip", "mindlin", "mindlin+dashpot"]
+    chung = pd.DataFrame({"test": [5, 2], "rule": ["mindlin", "mindlin"], "quantity": ["omega_f", "omega_f"],
+                          "max_abs": [1.0, 1.0], "max_rel": [0.057, 0.5]})
+    found = departures(chung, table).set_index(["scenes", "rule", "quantity"])["max_rel"]
+    assert found[("Chung & Ooi test 5", "mindlin", "omega_f")] == 0.057
+    assert not any(s == "Chung & Ooi test 2" for s, _, _ in found.index)  # a normal test has no departure shown
+    exact, damped = (table[table["rule"] == r].reset_index(drop=True) for r in ("microslip", "mindlin+dashpot"))
+    expected = np.max(np.abs(damped["e_t"] - exact["e_t"])) / np.max(np.abs(exact["e_t"]))
+    assert found[("Kharaz ball", "mindlin+dashpot", "e_t")] == pytest.approx(expected, rel=1e-12)
+    undamped = table[table["rule"] == "mindlin"].reset_index(drop=True)
+    assert not np.allclose(undamped["omega_f"], damped["omega_f"], rtol=1e-6)  # the dashpot is there (e_n 0.98)

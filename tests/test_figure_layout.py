@@ -50,8 +50,9 @@ def test_chung_ooi_materials_get_a_column_each(tmp_path, monkeypatch):
     from sphereimpact.figures.chung_ooi import test_figure
 
     incidence = np.linspace(1.0, 85.0, 5)
-    rows = [{"case": case, "tangential": "microslip", "incidence": a, "speed": 3.9, "vc_t": np.sin(np.radians(a)),
-             "omega_f": 10.0 * a, "rebound_angle_contact": a} for case in ("al-oxide", "al-alloy") for a in incidence]
+    rows = [{"case": case, "tangential": "microslip", "rule": "microslip", "incidence": a, "speed": 3.9,
+             "vc_t": np.sin(np.radians(a)), "omega_f": 10.0 * a, "rebound_angle_contact": a}
+            for case in ("al-oxide", "al-alloy") for a in incidence]
     exact = pd.DataFrame(rows)
     captured = {}
     original = plt.Figure.savefig

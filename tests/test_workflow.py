@@ -27,6 +27,7 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/fit_kharaz/ball.json", "results/fit_kharaz/residuals.csv", "results/fit_kharaz/fit.png",
            "results/consistency.csv", "results/readme/chung_ooi.md", "results/chung_ooi/test1.csv",
            "results/chung_ooi/test5.csv", "paper_figures/chung_ooi_test5.png", "results/chung_ooi/deviations.csv",
+           "results/chung_ooi/departure.csv", "paper_figures/dem_departure.png", "results/readme/dem_departure.md",
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
            "paper_figures/README.md",
@@ -330,6 +331,7 @@ def test_the_pipeline_fits_the_kharaz_data_as_the_api_does(workdir):
 def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(workdir, tmp_path):
     """The pipeline's door of the benchmark: rule chung_ooi's reference files are the command line's, and each
     reference is within 1e-8 of its closed-form check."""
+    import numpy as np
     import pandas as pd
 
     from sphereimpact.cli import run
@@ -347,9 +349,21 @@ def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(w
     for rule in ("mindlin", "rigid"):
         theirs = tmp_path / rule
         theirs.mkdir()
-        write_table(rules[rules["tangential"] == rule].reset_index(drop=True), theirs / "test5.csv")
+        write_table(rules[rules["rule"] == rule].reset_index(drop=True), theirs / "test5.csv")
         status = run(["benchmark", "compare", str(workdir / "results/chung_ooi"), str(theirs)])
-        mine = verdicts[(verdicts["tangential"] == rule) & (verdicts["test"] == 5)]
+        mine = verdicts[(verdicts["rule"] == rule) & (verdicts["test"] == 5)]
         assert len(mine) > 3 and status == (0 if mine["passed"].all() else 1)
+    # the DEM rules' departure (issue 41 item 6): test 5's from its deviations, the Kharaz ball's from its own table
+    departure = pd.read_csv(workdir / "results/chung_ooi/departure.csv")
+    deviation = pd.read_csv(workdir / "results/chung_ooi/deviations.csv").set_index(["rule", "quantity"])
+    five = departure[departure["scenes"] == "Chung & Ooi test 5"].set_index(["rule", "quantity"])["max_rel"]
+    assert np.allclose(five, deviation.loc[five.index, "max_rel"], rtol=1e-5)
+    kharaz = pd.read_csv(workdir / "results/chung_ooi/departure_kharaz.csv")
+    exact = kharaz[kharaz["rule"] == "microslip"].reset_index(drop=True)
+    damped = kharaz[kharaz["rule"] == "mindlin+dashpot"].reset_index(drop=True)
+    mine = departure[(departure["scenes"] == "Kharaz ball") & (departure["rule"] == "mindlin+dashpot")]
+    expected = np.max(np.abs(damped["omega_f"] - exact["omega_f"])) / np.max(np.abs(exact["omega_f"]))
+    assert mine.set_index("quantity").loc["omega_f", "max_rel"] == pytest.approx(expected, rel=1e-5)
+    assert "`mindlin+dashpot`" in (workdir / "results/readme/dem_departure.md").read_text()
     published = pd.read_csv(workdir / "results/chung_ooi/published.csv")  # the paper's curves beside the references
     assert set(published["test"]) == {5} and published["points"].min() > 10

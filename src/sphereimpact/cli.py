@@ -410,6 +410,10 @@ def _parser() -> argparse.ArgumentParser:
                     "exact elastic microslip tangential contact.")
     chung.add_argument("--out", required=True, metavar="DIR", help="folder of the reference files (created)")
     chung.add_argument("--tests", default=None, metavar="LIST", help="comma-separated test numbers (default: all)")
+    chung.add_argument("--variant", default="exact", choices=("exact", "damped-mindlin"),
+                       help="exact: the exact elastic microslip contact, damping in the normal law only; "
+                            "damped-mindlin: the DEM codes' Mindlin spring with the tangential dashpot Kratos sets from "
+                            "the test's COR (only the oblique tests with a COR below 1: 4, 6, 7, 8)")
     chung.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
     against = tests.add_parser(
         "compare", help="judge a DEM code's results against the reference files (exit 0 pass, 1 fail, 2 bad input)",
@@ -861,7 +865,7 @@ def _plan(args) -> None:
 
 def _benchmark(args) -> None:
     """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, or a code's deviation from them."""
-    from .study.chung_ooi import chosen_tests, write_reference
+    from .study.chung_ooi import chosen_tests, variant_tests, write_reference
 
     if args.benchmark == "compare":
         from .study.dem_compare import compare, parse_tolerances
@@ -889,10 +893,15 @@ def _benchmark(args) -> None:
         raise ValueError(f"tests must be comma-separated test numbers, e.g. 1,4; got {args.tests!r}") from None
     check_out_folder(args.out)
     numbers = chosen_tests(numbers)
+    if args.variant != "exact":
+        asked, numbers = numbers, variant_tests(numbers)
+        if not numbers:
+            raise ValueError(f"tests: none of {','.join(map(str, asked))} has a {args.variant!r} reference (only the "
+                             f"oblique tests with a COR below 1: {','.join(map(str, variant_tests(chosen_tests(None))))})")
     os.makedirs(args.out, exist_ok=True)
     for number in numbers:
         check_out(os.path.join(args.out, f"test{number}.csv"), args.force, (".csv",))
-    for path in write_reference(args.out, numbers):
+    for path in write_reference(args.out, numbers, variant=args.variant):
         sys.stdout.write(f"{path}\n")
 
 

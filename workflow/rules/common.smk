@@ -6,6 +6,7 @@ from snakemake.utils import validate
 from sphereimpact.figures.captions import CAPTIONS
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.fit import FIT_FILES, PLAN_FILES
+from sphereimpact.study.chung_ooi import variant_tests
 from sphereimpact.study.config_check import check_config
 from sphereimpact.study.readme import TIMING_CHARTS
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest
@@ -98,6 +99,8 @@ NOTEBOOKS = {
         "results/chung_ooi/deviations.csv",
         *expand("results/chung_ooi/test{n}.csv", n=config["chung_ooi"]["tests"]),
         *expand("paper_figures/chung_ooi_test{n}.png", n=config["chung_ooi"]["tests"]),
+        "results/chung_ooi/departure.csv",
+        "paper_figures/dem_departure.png",
     ],
     "sweeps": [
         "results/config.yaml",
@@ -165,4 +168,6 @@ def chapter_outputs():
         *expand("results/notebooks/{name}.html", name=NOTEBOOKS),
         *expand("paper_figures/chung_ooi_test{n}.png", n=config["chung_ooi"]["tests"]),
         "results/readme/chung_ooi.md",
+        "paper_figures/dem_departure.png",
+        "results/readme/dem_departure.md",
     ]

@@ -84,6 +84,12 @@ CAPTIONS = {
                                 "them solve: time per scene (top) and worst error (bottom) against the sweep's size, "
                                 "one colour per path (named under the figure), solid the force criterion, dashed the "
                                 "penetration criterion."),
+    "dem_departure": ("Benchmarks: Chung & Ooi",
+                      "What a DEM code's tangential rule costs: each rule's largest departure from the exact elastic "
+                      "microslip contact, relative to the exact quantity's largest magnitude, in the ball's spin "
+                      "(left) and the contact point's rebound angle (right), one bar per scene set: Chung & Ooi's "
+                      "oblique tests on a plane and the Kharaz ball over the validation's incidences. '+dashpot': "
+                      "Kratos' tangential dashpot set from the scenes' normal COR."),
     **{f"chung_ooi_test{n}": ("Benchmarks: Chung & Ooi", text) for n, text in (
         (1, "Test 1, two identical spheres, elastic, normal: contact time, compression and peak force against "
             "Hertz's closed forms (on the diagonal when they agree)."),

@@ -12,10 +12,11 @@ from .style import RC, save
 PANELS = (("vc_t", "ball's v_t' [m/s]"), ("omega_f", "ball's ω_f [rad/s]"),
           ("rebound_angle_contact", "contact-point rebound [deg]"))
 #: Line styles of the tangential rules: the exact contact solid.
-STYLES = {"microslip": "-", "mindlin": "--", "mindlin-displacement": ":", "linear": (0, (5, 1, 1, 1, 1, 1)),
-          "rigid": "-."}
+STYLES = {"microslip": "-", "mindlin": "--", "mindlin+dashpot": (0, (1, 1)), "mindlin-displacement": ":",
+          "linear": (0, (5, 1, 1, 1, 1, 1)), "linear+dashpot": (0, (3, 1, 1, 1)), "rigid": "-."}
 #: Colours of the tangential rules, so that curves lying close apart stay told apart: the exact contact black.
-COLOURS = {"microslip": "k", "mindlin": "C0", "mindlin-displacement": "C2", "linear": "C1", "rigid": "C3"}
+COLOURS = {"microslip": "k", "mindlin": "C0", "mindlin+dashpot": "C4", "mindlin-displacement": "C2", "linear": "C1",
+           "linear+dashpot": "C6", "rigid": "C3"}
 
 
 def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFrame, varied, data=None,
@@ -53,9 +54,9 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
             for col, case in enumerate(cases):
                 axes = grid[:, col]
                 for ax, (quantity, ylabel) in zip(axes, PANELS):
-                    for rule, part in both[both["case"] == case].groupby("tangential", sort=False):
+                    for rule, part in both[both["case"] == case].groupby("rule", sort=False):
                         rows = part.sort_values(column)
-                        ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=COLOURS.get(rule, "C4"),
+                        ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=COLOURS.get(rule, "C5"),
                                 lw=1.2,
                                 label=rule + (" (exact)" if rule == "microslip" else ""))
                     if col == 0:

@@ -2,12 +2,15 @@
 (:mod:`.chung_ooi`) and what a DEM code's files are judged by (:mod:`.dem_compare`)."""
 
 #: Columns of a reference file and their units: the inputs, then the outputs.
-INPUTS = {"test": "-", "case": "", "model": "", "tangential": "", "speed": "m/s", "incidence": "deg",
-          "spin": "rad/s", "mass": "kg", "diameter": "m", "partner_mass": "kg", "partner_diameter": "m",
+INPUTS = {"test": "-", "case": "", "model": "", "tangential": "", "rule": "", "dashpot_cor": "-", "speed": "m/s",
+          "incidence": "deg", "spin": "rad/s", "mass": "kg", "diameter": "m", "partner_mass": "kg", "partner_diameter": "m",
           "partner_spin": "rad/s", "modulus": "Pa", "kappa": "-", "mu": "-", "cor_target": "-", "dundurs_beta": "-"}
 OUTCOME_OUTPUTS = {"t_f": "s", "delta_m": "m", "force_max": "N", "vc_t": "m/s", "vc_n": "m/s", "omega_f": "rad/s",
                    "ve_t": "m/s", "cor": "-", "e_t": "-", "rebound_angle_contact": "deg", "partner_vc_t": "m/s",
                    "partner_vc_n": "m/s", "partner_omega_f": "rad/s"}
+#: Columns that name the model that solved a file (its normal law, tangential model, rule and the COR its dashpot is
+#: set from), not the test's inputs: a code's file may say its own, never checked against the reference's.
+MODEL_COLUMNS = ("model", "tangential", "rule", "dashpot_cor")
 #: The approach as the DEM codes set it up (inputs): the normal and tangential approach speeds and the contact
 #: point's initial slip v_t - w R (- w2 R2 with a partner) [m/s]; for two spheres set up symmetrically (``lab:
 #: symmetric``, tests 1 and 7: each at half the relative speed, as Chung & Ooi's test 1 and Kratos' benchmarks do),

@@ -38,8 +38,20 @@ DEFINITION = Path(__file__).with_name("chung_ooi.yaml")
 #: The exact tangential contact: elastic microslip (checked against Cattaneo-Mindlin and Maw's gross-slip line).
 EXACT = "microslip"
 #: The simplified tangential rules DEM codes use, solved beside the exact contact (``linear``: with the linear
-#: spring-dashpot normal law it needs, its spring giving the Hertz contact's elastic contact time).
-DEM_RULES = ("mindlin", "mindlin-displacement", "linear", "rigid")
+#: spring-dashpot normal law it needs, its spring giving the Hertz contact's elastic contact time).  ``+dashpot``: the
+#: rule with the tangential dashpot Kratos sets from the test's normal COR (``dashpot_cor``,
+#: :mod:`sphereimpact.contact.tangential.dashpot`); ``mindlin+dashpot`` is Kratos's DEM_D_Hertz_viscous_Coulomb.
+DEM_RULES = ("mindlin", "mindlin+dashpot", "mindlin-displacement", "linear", "linear+dashpot", "rigid")
+#: The reference files' variants: ``exact`` the exact elastic microslip contact with damping in the normal law
+#: only; ``damped-mindlin`` the damped Mindlin spring of the DEM codes (rule ``mindlin+dashpot``), written for the
+#: oblique tests whose COR is below 1, where the two differ (:data:`VARIANT_TESTS`), in a folder of its own.
+VARIANTS = {"exact": EXACT, "damped-mindlin": "mindlin+dashpot"}
+
+
+def variant_tests(numbers, path=DEFINITION) -> list[int]:
+    """Those of ``numbers`` whose reference has a ``damped-mindlin`` variant: oblique, with a COR below 1."""
+    _, tests = load_tests(path)
+    return [n for n in numbers if n >= 4 and min(_values(tests[n], "cor")) < 1.0]
 #: The damped laws of test 3, each with its damping set to the requested COR (the linear springs with the
 #: Hertz contact's elastic contact time).
 DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modified")
@@ -77,7 +89,8 @@ def _approaches(test: dict) -> list[dict]:
 
 def scenes_of_test(number: int, tangential: str = EXACT, model: str = "hunt-crossley", path=DEFINITION) -> pd.DataFrame:
     """Test ``number``'s scenes, one row per case: the inputs (:data:`INPUTS`) and the ``scene`` column, with the
-    tangential model ``tangential`` and, where the COR is below 1, the damped law ``model`` calibrated at each
+    tangential rule ``tangential`` (a model's name; ``NAME+dashpot`` the model with the tangential dashpot set from
+    each row's COR, :data:`DEM_RULES`) and, where the COR is below 1, the damped law ``model`` calibrated at each
     row's normal speed (elastic ``hertz`` where the COR is 1; a linear law gets the Hertz contact's elastic
     contact time)."""
     materials, tests = load_tests(path)
@@ -87,8 +100,11 @@ def scenes_of_test(number: int, tangential: str = EXACT, model: str = "hunt-cros
         return _scenes(number, test, materials, tangential, model)
 
 
-def _scenes(number: int, test: dict, materials: dict, tangential: str, model: str) -> pd.DataFrame:
+def _scenes(number: int, test: dict, materials: dict, rule: str, model: str) -> pd.DataFrame:
     """:func:`scenes_of_test`'s rows."""
+    tangential, _, extra = rule.partition("+")
+    if extra not in ("", "dashpot"):
+        raise ValueError(f"a rule is a tangential model's name, with '+dashpot' or without; got {rule!r}")
     rows = []
     for name in test["materials"]:
         material = materials[name]
@@ -108,9 +124,11 @@ def _scenes(number: int, test: dict, materials: dict, tangential: str, model: st
             cor = approach.pop("cor")
             spin = approach.get("spin", 0.0)
             both = {"opposite": dict(partner_spin=-spin), None: {}}[test.get("partner_spins")]  # in the ball's sense
-            scene = _scene(dict(mass=mass, diameter=2 * radius, mu=test["mu"], **approach, **bodies, **both),
+            dashpot = {"parameters": {"dashpot_cor": cor}} if extra else {}
+            scene = _scene(dict(mass=mass, diameter=2 * radius, mu=test["mu"], **approach, **bodies, **both, **dashpot),
                            e_star, kappa, cor, tangential, "kelvin-voigt" if tangential == "linear" else model)
-            rows.append({"test": number, "case": name, "model": scene.model, "tangential": tangential,
+            rows.append({"test": number, "case": name, "model": scene.model, "tangential": tangential, "rule": rule,
+                         "dashpot_cor": scene.parameters.get("dashpot_cor", math.nan),
                          "speed": scene.speed, "incidence": scene.incidence_deg, "spin": scene.spin, "mass": mass,
                          "diameter": 2 * radius, "partner_mass": bodies.get("partner_mass", math.nan),
                          "partner_diameter": bodies.get("partner_diameter", math.nan),
@@ -150,7 +168,7 @@ def _scene(fields: dict, e_star: float, kappa: float, cor: float, tangential: st
     if hertzian:
         scene = Scene(model="hunt-crossley", modulus=e_star, tangential=tangential, **stiffness, **fields)
     else:  # a linear spring with the Hertz contact's elastic contact time
-        elastic = Scene(model="hertz", modulus=e_star, **fields)
+        elastic = Scene(model="hertz", modulus=e_star, **{k: v for k, v in fields.items() if k != "parameters"})
         k = elastic.reduced.mass * (math.pi / hertz(elastic)["hertz_t_f"]) ** 2
         damping = {LAWS.law(model).damping: 0.0} if cor == 1.0 else {}
         scene = Scene(model=model, k=k, tangential=tangential, **stiffness, **fields, **damping)
@@ -193,13 +211,19 @@ def _line_turn(scene: Scene, outcome) -> float:
     return max(abs(scene.v_tangent), after) * outcome.t_f / (scene.radius + 0.5 * scene.partner_diameter)
 
 
-def reference(number: int, path=DEFINITION) -> pd.DataFrame:
-    """Test ``number``'s exact reference: the exact contact (:data:`EXACT`) for the oblique tests, the normal
-    motion alone for the normal ones (1-3; test 3 once per law of :data:`DAMPED_LAWS`)."""
+def reference(number: int, path=DEFINITION, variant: str = "exact") -> pd.DataFrame:
+    """Test ``number``'s reference: the exact contact (:data:`EXACT`) for the oblique tests, the normal motion alone
+    for the normal ones (1-3; test 3 once per law of :data:`DAMPED_LAWS`); ``variant`` ``damped-mindlin`` (an oblique
+    test with a COR below 1) the damped Mindlin spring of the DEM codes instead (:data:`VARIANTS`)."""
+    if variant not in VARIANTS:
+        raise ValueError(f"variant must be one of {', '.join(VARIANTS)}; got {variant!r}")
+    if variant != "exact" and number not in variant_tests([number], path):
+        raise ValueError(f"test {number} has no {variant!r} reference: only the oblique tests with a COR below 1 "
+                         f"({', '.join(map(str, variant_tests(chosen_tests(None, path), path)))}), where it differs")
     oblique = number >= 4
     laws = DAMPED_LAWS if number == 3 else ("hunt-crossley",)
-    return solve(pd.concat([scenes_of_test(number, EXACT if oblique else "rigid", law, path) for law in laws],
-                           ignore_index=True))
+    rule = VARIANTS[variant] if oblique else "rigid"
+    return solve(pd.concat([scenes_of_test(number, rule, law, path) for law in laws], ignore_index=True))
 
 
 def dem_rules(number: int, path=DEFINITION) -> pd.DataFrame:
@@ -209,16 +233,16 @@ def dem_rules(number: int, path=DEFINITION) -> pd.DataFrame:
 
 def deviations(rules: pd.DataFrame, exact: pd.DataFrame, quantities=("e_t", "omega_f", "vc_t", "rebound_angle_contact",
                                                                       "partner_omega_f")) -> pd.DataFrame:
-    """Per tangential rule and quantity, the largest deviation of ``rules`` from ``exact`` (rows matched by case
+    """Per tangential rule (column ``rule``) and quantity, the largest deviation of ``rules`` from ``exact`` (rows matched by case
     and position): absolute, and relative to the largest magnitude of the exact column."""
     rows = []
     exact = exact.reset_index(drop=True)
-    for rule, part in rules.groupby("tangential", sort=False):
+    for rule, part in rules.groupby("rule", sort=False):
         part = part.reset_index(drop=True)
         for quantity in quantities:
             found = _deviation(part, exact, quantity)
             if found is not None:
-                rows.append({"test": int(exact["test"].iloc[0]), "tangential": rule, "quantity": quantity,
+                rows.append({"test": int(exact["test"].iloc[0]), "rule": rule, "quantity": quantity,
                              "max_abs": found["max_abs"], "max_rel": found["max_rel"]})
     return pd.DataFrame(rows)
 
@@ -264,16 +288,19 @@ def chosen_tests(numbers=None, path=DEFINITION) -> list[int]:
     return sorted(numbers or tests)
 
 
-def write_reference(folder, numbers=None, path=DEFINITION) -> list[Path]:
-    """One CSV per test, ``test<N>.csv``, in ``folder`` (created): each test's inputs and exact outputs; every test
+def write_reference(folder, numbers=None, path=DEFINITION, variant: str = "exact") -> list[Path]:
+    """One CSV per test, ``test<N>.csv``, in ``folder`` (created): each test's inputs and outputs of the reference
+    ``variant`` (:data:`VARIANTS`; ``damped-mindlin`` for the tests that have it, :func:`variant_tests`); every test
     of the definition, or those ``numbers``."""
     folder = Path(folder)
     numbers = chosen_tests(numbers, path)
+    if variant != "exact":
+        numbers = variant_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
     written = []
     for number in numbers:
         target = folder / f"test{number}.csv"
-        write_table(reference(number, path), target)
+        write_table(reference(number, path, variant), target)
         written.append(target)
     return written
 
@@ -345,7 +372,8 @@ VARIED = {4: ("incidence", "incidence [deg]"), 5: ("incidence", "incidence [deg]
 
 
 def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
-    """The pipeline's study (rule ``chung_ooi``): in ``folder``, each test's reference ``test<N>.csv``, the DEM
+    """The pipeline's study (rule ``chung_ooi``): in ``folder``, each test's reference ``test<N>.csv`` (and in
+    ``folder/damped-mindlin/`` the DEM codes' damped Mindlin spring's, for the tests that have it), the DEM
     rules' solutions of the oblique tests (``dem_rules.csv``), their deviations from the reference
     (``deviations.csv``) and the verdict ``benchmark compare`` gives each rule at its default tolerance
     (``verdicts.csv``), the checks of each reference against its closed forms (``checks.csv``), and with
@@ -361,16 +389,20 @@ def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
         checks.append(_checks(number, exact))
         if number >= 4:
             solved = dem_rules(number, path)
+            damped = solved[solved["rule"] == VARIANTS["damped-mindlin"]]
+            if number in variant_tests([number], path):  # the same rows as the variant's reference
+                (folder / "damped-mindlin").mkdir(exist_ok=True)
+                write_table(damped.reset_index(drop=True), folder / "damped-mindlin" / f"test{number}.csv")
             rules.append(solved)
             deviation.append(deviations(solved, exact))
             verdicts.append(rule_verdicts(solved, exact))
     (pd.concat(verdicts, ignore_index=True) if verdicts else pd.DataFrame(
-        columns=["test", "quantity", "max_rel", "tolerance", "passed", "tangential"])).to_csv(
+        columns=["test", "quantity", "max_rel", "tolerance", "passed", "rule"])).to_csv(
         folder / "verdicts.csv", index=False, float_format="%.6g", lineterminator="\n")
     write_table(pd.concat(rules, ignore_index=True) if rules else pd.DataFrame(columns=list(INPUTS)),
                 folder / "dem_rules.csv")
     (pd.concat(deviation, ignore_index=True) if deviation else pd.DataFrame(
-        columns=["test", "tangential", "quantity", "max_abs", "max_rel"])).to_csv(
+        columns=["test", "rule", "quantity", "max_abs", "max_rel"])).to_csv(
         folder / "deviations.csv", index=False, float_format="%.6g", lineterminator="\n")
     pd.concat(checks, ignore_index=True).to_csv(folder / "checks.csv", index=False, float_format="%.6g",
                                                 lineterminator="\n")
@@ -420,7 +452,7 @@ def readme_block(folder) -> str:
         worst = part.loc[part["max_rel"].idxmax()]
         mine = deviation[deviation["test"] == number]
         rules = "; ".join(f"`{rule}` {group['max_rel'].max():.2g} ({group.loc[group['max_rel'].idxmax(), 'quantity']})"
-                          for rule, group in mine.groupby("tangential", sort=False)) or "—"
+                          for rule, group in mine.groupby("rule", sort=False)) or "—"
         cases = read_table(folder / f"test{number}.csv").drop_duplicates("case")
         beta = ", ".join(f"{b:.2f}" for b in cases["dundurs_beta"])
         rows.append((str(number), tests[number]["title"], f"{worst['max_rel']:.1e} ({worst['check']})", beta, rules))

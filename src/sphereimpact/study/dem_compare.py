@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .benchmark_columns import INPUTS, OUTPUTS
+from .benchmark_columns import INPUTS, MODEL_COLUMNS, OUTPUTS
 
 #: Default tolerance of every output: its largest deviation relative to the reference column's scale (the column's
 #: largest magnitude, or :func:`scale`'s where the exact column is 0 throughout, test 7's vc_t).  2 % is the order of
@@ -186,7 +186,8 @@ def compare_test(exact: pd.DataFrame, code: pd.DataFrame, units: dict, name: str
         missed = next(k for k in where if k not in seen)
         raise ValueError(f"THEIRS: {name} lacks the reference's row {where[missed]} ({_describe(missed, key)})")
     code = code.iloc[[seen[k] for k in _keys(exact, key)]].reset_index(drop=True)  # in the reference's order
-    for column in (c for c in INPUTS if c in code and c not in key and INPUTS[c] not in ("", None) and c != "test"):
+    for column in (c for c in INPUTS if c in code and c not in key and INPUTS[c] not in ("", None)
+                   and c not in ("test", *MODEL_COLUMNS)):
         ref, got = exact[column].to_numpy(dtype=float), code[column].to_numpy(dtype=float)
         differs = ~np.isclose(got, ref, rtol=INPUT_RTOL, atol=0.0, equal_nan=True)
         if differs.any():
@@ -243,13 +244,13 @@ def compare(reference_folder, theirs_folder, tolerances: dict | None = None) -> 
 
 
 def rule_verdicts(rules: pd.DataFrame, exact: pd.DataFrame, tolerances: dict | None = None) -> pd.DataFrame:
-    """The pipeline's door: each simplified DEM rule's solution of a test (``rules``, a ``tangential`` column naming
+    """The pipeline's door: each simplified DEM rule's solution of a test (``rules``, a ``rule`` column naming
     the rule) judged against the exact reference as a code's file would be (:func:`compare_test`, SI units), one
-    row per rule and output with the rule in ``tangential``."""
+    row per rule and output with the rule in ``rule``."""
     units = INPUTS | OUTPUTS
     parts = []
-    for rule, part in rules.groupby("tangential", sort=False):
+    for rule, part in rules.groupby("rule", sort=False):
         judged = compare_test(exact, part.reset_index(drop=True), {c: units.get(c, "") for c in part.columns},
                               f"the {rule!r} rule", tolerances or {})
-        parts.append(judged.assign(tangential=rule))
+        parts.append(judged.assign(rule=rule))
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame()

@@ -51,6 +51,7 @@ RULE_KEYS = {
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
     "cor_relations": (*_SCENE, "laws.speed", "laws.relation_models", "laws.relation_cors"),
     "validation": ("validation",),
+    "dem_departure": ("validation",),
     "kharaz_fit": ("validation", "kharaz_fit"),
     "planning": ("validation", "planning"),
     "compliance_map": (*_SCENE, "compliance", "primary"),
