@@ -98,7 +98,7 @@ def test_every_figure_has_a_caption_and_the_committed_index_holds_them():
     targets = (ROOT / "workflow/rules/common.smk").read_text()  # chapter_outputs(): what the pipeline makes
     chung_ooi = {f"chung_ooi_test{n}" for n in range(1, 9)}
     drawn = {*FIGURES, *CHARTS, *MAPS, "laws_cor_speed", "laws_force", "validation_kharaz", "validation_maw",
-             "compliance_map", "plan_kharaz", *chung_ooi}
+             "compliance_map", "plan_kharaz", "dem_departure", *chung_ooi}
     assert set(CAPTIONS) == drawn
     assert all(f'"{name}"' in targets or f'"paper_figures/{name}.png"' in targets or name in FIGURES
                or name in CHARTS or name in chung_ooi
