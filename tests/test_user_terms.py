@@ -100,6 +100,31 @@ def test_simulate_says_when_it_runs_the_chapters_ball(capsys):
     assert "note" not in capsys.readouterr().err
 
 
+def test_the_api_says_which_parts_of_the_ball_are_the_chapters(capsys):
+    """Before: Scene() took the chapter's ball and nothing in the API said so (the command line alone noted it).  Now
+    every scene and outcome names the parts it took (issue 42 item 1), through copies, calibration and a partner; the
+    command line's note is built from what the API says."""
+    from sphereimpact import simulate
+    from sphereimpact.impact.ball import chapter_parts
+    from sphereimpact.impact.calibrate import calibrate
+
+    chapter = ("mass", "diameter", "k", "b")
+    assert Scene().chapter_ball == chapter and simulate(Scene(angle=60)).chapter_ball == chapter
+    assert Scene(mass=0.145, diameter=0.063, k=60000.0, b=10.5).chapter_ball == ()  # the same numbers, given
+    assert Scene(mass=0.145, diameter=0.063, k=60000.0, b=10.5) == Scene()
+    assert Scene().with_(speed=5.0, angle=30.0).chapter_ball == chapter
+    assert Scene(**Scene().as_dict()).chapter_ball == chapter
+    assert calibrate(Scene(), 0.6).scene.chapter_ball == ("mass", "diameter", "k")  # b is set by the COR
+    assert Scene(model="hunt-crossley", modulus=1e7).chapter_ball == ("mass", "diameter")
+    assert Scene(mass=0.05, diameter=0.04, model="hertz", modulus=1e7).chapter_ball == ()
+    pair = simulate(Scene(partner_mass=1.0, partner_diameter=0.1, mass=0.2, diameter=0.07, angle=0.0))
+    assert pair.chapter_ball == ("k", "b")
+    assert chapter_parts(Scene(mass=0.2)) == ["diameter", "k or contact_time", "b or cor"]
+    assert run(["simulate", "--json", "--mass", "0.2", "--cor", "0.7"]) == 0
+    said = capsys.readouterr().err
+    assert "(diameter 0.063 m, k 60000 N/m); describe yours with --diameter, --k or --contact-time" in said
+
+
 def long_table(tmp_path, rows, columns="quantity,incidence_deg,value"):
     path = tmp_path / "long.csv"
     path.write_text(columns + "\n" + "\n".join(rows) + "\n")

@@ -19,7 +19,7 @@ import numpy as np
 
 from . import __version__, plugins
 from .impact.ball import (APPROACH, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball,
-                          save_ball, undescribed)
+                          chapter_parts, save_ball, undescribed)
 from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, ImpactError, SphereImpactWarning
 from .integrators import method_names
@@ -707,7 +707,7 @@ def _simulate(args) -> None:
                   args.save_ball)
     outcome = simulate(scene, options, body=args.body, strict=args.strict)
     outputs = outcome.to_dict() | fitted | {"gravity": scene.gravity}  # the one input a default sets, recorded
-    chapter = [] if ball is not None or args.chapter_ball else undescribed(args.given, args.model)
+    chapter = [] if args.chapter_ball else chapter_parts(outcome.scene)  # what the API says of its ball
     if chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
                          f"({_defaults(scene, chapter)}); describe yours with {_as_options(chapter)}\n")

@@ -165,6 +165,18 @@ def undescribed(given, model: str) -> list[str]:
     return missing
 
 
+def chapter_parts(scene) -> list[str]:
+    """The parts of ``scene``'s ball taken from the chapter's (:attr:`Scene.chapter_ball
+    <sphereimpact.Scene.chapter_ball>`), named as :func:`undescribed` names them: what a note asks the user to give."""
+    taken, damping = set(scene.chapter_ball), scene.law.damping
+    given = {"mass", "diameter"} - taken
+    if "k" not in taken:
+        given |= set(STIFFNESS_GIVEN)
+    if damping is None or damping not in taken:
+        given |= {"cor", *([damping] if damping else [])}
+    return undescribed(given, scene.model)
+
+
 def starting_stiffness(model: str, mass: float, contact_time: float, speed: float) -> float:
     """A stiffness k whose contact lasts about ``contact_time`` [s] at ``speed`` [m/s], to start a fit from:
     t = pi sqrt(m / k) for a linear spring, t = 2.94 (5 m / (4 k))^(2/5) v^(-1/5) for a Hertz one."""

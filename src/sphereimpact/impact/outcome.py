@@ -223,6 +223,12 @@ class Outcome:
     partner_vc_n: float | None = None
     partner_omega_f: float | None = None
 
+    @property
+    def chapter_ball(self) -> tuple:
+        """The parts of the ball the scene took from the chapter's, its user not giving them
+        (:attr:`Scene.chapter_ball`): the outcome is the chapter's ball's where this is not empty."""
+        return self.scene.chapter_ball
+
     @classmethod
     def from_motion(cls, motion, wall_time: float) -> "Outcome":
         """Read the outputs off a solved contact motion (reduced or planar), through :func:`outputs`.

@@ -49,6 +49,23 @@ def bodies_judged():
         _JUDGED.reset(token)
 
 
+class ChapterValue(float):
+    """A value the scene took from the chapter's ball because its user did not give it: the mass (0.145 kg) and
+    diameter (0.063 m), and the stiffness and damping of a law whose defaults are the chapter's (eq. 4.1/4.2's
+    k = 60000 N/m, b = 10.5 N s/m).  A float in every computation, told apart by its type, so that a scene knows which
+    parts of its ball are undescribed (:attr:`Scene.chapter_ball`) and every door can say so: only ``simulate``
+    runs the chapter's ball unasked (:func:`sphereimpact.impact.ball.undescribed`)."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return float.__repr__(self)
+
+
+#: The chapter's ball, as the Scene's defaults.
+CHAPTER_MASS, CHAPTER_DIAMETER = ChapterValue(0.145), ChapterValue(0.063)
+
+
 class FrozenMapping(Mapping):
     """Names to values, read-only and hashable as the frozen Scene and SolverOptions that hold them (their own
     model parameters, their models' settings)."""
@@ -150,8 +167,8 @@ class Scene:
         with their defaults filled in.  Empty for the built-in models.
     """
 
-    mass: float = 0.145
-    diameter: float = 0.063
+    mass: float = CHAPTER_MASS
+    diameter: float = CHAPTER_DIAMETER
     inertia_factor: float = 0.4
     angle: float = 0.0
     speed: float = 3.0
@@ -180,7 +197,9 @@ class Scene:
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
-            object.__setattr__(self, name, _check(name, getattr(self, name), allowed, ok))
+            value = getattr(self, name)
+            checked = _check(name, value, allowed, ok)  # the chapter's value stays marked as such
+            object.__setattr__(self, name, value if type(value) is ChapterValue else checked)
         problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
         if problem:
             raise ValueError(problem)
@@ -194,12 +213,14 @@ class Scene:
         _check_choice("model", self.model, tuple(LAWS))
         object.__setattr__(self, "separation", Separation.parse(self.separation))
         object.__setattr__(self, "parameters", self._own_parameters())
-        given = {name: None if getattr(self, name) is None else as_number(name, getattr(self, name))
-                 for name in PARAMETER_NAMES}
+        given = {name: None if getattr(self, name) is None or type(getattr(self, name)) is ChapterValue
+                 else as_number(name, getattr(self, name)) for name in PARAMETER_NAMES}
         values = law_parameters(self.model, given, self.radius)
+        chapter = _chapter_parameters(self.law, given)
         for name in PARAMETER_NAMES:
             value = float(values[name])
-            object.__setattr__(self, name, None if math.isnan(value) else value)
+            value = None if math.isnan(value) else ChapterValue(value) if name in chapter else value
+            object.__setattr__(self, name, value)
         self._check_scales()
         weight = self.mass * self.g_normal  # pressing the ball into the flat [N]
         if weight > 0 and float(self.force(self.radius, 0.0)) < weight:  # the spring alone cannot hold it at R
@@ -241,6 +262,13 @@ class Scene:
         for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, "separation", "parameters"):
             object.__setattr__(self, name, getattr(reduced, name))
         self.__dict__["_reduced"] = reduced
+
+    @property
+    def chapter_ball(self) -> tuple:
+        """The parts of the ball this scene took from the chapter's because its user did not give them (``mass``,
+        ``diameter``, and the law's stiffness ``k`` and damping where they are the chapter's defaults): empty when
+        the ball is described (:class:`ChapterValue`)."""
+        return tuple(name for name in ("mass", "diameter", *PARAMETER_NAMES) if type(getattr(self, name)) is ChapterValue)
 
     @property
     def reduced(self) -> "Scene":
@@ -514,6 +542,19 @@ class Scene:
             changes["parameters"] = kept | own
         with bodies_judged():  # judged when this scene was built
             return replace(self, **changes)
+
+
+def _chapter_parameters(law, given: dict) -> set:
+    """The law parameters a scene takes from the chapter's ball: its stiffness ``k`` and its damping, where the law's
+    defaults are the chapter's and neither they nor what sets them instead (``modulus`` for k) were given."""
+    names = set()
+    if "k" in law.parameter_names and law.parameter("k").default is not None and given.get("k") is None \
+            and given.get("modulus") is None:
+        names.add("k")
+    damping = law.damping
+    if damping is not None and law.parameter(damping).default and given.get(damping) is None:
+        names.add(damping)
+    return names
 
 
 #: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.
