@@ -341,6 +341,10 @@ def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(w
         assert (workdir / "results/chung_ooi" / name).read_bytes() == (tmp_path / name).read_bytes()
     checks = pd.read_csv(workdir / "results/chung_ooi/checks.csv")
     assert set(checks["test"]) == {1, 5} and checks["max_rel"].max() < 1e-8
+    # the planar two-body model's door (issue 41 item 7): test 1 is normal, so the line of centres never turns
+    assert "the reduction against the planar two-body model" in " ".join(checks["check"])
+    one = pd.read_csv(workdir / "results/chung_ooi/test1.csv")
+    assert np.isfinite(one["reduction_gap [m/s]"]).all() and one["reduction_gap [m/s]"].max() < 1e-7
     # the gate's pipeline door: each DEM rule judged as `benchmark compare` judges a code's file of it
     from sphereimpact.study.chung_ooi import scenes_of_test, solve, write_table
 

@@ -36,7 +36,93 @@ from ..contact.tangential.rigid import RIGID
 RESOLVED_DEPTH = 1e-6
 
 
-class PlanarMotion:
+class SegmentedMotion:
+    """An impact integrated as a sequence of solve_ivp segments, one per tangential mode (``sliding`` with the sign
+    of its slip, or ``rolling``), each ended by its switch event; the first segment's maximum compression and the
+    last's separation are events too.  The shared loop of the planar bodies (:class:`PlanarMotion`,
+    :class:`sphereimpact.impact.planar_pair.PlanarPairMotion`): a subclass gives ``_segment(mode, sigma, t0, t_end,
+    z)`` (solve_ivp's result, events: max compression, separation, switch), ``_switched(mode, z)`` (the next mode,
+    sign and state at a switch), ``_contact(z)`` (delta, delta_dot, P), the state's size and the reduced scene.
+
+    Attributes
+    ----------
+    t_m, t_f : float
+        Maximum compression and separation [s].
+    t_roll : float or None
+        First instant the contact point stops slipping [s], None if never.
+    regime : str
+        The mode at separation (``none`` without tangential motion).
+    switches : int
+        Changes of mode.
+    grid : ndarray
+        Sample times bracketing every event, ending at t_f.
+    stats : dict
+        method, rtol, atol, nfev.
+    end : ndarray
+        The state at separation.
+    """
+
+    def _run(self, options: SolverOptions, z, mode: str, sigma: float) -> None:
+        s = self.scene
+        t0, t_end = 0.0, horizon(s)
+        self._segments, self._modes, self._sigmas, t_m, nfev = [], [], [], None, 0
+        self.t_roll = 0.0 if mode == "rolling" and s.has_tangential_motion else None
+        while True:
+            sol = self._segment(mode, sigma, t0, t_end, z)
+            nfev += sol.nfev
+            if sol.status == -1:
+                raise ImpactError(f"solver {self._options['method']} failed: {sol.message}")
+            self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
+            self._modes.append(mode)
+            self._sigmas.append(sigma)
+            if t_m is None and len(sol.t_events[0]):
+                t_m = float(sol.t_events[0][0])
+            if len(sol.t_events[1]):
+                break
+            if sol.status == 0 or not len(sol.t_events[2]):
+                raise ImpactError(no_separation_message(s, t_end))
+            t0 = float(sol.t_events[2][0])
+            if mode == "sliding" and self.t_roll is None:
+                self.t_roll = t0
+            mode, sigma, z = self._switched(mode, sol.y_events[2][0].copy())
+            if len(self._segments) >= MAX_PHASES:
+                raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
+        if t_m is None:
+            raise ImpactError("separation found before maximum compression: event missed")
+        self.end = sol.y_events[1][0]
+        check_rebound(s, options, float(self._contact(self.end)[1]))
+        self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
+        self.regime = mode if s.has_tangential_motion else "none"
+        self.switches = len(self._segments) - 1 if s.has_tangential_motion else 0
+        steps = np.concatenate([seg[3] for seg in self._segments])
+        grid = np.unique(substep_grid(steps))
+        self.grid = np.append(grid[(grid >= 0) & (grid < self.t_f)], self.t_f)
+        self.stats = {"method": self._options["method"], "rtol": options.rtol, "atol": options.atol,
+                      "nfev": int(nfev)}
+
+    def _which(self, t):
+        """Each instant's segment index."""
+        return phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
+
+    def _state(self, t):
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        out = np.empty((len(self.end), t.size))
+        which = self._which(t)
+        for i, (_, _, dense, _) in enumerate(self._segments):
+            mask = which == i
+            if mask.any():
+                out[:, mask] = dense(t[mask])
+        return out
+
+    def force(self, t):
+        return self._contact(self._state(t))[2]
+
+    def force_extremes(self) -> tuple[float, float]:
+        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`)."""
+        return force_extremes(self.force, self.grid)
+
+
+class PlanarMotion(SegmentedMotion):
     """Integrate one impact with the full planar model (see module docstring).
 
     Parameters
@@ -67,43 +153,13 @@ class PlanarMotion:
         z = np.array([radius * self._n[0], radius * self._n[1], velocity[0], velocity[1], scene.spin])
         slip0 = scene.slip0
         mode = "sliding" if scene.has_tangential_motion and (slip0 != 0 or self._hold > 0) else "rolling"
-        sigma = -1.0 if slip0 < 0 else 1.0
-        t0, t_end = 0.0, horizon(scene)
-        self._segments, self._modes, self._sigmas, t_m, nfev = [], [], [], None, 0
-        self.t_roll = 0.0 if mode == "rolling" and scene.has_tangential_motion else None
-        while True:
-            sol = self._segment(mode, sigma, t0, t_end, z)
-            nfev += sol.nfev
-            if sol.status == -1:
-                raise ImpactError(f"solver {self._options['method']} failed: {sol.message}")
-            self._segments.append((t0, float(sol.t[-1]), sol.sol, sol.t))
-            self._modes.append(mode)
-            self._sigmas.append(sigma)
-            if t_m is None and len(sol.t_events[0]):
-                t_m = float(sol.t_events[0][0])
-            if len(sol.t_events[1]):
-                break
-            if sol.status == 0 or not len(sol.t_events[2]):
-                raise ImpactError(no_separation_message(scene, t_end))
-            t0, z = float(sol.t_events[2][0]), sol.y_events[2][0].copy()
-            if mode == "sliding":
-                self.t_roll = t0 if self.t_roll is None else self.t_roll
-                mode, z[4] = "rolling", float(z[2:4] @ self._t) / radius  # exactly on the constraint
-            else:  # gravity along the flat outgrows friction: the contact point slips down-slope
-                mode, sigma = "sliding", 1.0
-            if len(self._segments) >= MAX_PHASES:
-                raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
-        if t_m is None:
-            raise ImpactError("separation found before maximum compression: event missed")
-        check_rebound(scene, options, float(self._contact(sol.y_events[1][0])[1]))
-        self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
-        self.regime = mode if scene.has_tangential_motion else "none"
-        self.switches = len(self._segments) - 1 if scene.has_tangential_motion else 0
-        steps = np.concatenate([seg[3] for seg in self._segments])
-        grid = np.unique(substep_grid(steps))
-        self.grid = np.append(grid[(grid >= 0) & (grid < self.t_f)], self.t_f)
-        self.stats = {"method": self._options["method"], "rtol": options.rtol, "atol": options.atol,
-                      "nfev": int(nfev)}
+        self._run(options, z, mode, -1.0 if slip0 < 0 else 1.0)
+
+    def _switched(self, mode: str, z):
+        if mode == "sliding":
+            z[4] = float(z[2:4] @ self._t) / self.scene.radius  # exactly on the constraint
+            return "rolling", 1.0, z
+        return "sliding", 1.0, z  # gravity along the flat outgrows friction: the contact point slips down-slope
 
     def _contact(self, z):
         """(delta, delta_dot, P) of state(s) z."""
@@ -142,27 +198,10 @@ class PlanarMotion:
         separation.terminal = switch.terminal = True
         return solve_ivp(rhs, (t0, t_end), z0, events=(max_compression, separation, switch), **self._options)
 
-    def _state(self, t):
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        out = np.empty((5, t.size))
-        which = phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
-        for i, (_, _, dense, _) in enumerate(self._segments):
-            mask = which == i
-            if mask.any():
-                out[:, mask] = dense(t[mask])
-        return out
-
-    def force(self, t):
-        return self._contact(self._state(t))[2]
-
-    def force_extremes(self) -> tuple[float, float]:
-        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`)."""
-        return force_extremes(self.force, self.grid)
-
     def tangential_force(self, t):
         """Friction force on the ball along the flat [N] at t [s], as the segment's mode sets it."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        which = phase_index([SimpleNamespace(t0=seg[0]) for seg in self._segments], t)
+        which = self._which(t)
         sliding = np.array([mode == "sliding" for mode in self._modes])[which]
         sigma = np.array(self._sigmas)[which]
         if not self.scene.has_tangential_motion:

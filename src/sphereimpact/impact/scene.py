@@ -153,9 +153,10 @@ class Scene:
         A partner sphere the ball strikes instead of the flat [kg], [m], both > 0, or None (the rigid flat).  The
         partner starts at rest apart from its spin (any collision can be shifted to that frame); the contact
         frame is the partner's surface's (n its outward normal at the contact, t along the incoming tangential
-        motion).  The pair is solved exactly as one sphere on the flat (:attr:`reduced`,
-        :mod:`sphereimpact.impact.pair`): the law's ``k``, ``modulus`` and ``ramp`` are the contact's, at the
-        Hertz radius R* = R1 R2 / (R1 + R2).  Gravity is refused with a partner.
+        motion).  The pair is solved exactly as one sphere on the flat but for the line of centres, held fixed
+        (:attr:`reduced`, :mod:`sphereimpact.impact.pair`; ``body='planar'`` frees both centres): the law's ``k``,
+        ``modulus`` and ``ramp`` are the contact's, at the Hertz radius R* = R1 R2 / (R1 + R2).  Gravity is
+        refused with a partner.
     partner_inertia_factor : float
         The partner's alpha in I = alpha m R^2 [-], in (0, 2/3]; 0.4 by default.
     partner_spin : float

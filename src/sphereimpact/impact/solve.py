@@ -24,7 +24,7 @@ from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
-from .outcome import Outcome, force_extremes
+from .outcome import Outcome, force_extremes, gains_energy
 from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS
@@ -121,8 +121,9 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     options : SolverOptions, optional
         Method and tolerances; defaults to :class:`SolverOptions()`.
     body : {'reduced', 'planar'}
-        ``reduced`` (exact and cheapest) or the full planar rigid-body model.  (The force law is
-        ``scene.model``.)
+        ``reduced`` (exact on the flat and cheapest) or the full planar rigid-body model; with a partner sphere,
+        ``planar`` frees both centres and turns the normal with the line of centres, which the reduction holds
+        fixed (:mod:`sphereimpact.impact.planar_pair`).  (The force law is ``scene.model``.)
     strict : bool
         Refuse (``ImpactError``) a result whose maximum compression exceeds the radius, instead of
         returning it flagged (``Outcome.beyond_radius``) with a :class:`BeyondRadiusWarning`.
@@ -143,7 +144,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
-    if scene.has_partner:  # exactly one sphere on the flat, then each body's velocities from the impulses
+    if scene.has_partner and body != "planar":  # one sphere on the flat, then each body's velocities from the impulses
         return pair_outcome(simulate(scene.reduced, options, body, strict), scene)
     options = SolverOptions() if options is None else options
     if not isinstance(options, SolverOptions):
@@ -155,6 +156,10 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
         from .planar import CONTACTS, planar_motion
 
         motion_of = planar_motion(TANGENTIALS[scene.tangential])
+        if scene.has_partner and motion_of is not None:  # both centres free: the pair's own planar model
+            from .planar_pair import PlanarPairMotion
+
+            motion_of = PlanarPairMotion
         if motion_of is None:
             served = ", ".join(model.name for model, _ in CONTACTS)
             raise ValueError(f"body 'planar' has the {served} tangential contact only; tangential "
@@ -167,6 +172,11 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
         else:
             motion = motion_of(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    if scene.has_partner:  # each body's end from the two-body motion itself, not from the reduction's impulses
+        s = motion.scene
+        work = {"work_t": motion.work_t, "energy_gained": bool(gains_energy(
+            motion.work_t, s.mass, s.speed, s.inertia_factor * s.mass * s.radius ** 2, s.spin))}
+        outcome = replace(outcome, scene=scene, **motion.bodies, **work)
     return _checked(outcome, strict)
 
 

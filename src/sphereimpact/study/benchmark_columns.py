@@ -27,5 +27,8 @@ OUTPUTS = OUTCOME_OUTPUTS | FRAME_OUTPUTS
 CLOSED_FORMS = {"hertz_t_f": "s", "hertz_delta_m": "m", "hertz_force_max": "N"}
 #: What each row says of its own exactness: for two spheres, the angle the line of centres would turn during the
 #: contact, max(|v_t|, |v_t'|) t_f / (R1 + R2), which the reduction to one sphere holds fixed (its error is of that
-#: order; :mod:`sphereimpact.impact.pair`); empty on a plane.
-STATEMENTS = {"line_turn": "rad"}
+#: order; :mod:`sphereimpact.impact.pair`), and ``reduction_gap``, what holding it fixed costs, measured: the largest
+#: difference of either body's velocities (spins times their radii) between the reduction and the planar two-body
+#: model with both centres free (:mod:`sphereimpact.impact.planar_pair`), both with the rigid tangential contact
+#: (the two-body model's only one); empty on a plane.
+STATEMENTS = {"line_turn": "rad", "reduction_gap": "m/s"}

@@ -93,7 +93,10 @@ def given_table(scenes) -> pd.DataFrame:
     :meth:`Scene.as_dict <sphereimpact.Scene.as_dict>`: each a mapping of own parameters, or empty) becomes one
     column per own parameter, as a table names them."""
     if not isinstance(scenes, dict):
-        return _own_columns(pd.DataFrame(scenes))
+        table = _own_columns(pd.DataFrame(scenes))
+        text = [c for c in table.columns if isinstance(table[c].dtype, pd.StringDtype)]
+        # as object columns: pandas' string dtype makes each of the sweep's reads of them several times slower
+        return table.astype(dict.fromkeys(text, object)) if text else table
     check_size({name: int(np.size(values)) for name, values in scenes.items()},
                "sweep shards of it (span= keeps them one sweep) or coarser values")
     return grid(**scenes)
