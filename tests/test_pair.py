@@ -291,3 +291,13 @@ def test_two_body_model_through_the_command_line_and_its_refusals(capsys):
     assert said["omega_f"] == pytest.approx(api.omega_f, rel=1e-12)
     with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only"):
         simulate(Scene(**SOFT | {"tangential": "mindlin", "kappa": 0.7}), body="planar")
+
+
+def test_two_body_model_of_a_frictionless_or_normal_impact_never_switches():
+    """Before: a frictionless normal impact (Chung & Ooi's test 1) switched between rolling and sliding without end,
+    its rolling force and cap both 0.  Now no friction, or no tangential motion, is F = 0 throughout."""
+    for changes in ({"mu": 0.0}, {"incidence": 0.0, "spin": 0.0, "partner_spin": 0.0}):
+        scene = Scene(**SOFT | changes)
+        planar, reduced = simulate(scene, body="planar"), simulate(scene)
+        assert planar.switches == 0 and planar.regime == reduced.regime
+    assert planar.cor == pytest.approx(reduced.cor, rel=1e-8)  # the normal impact: the line never turns

@@ -70,12 +70,16 @@ class PlanarPairMotion(SegmentedMotion):
                              f"the {RESOLVED_DEPTH:g} its coordinates resolve; body 'reduced' solves it")
         length = s.v_normal / s.frequency
         scale = np.array([length, length, s.speed, s.speed, s.speed / s.radius, s.mass * s.speed ** 2])
+        # first step a small part of the contact: solve_ivp's own guess, from the state's O(R1 + R2) magnitudes,
+        # overshoots the contact of stiff spheres into overflowing trial forces
         self._options = dict(method=ivp_method(options.method), rtol=options.rtol, atol=options.atol * scale,
-                             max_step=options.max_step, dense_output=True)
+                             max_step=options.max_step, dense_output=True, first_step=1e-3 / s.frequency)
         # d, v, w* and the tangential force's work W = int F s dt [J]: first touch at d = (0, R1 + R2)
         z = np.array([0.0, self._reach, s.v_tangent, -s.v_normal, s.spin, 0.0])
         slip0 = s.slip0
-        self._run(options, z, "sliding" if slip0 != 0 else "rolling", -1.0 if slip0 < 0 else 1.0)
+        # no friction, or no tangential motion at all (the line of centres never turns): F = 0 throughout, no switch
+        self._free = s.mu == 0 or not s.has_tangential_motion
+        self._run(options, z, "sliding" if slip0 != 0 or self._free else "rolling", -1.0 if slip0 < 0 else 1.0)
         end = self.end
         self.line_turn = abs(math.atan2(end[0], end[1]))
         self.work_t = float(end[5])
@@ -115,6 +119,8 @@ class PlanarPairMotion(SegmentedMotion):
         sep = separation_function(s)
 
         def force(z, p):
+            if self._free:
+                return 0.0
             return -sigma * s.mu * max(float(p), 0.0) if mode == "sliding" else self._rolling_force(z)
 
         def rhs(t, z):
@@ -133,6 +139,8 @@ class PlanarPairMotion(SegmentedMotion):
             return sep(delta, delta_dot)
 
         def switch(t, z):
+            if self._free:
+                return 1.0
             if mode == "sliding":  # sigma times the slip falls through zero
                 _, _, _, t_vec = self._geometry(z)
                 return sigma * (float(t_vec @ z[2:4]) - z[4] * r_star)
@@ -162,6 +170,8 @@ class PlanarPairMotion(SegmentedMotion):
         z = self._state(t)
         which = self._which(np.atleast_1d(t))
         p = np.maximum(self._contact(z)[2], 0.0)
+        if self._free:
+            return np.zeros_like(p)
         rolling = np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])])
         sliding = np.array([mode == "sliding" for mode in self._modes])[which]
         return np.where(sliding, -np.array(self._sigmas)[which] * self.scene.mu * p, rolling)

@@ -203,15 +203,17 @@ def source_digest(paths) -> str:
     package): it changes exactly when one of them does, so a rule that takes it as a param reruns then."""
     digest = hashlib.sha256()
     for path in sorted(set(paths)):
-        resolved = Path(path).resolve()
-        name = resolved.relative_to(_PACKAGE.parent) if resolved.is_relative_to(_PACKAGE.parent) else resolved.name
-        digest.update(str(name).encode() + b"\0" + _text(path) + b"\0")
+        digest.update(_file_digest(path))
     return digest.hexdigest()
 
 
 @cache
-def _text(path: str) -> bytes:
-    return Path(path).read_bytes()
+def _file_digest(path: str) -> bytes:
+    """One source file's name within the package and the SHA-256 of its text, once per process (a Snakefile asks
+    for the same files' digests once per rule)."""
+    resolved = Path(path).resolve()
+    name = resolved.relative_to(_PACKAGE.parent) if resolved.is_relative_to(_PACKAGE.parent) else resolved.name
+    return str(name).encode() + b"\0" + hashlib.sha256(resolved.read_bytes()).digest() + b"\0"
 
 
 def package_sources(*modules: str) -> list[str]:
