@@ -65,3 +65,17 @@ def finish(process: subprocess.Popen) -> subprocess.CompletedProcess:
 def snakemake(cwd, *args, configfiles=(), path=()) -> subprocess.CompletedProcess:
     """Run snakemake in ``cwd`` (see :func:`start_snakemake`) and wait for it."""
     return finish(start_snakemake(cwd, *args, configfiles=configfiles, path=path))
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    """``sphereimpact ARGS`` in this process (the command line's own entry, :func:`sphereimpact.cli.run`), its exit
+    status and what it wrote, as a finished subprocess: the door without a new interpreter's start-up per call."""
+    import contextlib
+    import io
+
+    from sphereimpact.cli import run
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        status = run(list(args))
+    return subprocess.CompletedProcess(["sphereimpact", *args], status, out.getvalue(), err.getvalue())

@@ -6,12 +6,11 @@ model's closed forms in the limits; the energy balance computed two ways; Maw's 
 """
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
+from conftest import cli
 from sphereimpact import ImpactError, Scene, simulate
 from sphereimpact.contact.laws import spring_stiffness
 from sphereimpact.sweep import rows, sweep
@@ -170,13 +169,13 @@ def test_sweep_solves_compliant_scenes_as_simulate_does():
 
 
 def test_cli_tangential_flags():
-    run = [sys.executable, "-m", "sphereimpact", "simulate", "--angle", "30", "--json"]
-    out = subprocess.run([*run, "--tangential", "linear", "--poisson", "0.5"], capture_output=True, text=True)
+    run = ["simulate", "--angle", "30", "--json"]
+    out = cli(*run, "--tangential", "linear", "--poisson", "0.5")
     assert out.returncode == 0, out.stderr
     direct = simulate(Scene(angle=30, tangential="linear", poisson=0.5))
     import json
 
     data = json.loads(out.stdout)
     assert data["vc_t"] == direct.vc_t and data["switches"] == direct.switches
-    bad = subprocess.run([*run, "--kappa", "1"], capture_output=True, text=True)
+    bad = cli(*run, "--kappa", "1")
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "kappa is a parameter" in bad.stderr

@@ -8,14 +8,13 @@ contact in the limit of a heavy dashpot; the energy balance.
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
 import pytest
 from scipy.integrate import solve_ivp
 
+from conftest import cli
 from sphereimpact import Scene, simulate
 from sphereimpact.contact.laws import spring_stiffness
 from sphereimpact.contact.tangential.dashpot import dashpot_ratio, hertz_ratio, linear_ratio
@@ -144,11 +143,10 @@ def test_every_door_gives_simulate_answer():
     scene = Scene(model="hertz", modulus=5e6, tangential="mindlin", kappa=0.667, incidence=30, mu=0.4,
                   mass=0.145, diameter=0.063, parameters={"dashpot_cor": 0.5})
     api = simulate(scene)
-    cli = subprocess.run([sys.executable, "-m", "sphereimpact", "simulate", "--model", "hertz", "--modulus", "5e6",
-                          "--tangential", "mindlin", "--kappa", "0.667", "--incidence", "30", "--mu", "0.4",
-                          "--mass", "0.145", "--diameter", "0.063", "--dashpot-cor", "0.5", "--json"],
-                         capture_output=True, text=True, check=True)
-    assert json.loads(cli.stdout)["omega_f"] == pytest.approx(api.omega_f, rel=1e-12)
+    said = cli("simulate", "--model", "hertz", "--modulus", "5e6", "--tangential", "mindlin", "--kappa", "0.667",
+               "--incidence", "30", "--mu", "0.4", "--mass", "0.145", "--diameter", "0.063", "--dashpot-cor", "0.5",
+               "--json")
+    assert said.returncode == 0 and json.loads(said.stdout)["omega_f"] == pytest.approx(api.omega_f, rel=1e-12)
     table = rows(model="hertz", modulus=5e6, tangential="mindlin", kappa=0.667, incidence=[30.0, 30.0], mu=0.4,
                  speed=[3.0, 6.0], dashpot_cor=0.5)
     swept = sweep(table)

@@ -4,13 +4,12 @@ in one line, and the fitted ball is reused by the command line."""
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import cli
 from sphereimpact import Ball, Measurement, Scene, calibrated_ball, load_ball, simulate
 from sphereimpact.fit import fit, read_measured, with_values
 from sphereimpact.impact.ball import ball_columns
@@ -143,17 +142,13 @@ def test_more_values_than_free_parameters_and_no_e_t_of_a_normal_impact():
         fit(read_measured(pd.DataFrame({"incidence": [0.0, 30.0], "e_t": [0.5, 0.6]})), Ball(TRUTH), ["mu"])
 
 
-def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "sphereimpact", *args], capture_output=True, text=True)
-
-
 def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
     """The command line door: --json prints value and stderr (the API's numbers), --out writes the fitted ball
     that `simulate --ball` then uses; a bad option is one line and exit 2."""
     csv = tmp_path / "bounces.csv"
     bounces(2).to_csv(csv, index=False)
     truth = ["--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5"]  # TRUTH's ball, described
-    run = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--mu", "0.1", *truth, "--json",
+    run = cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", "--mu", "0.1", *truth, "--json",
                "--out", str(tmp_path / "fitted"))
     assert run.returncode == 0, run.stderr
     printed = json.loads(run.stdout)["parameters"]["mu"]
@@ -163,12 +158,12 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
     assert ball.scene.mu == pytest.approx(api.value, rel=1e-12) and "bounces.csv" in ball.source
     for name in ("fit.json", "residuals.csv", "fit.png"):
         assert (tmp_path / "fitted" / name).stat().st_size > 0
-    again = _cli("simulate", "--ball", str(tmp_path / "fitted/ball.json"), "--incidence", "40", "--json")
+    again = cli("simulate", "--ball", str(tmp_path / "fitted/ball.json"), "--incidence", "40", "--json")
     assert json.loads(again.stdout)["omega_f"] == pytest.approx(simulate(ball.scene.with_(incidence=40.0)).omega_f,
                                                                 rel=1e-12)
-    refused = _cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", *truth, "--out", str(tmp_path / "fitted"))
+    refused = cli("fit", str(csv), "--free", "mu", "--model", "kelvin-voigt", *truth, "--out", str(tmp_path / "fitted"))
     assert refused.returncode == 2 and "exists; pass --force" in refused.stderr and "Traceback" not in refused.stderr
-    bad = _cli("fit", str(csv), "--free", "colour", *truth, "--out", str(tmp_path / "never"))
+    bad = cli("fit", str(csv), "--free", "colour", *truth, "--out", str(tmp_path / "never"))
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "'colour' cannot be fitted" in bad.stderr
     assert not (tmp_path / "never").exists()  # the folder is made once the fit succeeds
     assert math.isfinite(printed["value"])
