@@ -29,7 +29,7 @@ from ..files import write_text
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
 from .inputs import as_number
-from .scene import Scene, SolverOptions
+from .scene import Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
 #: extrapolation of the calibrated law, and is said to be.
@@ -155,12 +155,12 @@ def undescribed(given, model: str) -> list[str]:
         ``b or cor``); empty when the ball is described.
     """
     law, given = LAWS.law(model), set(given)
+    chapter, damping = chapter_law_parameters(law), law.damping
     missing = [name for name in ("mass", "diameter") if name not in given]
-    if "k" in law.parameter_names and law.parameter("k").default is not None and not given & set(STIFFNESS_GIVEN):
+    if "k" in chapter and not given & set(STIFFNESS_GIVEN):
         missing.append(" or ".join(name for name in STIFFNESS_GIVEN if name in law.parameter_names or name == "contact_time"
                                    or (name == "ball_material" and "modulus" in law.parameter_names)))
-    damping = law.damping
-    if damping is not None and law.parameter(damping).default and not given & {damping, "cor"}:
+    if damping in chapter and not given & {damping, "cor"}:
         missing.append(f"{damping} or cor")
     return missing
 

@@ -545,17 +545,21 @@ class Scene:
             return replace(self, **changes)
 
 
-def _chapter_parameters(law, given: dict) -> set:
-    """The law parameters a scene takes from the chapter's ball: its stiffness ``k`` and its damping, where the law's
-    defaults are the chapter's and neither they nor what sets them instead (``modulus`` for k) were given."""
-    names = set()
-    if "k" in law.parameter_names and law.parameter("k").default is not None and given.get("k") is None \
-            and given.get("modulus") is None:
-        names.add("k")
+def chapter_law_parameters(law) -> tuple:
+    """The parameters of ``law`` whose defaults are the chapter's ball's: its stiffness ``k`` where it has a default,
+    and its damping where the default is not 0 (eq. 4.1's and 4.2's k and b).  One rule for the Scene's marks
+    (:class:`ChapterValue`) and the doors that refuse an undescribed ball
+    (:func:`sphereimpact.impact.ball.undescribed`)."""
+    names = ("k",) if "k" in law.parameter_names and law.parameter("k").default is not None else ()
     damping = law.damping
-    if damping is not None and law.parameter(damping).default and given.get(damping) is None:
-        names.add(damping)
-    return names
+    return names + ((damping,) if damping is not None and law.parameter(damping).default else ())
+
+
+def _chapter_parameters(law, given: dict) -> set:
+    """The law parameters a scene takes from the chapter's ball: those of :func:`chapter_law_parameters` that were
+    not given, nor what sets them instead (``modulus`` for k)."""
+    return {name for name in chapter_law_parameters(law)
+            if given.get(name) is None and not (name == "k" and given.get("modulus") is not None)}
 
 
 #: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.
