@@ -45,14 +45,9 @@ EXACT = "microslip"
 DEM_RULES = ("mindlin", "mindlin+dashpot", "mindlin-displacement", "linear", "linear+dashpot", "rigid")
 #: The reference files' variants: ``exact`` the exact elastic microslip contact with damping in the normal law
 #: only; ``damped-mindlin`` the damped Mindlin spring of the DEM codes (rule ``mindlin+dashpot``), written for the
-#: oblique tests whose COR is below 1, where the two differ (:data:`VARIANT_TESTS`), in a folder of its own.
+#: oblique tests whose COR is below 1, where the two differ (:func:`variant_tests`), in a folder of its own.
 VARIANTS = {"exact": EXACT, "damped-mindlin": "mindlin+dashpot"}
 
-
-def variant_tests(numbers, path=DEFINITION) -> list[int]:
-    """Those of ``numbers`` whose reference has a ``damped-mindlin`` variant: oblique, with a COR below 1."""
-    _, tests = load_tests(path)
-    return [n for n in numbers if n >= 4 and min(_values(tests[n], "cor")) < 1.0]
 #: The damped laws of test 3, each with its damping set to the requested COR (the linear springs with the
 #: Hertz contact's elastic contact time).
 DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modified")
@@ -69,6 +64,21 @@ def load_tests(path=DEFINITION) -> tuple[dict, dict]:
 def _values(test: dict, name: str) -> list:
     value = test.get(name)
     return [] if value is None else list(value) if isinstance(value, list) else [value]
+
+
+def variant_tests(numbers, path=DEFINITION) -> list[int]:
+    """Those of ``numbers`` whose reference has a ``damped-mindlin`` variant: oblique, with a COR below 1."""
+    _, tests = load_tests(path)
+    return [n for n in numbers if n >= 4 and min(_values(tests[n], "cor")) < 1.0]
+
+
+def parse_rule(rule: str) -> tuple[str, bool]:
+    """A rule of :data:`DEM_RULES` (or any model's name, ``+dashpot`` or not) as (tangential model, with the dashpot
+    set from the COR)."""
+    tangential, _, extra = rule.partition("+")
+    if extra not in ("", "dashpot"):
+        raise ValueError(f"a rule is a tangential model's name, with '+dashpot' or without; got {rule!r}")
+    return tangential, bool(extra)
 
 
 def _approaches(test: dict) -> list[dict]:
@@ -103,9 +113,7 @@ def scenes_of_test(number: int, tangential: str = EXACT, model: str = "hunt-cros
 
 def _scenes(number: int, test: dict, materials: dict, rule: str, model: str) -> pd.DataFrame:
     """:func:`scenes_of_test`'s rows."""
-    tangential, _, extra = rule.partition("+")
-    if extra not in ("", "dashpot"):
-        raise ValueError(f"a rule is a tangential model's name, with '+dashpot' or without; got {rule!r}")
+    tangential, extra = parse_rule(rule)
     rows = []
     for name in test["materials"]:
         material = materials[name]
@@ -239,9 +247,8 @@ def reduction_gap(scene: Scene) -> float:
 @functools.lru_cache(maxsize=1024)
 def _rigid_gap(rigid: Scene) -> float:
     """:func:`reduction_gap` of a scene with the rigid contact, once per scene (every rule of a row shares it)."""
-    scene = rigid
     planar, reduced = simulate(rigid, body="planar"), simulate(rigid)
-    radii = {"omega_f": scene.radius, "partner_omega_f": 0.5 * scene.partner_diameter}
+    radii = {"omega_f": rigid.radius, "partner_omega_f": 0.5 * rigid.partner_diameter}
     return max(abs(getattr(planar, key) - getattr(reduced, key)) * radii.get(key, 1.0)
                for key in ("vc_t", "vc_n", "omega_f", "partner_vc_t", "partner_vc_n", "partner_omega_f"))
 
@@ -275,14 +282,14 @@ def deviations(rules: pd.DataFrame, exact: pd.DataFrame, quantities=("e_t", "ome
     for rule, part in rules.groupby("rule", sort=False):
         part = part.reset_index(drop=True)
         for quantity in quantities:
-            found = _deviation(part, exact, quantity)
+            found = deviation(part, exact, quantity)
             if found is not None:
                 rows.append({"test": int(exact["test"].iloc[0]), "rule": rule, "quantity": quantity,
                              "max_abs": found["max_abs"], "max_rel": found["max_rel"]})
     return pd.DataFrame(rows)
 
 
-def _deviation(code: pd.DataFrame, exact: pd.DataFrame, quantity: str) -> dict | None:
+def deviation(code: pd.DataFrame, exact: pd.DataFrame, quantity: str) -> dict | None:
     """How far ``code``'s column ``quantity`` is from ``exact``'s, row by row: the rows compared, the largest absolute
     difference and that over the exact column's largest magnitude; None where either lacks the column or the exact
     solution holds it at 0 (a normal test's tangential outputs: nothing to compare)."""
@@ -424,8 +431,8 @@ def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
         checks.append(_checks(number, exact))
         if number >= 4:
             solved = dem_rules(number, path)
-            damped = solved[solved["rule"] == VARIANTS["damped-mindlin"]]
             if number in variant_tests([number], path):  # the same rows as the variant's reference
+                damped = solved[solved["rule"] == VARIANTS["damped-mindlin"]]
                 (folder / "damped-mindlin").mkdir(exist_ok=True)
                 write_table(damped.reset_index(drop=True), folder / "damped-mindlin" / f"test{number}.csv")
             rules.append(solved)

@@ -15,15 +15,13 @@ import numpy as np
 import pandas as pd
 
 from ..impact.solve import simulate_many
-from .chung_ooi import _deviation, load_tests
+from .chung_ooi import EXACT, deviation, parse_rule
 from .tables import text_table
 
 #: The tests of Chung & Ooi whose departures are shown (the oblique ones on a plane).
 TESTS = (4, 5, 6)
 #: The rules solved for the Kharaz ball beside the exact contact (a Hertz spring: the linear rule needs a linear law).
 KHARAZ_RULES = ("mindlin", "mindlin+dashpot", "mindlin-displacement", "rigid")
-#: The exact contact.
-EXACT = "microslip"
 #: The quantities compared, in the order figures and tables show them.
 QUANTITIES = ("omega_f", "rebound_angle_contact", "e_t", "vc_t")
 #: The Kharaz ball's scene set, as the tables name it.
@@ -39,9 +37,9 @@ def kharaz_table(section: dict, angles, rules=KHARAZ_RULES) -> pd.DataFrame:
     exp = experiment(section)
     parts = []
     for rule in (EXACT, *rules):
-        model, _, extra = rule.partition("+")
+        model, dashpot = parse_rule(rule)
         scene = exp.with_tangential(model)
-        if extra:
+        if dashpot:
             scene = scene.with_(dashpot_cor=section["cor"])
         outcomes = simulate_many([scene.with_(angle=float(a)) for a in angles])
         parts.append(pd.DataFrame({"rule": rule, "incidence": np.asarray(angles, dtype=float),
@@ -54,7 +52,6 @@ def departures(chung_deviations: pd.DataFrame, kharaz: pd.DataFrame) -> pd.DataF
     quantity's largest magnitude over the set (``max_rel``), from Chung & Ooi's deviations (tests :data:`TESTS` that
     were run) and the Kharaz ball's table (:func:`kharaz_table`)."""
     rows = []
-    _, tests = load_tests()
     for number in TESTS:
         mine = chung_deviations[(chung_deviations["test"] == number) & chung_deviations["quantity"].isin(QUANTITIES)]
         for item in mine.itertuples(index=False):
@@ -63,7 +60,7 @@ def departures(chung_deviations: pd.DataFrame, kharaz: pd.DataFrame) -> pd.DataF
     exact = kharaz[kharaz["rule"] == EXACT].reset_index(drop=True)
     for rule, part in kharaz[kharaz["rule"] != EXACT].groupby("rule", sort=False):
         for quantity in QUANTITIES:
-            found = _deviation(part.reset_index(drop=True), exact, quantity)
+            found = deviation(part.reset_index(drop=True), exact, quantity)
             if found is not None:
                 rows.append({"scenes": KHARAZ, "rule": rule, "quantity": quantity, "max_rel": found["max_rel"]})
     return pd.DataFrame(rows, columns=["scenes", "rule", "quantity", "max_rel"])
