@@ -157,7 +157,7 @@ def test_switch_bound_is_an_error_not_a_hang():
 
 
 def test_sweep_solves_compliant_scenes_as_simulate_does():
-    table = sweep({"angle": [0.0, 20.0, 60.0], "tangential": "linear", "poisson": 0.5})
+    table = sweep({"angle": [0.0, 20.0, 60.0], "tangential": "linear", "poisson": 0.5}, chapter_ball=True)
     assert list(table["kappa"]) == pytest.approx([2 / 3] * 3, rel=1e-15)
     for _, row in table.iterrows():
         one = simulate(Scene(angle=row["angle"], tangential="linear", poisson=0.5))
@@ -165,7 +165,7 @@ def test_sweep_solves_compliant_scenes_as_simulate_does():
             assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
         assert row["regime"] == one.regime
     with pytest.raises(ValueError, match=r"needs a Hertz spring .* \(row 1\)"):
-        sweep(rows(angle=[0.0, 20.0], tangential=["rigid", "mindlin"], kappa=[np.nan, 1.0]))
+        sweep(rows(angle=[0.0, 20.0], tangential=["rigid", "mindlin"], kappa=[np.nan, 1.0]), chapter_ball=True)
 
 
 def test_cli_tangential_flags():

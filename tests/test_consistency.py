@@ -42,10 +42,10 @@ def assert_agrees(errors: pd.DataFrame) -> None:
 
 def test_every_row_of_a_mixed_table_agrees_with_simulate_whatever_the_chunks_and_shards(solved, small_thresholds):
     table, reference = solved
-    whole = sweep(table)
+    whole = sweep(table, chapter_ball=True)
     assert set(whole["path"]) == set(PATHS)  # the table reaches every path
     assert_agrees(compare(table, reference, whole))
-    shards = [sweep(table.iloc[rows], span=table, chunk_size=size)
+    shards = [sweep(table.iloc[rows], span=table, chunk_size=size, chapter_ball=True)
               for rows, size in zip(np.array_split(np.arange(len(table)), 2), (97, 100_000))]
     assert pd.concat(shards, ignore_index=True).equals(whole)  # as shards, and in chunks of 97 scenes
 
@@ -54,7 +54,7 @@ def test_every_row_of_a_mixed_table_agrees_with_simulate_whatever_the_chunks_and
 def test_each_path_alone_agrees_with_simulate_on_the_rows_it_admits(solved, small_thresholds, path):
     """Forced alone, a path takes every row it admits (not only those no earlier path took)."""
     table, reference = solved
-    alone = sweep(table, paths=[path])
+    alone = sweep(table, paths=[path], chapter_ball=True)
     taken = alone["path"] == path
     assert taken.sum() >= 40 and set(alone.loc[~taken, "path"]) <= {""}
     assert_agrees(compare(table, reference, alone))
@@ -62,7 +62,7 @@ def test_each_path_alone_agrees_with_simulate_on_the_rows_it_admits(solved, smal
 
 def test_paths_are_named():
     with pytest.raises(ValueError, match="paths must be some of similar, single, family-interpolant"):
-        sweep({"angle": [30.0]}, paths=["fastest"])
+        sweep({"angle": [30.0]}, paths=["fastest"], chapter_ball=True)
 
 
 def test_compare_measures_each_row_as_relative_errors_does(solved):
@@ -74,7 +74,7 @@ def test_compare_measures_each_row_as_relative_errors_does(solved):
 
     table, reference = solved
     rows = np.arange(0, len(table), 97)
-    swept = sweep(table.iloc[rows]).reset_index(drop=True)
+    swept = sweep(table.iloc[rows], chapter_ball=True).reset_index(drop=True)
     errors = compare(table.iloc[rows].reset_index(drop=True), reference.iloc[rows].reset_index(drop=True), swept)
     for i in range(len(rows)):
         scene = scene_of(swept.loc[i, list(SCENE_COLUMNS)].to_dict())

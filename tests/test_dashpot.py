@@ -149,10 +149,10 @@ def test_every_door_gives_simulate_answer():
     assert said.returncode == 0 and json.loads(said.stdout)["omega_f"] == pytest.approx(api.omega_f, rel=1e-12)
     table = rows(model="hertz", modulus=5e6, tangential="mindlin", kappa=0.667, incidence=[30.0, 30.0], mu=0.4,
                  speed=[3.0, 6.0], dashpot_cor=0.5)
-    swept = sweep(table)
+    swept = sweep(table, chapter_ball=True)
     assert swept["omega_f"].iloc[0] == pytest.approx(api.omega_f, rel=1e-8)
     assert swept["omega_f"].iloc[1] == pytest.approx(simulate(scene.with_(speed=6.0)).omega_f, rel=1e-8)
-    as_rows = sweep(pd.DataFrame([scene.as_dict()]))  # a Scene's own parameters, as as_dict gives them
+    as_rows = sweep(pd.DataFrame([scene.as_dict()]), chapter_ball=True)  # a Scene's own parameters, as as_dict gives them
     assert as_rows["omega_f"].iloc[0] == pytest.approx(api.omega_f, rel=1e-8)
     with pytest.raises(ValueError, match="dashpot_cor is given twice"):
-        sweep(pd.DataFrame([scene.as_dict() | {"dashpot_cor": 0.5}]))
+        sweep(pd.DataFrame([scene.as_dict() | {"dashpot_cor": 0.5}]), chapter_ball=True)

@@ -232,9 +232,9 @@ def test_numpy_scalars_are_numbers(value):
     (lambda: Scene(mass="0.1"), TypeError, "mass must be a real number; got str '0.1'"),
     (lambda: SolverOptions(max_step=True), TypeError, "max_step must be a real number"),
     (lambda: SolverOptions(rtol=0.5), ValueError, "rtol must be a finite number in [1e-13, 1e-2]"),
-    (lambda: sweep({"angle": [True]}), TypeError, "angle must be real numbers; got a boolean"),
-    (lambda: sweep({"angle": [30.0]}, chunk_size=True), ValueError, "chunk_size must be an integer >= 1"),
-    (lambda: sweep({"angle": [30.0]}, target=True), ValueError, "target must be a number in [1e-12, 1e-3]"),
+    (lambda: sweep({"angle": [True]}, chapter_ball=True), TypeError, "angle must be real numbers; got a boolean"),
+    (lambda: sweep({"angle": [30.0]}, chunk_size=True, chapter_ball=True), ValueError, "chunk_size must be an integer >= 1"),
+    (lambda: sweep({"angle": [30.0]}, target=True, chapter_ball=True), ValueError, "target must be a number in [1e-12, 1e-3]"),
     (lambda: engine.rows(angle=[1.0, 2.0], speed=[1.0, 2.0, 3.0]), ValueError,
      "scene columns must have the same length; got angle (2), speed (3)"),
     (lambda: simulate(None), TypeError, "scene must be a sphereimpact.Scene"),
@@ -260,7 +260,7 @@ def test_a_span_that_does_not_cover_the_scenes_is_refused():
     span = whole[whole.speed <= 15]  # 2700 scenes of one ball: an interpolant is built on them
     fast = whole[(whole.angle == 0) & (whole.speed >= 20)]  # lam = c v cos(beta) / (omega_n R) beyond the span
     with pytest.raises(ValueError, match="span does not cover the scenes"):
-        sweep(fast, span=span)
+        sweep(fast, span=span, chapter_ball=True)
 
 
 def test_a_compression_beyond_the_radius_is_flagged_warned_or_refused(capsys):
@@ -294,7 +294,7 @@ def test_the_sweep_flags_a_compression_beyond_the_radius_on_every_path():
               "model": ["modified", "modified", "kelvin-voigt", "modified"], "gravity": [0.0, 0.0, 0.0, 9.81]}
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        table = sweep(engine.rows(**scenes))
+        table = sweep(engine.rows(**scenes), chapter_ball=True)
     assert table["beyond_radius"].tolist() == [False, True, True, True]
     assert (table["delta_m"] > table["diameter"] / 2).tolist() == table["beyond_radius"].tolist()
 
@@ -311,12 +311,12 @@ def test_extreme_inputs_are_answered_or_refused_in_bounded_time():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # a RuntimeWarning would fail the test
         warnings.simplefilter("ignore", UnitWarning)  # 1e-300 kg is no ball: said (tests/test_user_terms.py), not checked here
-        tiny = sweep({"angle": [60.0], "mass": [1e-300]})
+        tiny = sweep({"angle": [60.0], "mass": [1e-300]}, chapter_ball=True)
         one = simulate(Scene(angle=60, mass=1e-300))
         assert tiny["cor"].iloc[0] == pytest.approx(one.cor, rel=1e-8)
         assert tiny["t_f"].iloc[0] == pytest.approx(one.t_f, rel=1e-8)
         with pytest.raises(ImpactError, match=r"^sweep row 0: no separation"):
-            sweep({"angle": [60.0], "b": [1e300]})
+            sweep({"angle": [60.0], "b": [1e300]}, chapter_ball=True)
         with pytest.raises(ImpactError, match="no separation"):
             simulate(Scene(angle=60, b=1e300))
 
@@ -328,7 +328,7 @@ def test_damping_beyond_the_lanes_domain_takes_the_single_impact_path():
 
     from sphereimpact import SolverOptions
 
-    table = sweep({"angle": [0.0, 30.0], "b": 3e4})  # zeta = 161
+    table = sweep({"angle": [0.0, 30.0], "b": 3e4}, chapter_ball=True)  # zeta = 161
     assert Scene(b=3e4).zeta > LANES_ZETA_MAX and set(table["path"]) == {"single"}
     for row in table.itertuples():  # the sweep's single path runs at target / 1e4 (simulate's default is 2e-6 off)
         one = simulate(Scene(angle=row.angle, b=3e4), SolverOptions(rtol=1e-12, atol=1e-12))
@@ -369,7 +369,7 @@ def test_a_ramp_that_underflows_is_an_elastic_contact():
 
 def test_a_sweep_row_whose_scales_leave_double_precision_is_named():
     with pytest.raises(ValueError, match=r"acceleration scale v_n / T = 0 .* \(row 1\)"):
-        sweep(engine.rows(mass=[1.0, 2.62e181], speed=[3.0, 8.54e-252], angle=[10.0, 0.64]))
+        sweep(engine.rows(mass=[1.0, 2.62e181], speed=[3.0, 8.54e-252], angle=[10.0, 0.64]), chapter_ball=True)
 
 
 def test_the_separation_criterion_is_parsed_once_and_written_by_its_name(tmp_path):
@@ -378,7 +378,7 @@ def test_the_separation_criterion_is_parsed_once_and_written_by_its_name(tmp_pat
     assert by_name == by_member and by_name.separation is Separation.PENETRATION
     assert by_name.separation.pulls and not by_name.separation.on_force and Scene().separation.on_force
     assert simulate(by_name).cor == simulate(by_member).cor
-    table = sweep(grid(angle=[30.0], separation=["force", "penetration"]))
+    table = sweep(grid(angle=[30.0], separation=["force", "penetration"]), chapter_ball=True)
     table.to_csv(tmp_path / "t.csv", index=False)
     assert pd.read_csv(tmp_path / "t.csv")["separation"].tolist() == ["force", "penetration"]
     assert json.loads(json.dumps({"s": by_name.separation})) == {"s": "penetration"}
@@ -446,7 +446,7 @@ def test_f4_a_sweep_at_a_tiny_speed_keeps_its_target(tmp_path):
 
 def test_f5_the_api_sizes_a_grid_before_making_it():
     with pytest.raises(ValueError, match=r"sweep too large: 1e\+09 scenes \(100000 angle x 10000 speed\)"):
-        sweep({"angle": np.linspace(0.0, 80.0, 100_000), "speed": np.linspace(1.0, 2.0, 10_000)})
+        sweep({"angle": np.linspace(0.0, 80.0, 100_000), "speed": np.linspace(1.0, 2.0, 10_000)}, chapter_ball=True)
 
 
 def test_f7_a_huge_integer_and_a_decimal_range_are_read_cleanly(tmp_path):

@@ -144,7 +144,7 @@ def test_sweep_and_simulate_many_give_simulate_on_a_mixed_table():
         "model": [c["model"] for c in contact], "modulus": [c.get("modulus", np.nan) for c in contact],
         "chi": [c.get("chi", np.nan) for c in contact], "tangential": [c.get("tangential", "rigid") for c in contact],
         "kappa": [c.get("kappa", np.nan) for c in contact]})
-    swept = sweep(table, target=1e-8)
+    swept = sweep(table, target=1e-8, chapter_ball=True)
     scenes = [Scene(**{k: v for k, v in row.items() if not (isinstance(v, float) and math.isnan(v))})
               for row in table.to_dict("records")]
     batched = simulate_many(scenes)
@@ -161,11 +161,13 @@ def test_sweep_and_simulate_many_give_simulate_on_a_mixed_table():
 
 def test_sweep_refuses_a_partner_row_with_gravity():
     with pytest.raises(ValueError, match=r"gravity must be 0 with a partner sphere.*\(row 1\)"):
-        sweep(pd.DataFrame({"partner_mass": [np.nan, 0.2], "partner_diameter": [np.nan, 0.05], "gravity": [9.8, 9.8]}))
+        sweep(pd.DataFrame({"partner_mass": [np.nan, 0.2], "partner_diameter": [np.nan, 0.05], "gravity": [9.8, 9.8]}),
+              chapter_ball=True)
     with pytest.raises(ValueError, match=r"mass must be a finite number > 0 kg; got -1.0 \(row 1\)"):
-        sweep(pd.DataFrame({"mass": [0.1, -1.0], "partner_mass": [0.2, 0.2], "partner_diameter": [0.05, 0.05]}))
+        sweep(pd.DataFrame({"mass": [0.1, -1.0], "partner_mass": [0.2, 0.2], "partner_diameter": [0.05, 0.05]}),
+              chapter_ball=True)
     with pytest.raises(ValueError, match=r"partner_diameter is required with a partner sphere.*\(row 0\)"):
-        sweep(pd.DataFrame({"partner_mass": [0.2]}))
+        sweep(pd.DataFrame({"partner_mass": [0.2]}), chapter_ball=True)
 
 
 def test_command_line_simulates_and_sweeps_a_pair(tmp_path, capsys):

@@ -90,9 +90,9 @@ def test_a_plane_that_cannot_reach_the_target_refuses_and_the_engine_integrates(
     monkeypatch.setattr(paths, "PLANE_MIN", 50)
     scenes = random_balls(120, seed=4)
     monkeypatch.setattr(plane, "PlaneInterpolant", _refusing)
-    integrated = sweep(scenes)
+    integrated = sweep(scenes, chapter_ball=True)
     monkeypatch.setattr(paths, "PLANE_MIN", 10 ** 9)
-    assert integrated.equals(sweep(scenes))
+    assert integrated.equals(sweep(scenes, chapter_ball=True))
 
 
 def _refusing(*args, **kwargs):
@@ -113,15 +113,15 @@ def test_engine_takes_the_plane_for_many_balls_and_shards_equal_the_whole(monkey
     original = plane.PlaneInterpolant
     monkeypatch.setattr(plane, "PlaneInterpolant", lambda *a, **k: built.append(a) or original(*a, **k))
     scenes = random_balls(400, seed=5)
-    whole = sweep(scenes)
+    whole = sweep(scenes, chapter_ball=True)
     assert sorted(args[4] for args in built) == [Separation.FORCE, Separation.PENETRATION]
     for row in whole.iloc[::10].to_dict("records"):  # the sweep's contract, against the single-impact path
         scene = engine.scene_of({k: row[k] for k in engine.SCENE_COLUMNS})
         ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12))
         assert max(relative_errors(row, ref.to_dict(), scene, KEYS).values()) < 1e-8
         assert row["regime"] == ref.regime
-    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    shards = [sweep(scenes.iloc[i], span=scenes, chapter_ball=True) for i in np.array_split(np.arange(len(scenes)), 3)]
     assert pd.concat(shards, ignore_index=True).equals(whole)
-    assert sweep(scenes, chunk_size=7).equals(whole)
+    assert sweep(scenes, chunk_size=7, chapter_ball=True).equals(whole)
     with pytest.raises(ValueError, match="span does not cover"):
-        sweep(scenes.iloc[:5].assign(b=60.0), span=scenes)
+        sweep(scenes.iloc[:5].assign(b=60.0), span=scenes, chapter_ball=True)

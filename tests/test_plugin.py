@@ -51,7 +51,7 @@ def test_simulate_sweep_and_cli_agree(law, capsys):
     assert ref.cor < 0.9  # the law damps: not mistaken for an elastic or another law
     kv = simulate(Scene(model="kelvin-voigt", b=400.0, angle=30.0))
     assert abs(kv.cor - ref.cor) > 0.01  # and it is not kelvin-voigt
-    table = sweep(grid(angle=[0.0, 30.0, 60.0], speed=[1.0, 3.0]).assign(model=NAME, b=400.0))
+    table = sweep(grid(angle=[0.0, 30.0, 60.0], speed=[1.0, 3.0]).assign(model=NAME, b=400.0), chapter_ball=True)
     for row in table.to_dict("records"):
         one = simulate(Scene(model=NAME, b=400.0, angle=row["angle"], speed=row["speed"]),
                        SolverOptions(rtol=1e-12, atol=1e-12))
@@ -77,7 +77,7 @@ def test_tilted_gravity_and_calibration_reach_the_law(law):
     from sphereimpact.impact.calibrate import calibrate
 
     scene = Scene(model=NAME, b=400.0, angle=20.0, gravity=9.81)
-    row = sweep(grid(angle=[20.0]).assign(model=NAME, b=400.0, gravity=9.81)).iloc[0]
+    row = sweep(grid(angle=[20.0]).assign(model=NAME, b=400.0, gravity=9.81), chapter_ball=True).iloc[0]
     assert row["cor"] == pytest.approx(simulate(scene).cor, rel=1e-8)
     assert calibrate(scene, 0.6).cor == pytest.approx(0.6, rel=1e-9)
 
@@ -111,7 +111,7 @@ def test_a_law_with_a_parameter_of_its_own_is_served_by_every_door(law, capsys):
         assert simulate(scene).cor == pytest.approx(same.cor, rel=1e-9)
         assert Scene(model="grown", b=400.0).growth == 1.0  # its default
         assert Scene(model="grown", b=400.0, parameters={"growth": 2.0}).with_(model=NAME).parameters == {}
-        table = sweep(grid(angle=[0.0, 30.0], growth=[1.0, 2.0]).assign(model="grown", b=400.0))
+        table = sweep(grid(angle=[0.0, 30.0], growth=[1.0, 2.0]).assign(model="grown", b=400.0), chapter_ball=True)
         for row in table.to_dict("records"):
             ref = simulate(Scene(model=NAME, b=400.0 * row["growth"], angle=row["angle"]))
             assert row["cor"] == pytest.approx(ref.cor, rel=1e-8) and row["omega_f"] == pytest.approx(ref.omega_f, rel=1e-8)
@@ -132,7 +132,7 @@ def test_a_capability_the_sweep_lacks_is_refused_not_borrowed():
     LAWS.register(replace(modified, name="own-form", scaled=lambda x, y, n: modified.scaled(x, y, n)))
     try:
         scenes = grid(angle=[0.0, 30.0], speed=[1.0, 3.0])
-        own, chapter = sweep(scenes.assign(model="own-form")), sweep(scenes)
+        own, chapter = sweep(scenes.assign(model="own-form"), chapter_ball=True), sweep(scenes, chapter_ball=True)
         assert set(own["path"]) == {"per-family"} and "per-family" not in set(chapter["path"])
         assert np.allclose(own["cor"], chapter["cor"], rtol=1e-8)
     finally:
@@ -198,7 +198,7 @@ def test_a_registered_tangential_model_is_served_by_simulate_sweep_and_cli(tange
     steep = scene.with_(angle=60.0)  # where the rigid contact slides throughout, half its friction: half its spin
     assert simulate(steep).omega_f == pytest.approx(0.5 * simulate(steep.with_(tangential="rigid")).omega_f, rel=1e-9)
     table = sweep(grid(incidence=[0.0, 30.0, 60.0], speed=[1.0, 3.0], spin=[-40.0, 0.0],
-                       gravity=[0.0, 9.81]).assign(tangential="toy-slide", kappa=0.5))  # a level flat
+                       gravity=[0.0, 9.81]).assign(tangential="toy-slide", kappa=0.5), chapter_ball=True)  # a level flat
     moving = set(table.loc[(table["incidence"] > 0) | (table["spin"] != 0), "path"])  # with tangential motion
     assert moving == ({"single"} if tangential_model.swept is None else {"taylor-lanes", "runge-kutta-lanes"})
     for row in table.to_dict("records"):
@@ -337,13 +337,13 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
             simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="closed")).to_dict() | {
                 "wall_time": 0, "model": 0}
         scenes = grid(angle=[0.0, 30.0, 60.0], speed=[1.0, 3.0], b=[5.0, 50.0])
-        mixed = sweep(scenes.assign(model=["kv-again", "kelvin-voigt"] * 6))
-        alone = sweep(scenes.assign(model="kelvin-voigt"))
+        mixed = sweep(scenes.assign(model=["kv-again", "kelvin-voigt"] * 6), chapter_ball=True)
+        alone = sweep(scenes.assign(model="kelvin-voigt"), chapter_ball=True)
         assert set(mixed["path"]) == {"closed"} and sum(calls) == 6
         assert mixed.drop(columns="model").equals(alone.drop(columns="model"))
-        events_only = sweep(scenes.assign(model="kv-events"))
+        events_only = sweep(scenes.assign(model="kv-events"), chapter_ball=True)
         assert set(events_only["path"]) == {"runge-kutta-lanes"}
-        assert set(sweep(scenes.assign(model="kv-events"), outputs=FAST_OUTPUTS)["path"]) == {"closed"}
+        assert set(sweep(scenes.assign(model="kv-events"), outputs=FAST_OUTPUTS, chapter_ball=True)["path"]) == {"closed"}
         for key in ("t_roll", "force_max", "force_min", "omega_f", "cor"):
             assert np.allclose(events_only[key], alone[key], rtol=1e-8, atol=1e-9 * alone["force_max"].max(),
                                equal_nan=True), key
@@ -395,7 +395,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_api(share_slid
     assert 3.5 < errors[0] / errors[1] < 4.5 and 3.5 < errors[1] / errors[2] < 4.5
     # a sweep reads the parameter as a column, row by row, and the setting as simulate does
     table = sweep(grid(incidence=[20.0, 45.0], speed=[1.0, 3.0], slide_share=[0.2, 0.9]).assign(
-        tangential="share-slide"), settings={"trapezoid_steps": 16})
+        tangential="share-slide"), settings={"trapezoid_steps": 16}, chapter_ball=True)
     assert list(table.columns[:len(table.columns)]).count("slide_share") == 1
     for row in table.to_dict("records"):
         one = simulate(Scene(incidence=row["incidence"], speed=row["speed"], tangential="share-slide",
@@ -412,9 +412,9 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_api(share_slid
      "slide_share is not a parameter of model 'modified' or tangential 'rigid'; their own parameters: none"),
     (lambda: SolverOptions(settings={"trapezoid_steps": 1}), r"trapezoid_steps must be an integer in \[2, 1000000\]"),
     (lambda: SolverOptions(settings={"cells": 4}), "cells is not a setting of any tangential model"),
-    (lambda: sweep(grid(angle=[30.0], slide_share=[0.5])),
+    (lambda: sweep(grid(angle=[30.0], slide_share=[0.5]), chapter_ball=True),
      r"slide_share is not a parameter of model 'modified' or tangential 'rigid' \(row 0\)"),
-    (lambda: sweep(grid(angle=[30.0]).assign(tangential="share-slide")),
+    (lambda: sweep(grid(angle=[30.0]).assign(tangential="share-slide"), chapter_ball=True),
      r"slide_share is required by tangential 'share-slide': .* \(row 0\)"),
 ])
 def test_an_own_parameter_or_setting_out_of_place_is_refused(share_slide, make, message):
@@ -523,7 +523,7 @@ def test_a_model_that_does_not_declare_itself_scale_free_is_solved_scene_by_scen
     """The similar-scenes path takes only models that declare ``scale_free``: the plug-in's scenes, alike but for
     their speed, each go to simulate; a built-in compliant model's share one solve."""
     table = grid(incidence=[30.0], speed=[1.0, 2.0, 4.0])
-    plugin = sweep(table.assign(tangential="share-slide", slide_share=0.5))
+    plugin = sweep(table.assign(tangential="share-slide", slide_share=0.5), chapter_ball=True)
     assert set(plugin["path"]) == {"single"}
-    builtin = sweep(table.assign(model="hertz", modulus=1e8, tangential="mindlin", kappa=0.8))
+    builtin = sweep(table.assign(model="hertz", modulus=1e8, tangential="mindlin", kappa=0.8), chapter_ball=True)
     assert set(builtin["path"]) == {"similar"}

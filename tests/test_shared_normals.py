@@ -103,9 +103,9 @@ def test_a_sweep_inside_the_block_is_the_sweep_outside():
     block, the second time on shared motions: the same table as outside."""
     table = pd.DataFrame([scene.as_dict() for scene in _scenes(seed=1, per_problem=6)])
     table = table.drop(columns=[c for c in table if table[c].isna().all()])
-    outside = sweep(table)
+    outside = sweep(table, chapter_ball=True)
     with reusing_normal_motions():
-        first, second = sweep(table), sweep(table)
+        first, second = sweep(table, chapter_ball=True), sweep(table, chapter_ball=True)
     pd.testing.assert_frame_equal(first, outside)
     pd.testing.assert_frame_equal(second, outside)
 
@@ -135,7 +135,7 @@ def test_a_sweep_over_spin_solves_each_normal_problem_once(monkeypatch):
     monkeypatch.setattr(solve, "normal_motion", lambda scene, options: calls.append(scene) or normal_motion(scene, options))
     table = pd.DataFrame({"incidence": np.repeat([10.0, 30.0, 60.0], 5), "spin": np.tile(np.linspace(-200, 200, 5), 3)})
     table = table.assign(speed=3.0, model="hunt-crossley", modulus=2e7, chi=0.05, tangential="microslip", kappa=0.8)
-    swept = sweep(table)
+    swept = sweep(table, chapter_ball=True)
     assert set(swept["path"]) == {"single"} and len(calls) == 3
     options = single_options(1e-8)
     for row, (_, scene) in zip(swept.itertuples(), table.iterrows()):

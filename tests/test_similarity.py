@@ -58,9 +58,9 @@ def test_failed_check_falls_back_to_integration(monkeypatch):
     with pytest.raises(similarity.InterpolationError, match="did not reach"):
         similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, Separation.FORCE, 1e-8)
     monkeypatch.setattr("sphereimpact.sweep.paths.SIMILARITY_MIN", 100)
-    fallback = sweep(scenes, outputs=["cor"])
+    fallback = sweep(scenes, outputs=["cor"], chapter_ball=True)
     monkeypatch.undo()
-    direct = sweep(scenes, outputs=["cor"])  # 1800 scenes: below SIMILARITY_MIN, integrated directly
+    direct = sweep(scenes, outputs=["cor"], chapter_ball=True)  # 1800 scenes: below SIMILARITY_MIN, integrated directly
     assert np.array_equal(fallback["cor"].to_numpy(), direct["cor"].to_numpy())
 
 
@@ -103,9 +103,9 @@ def test_family_interpolated_sweep_keeps_shards_equal_and_meets_the_contract(mon
         model="linear-hunt-crossley", k=6.0e4, chi=0.05)
     built = []
     monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a, **k: built.append(a) or similarity.FamilyInterpolant(*a, **k))
-    whole = sweep(scenes)
+    whole = sweep(scenes, chapter_ball=True)
     assert len(built) == 1  # 450 distinct chi v_n >= FAMILY_MIN: one interpolant
-    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    shards = [sweep(scenes.iloc[i], span=scenes, chapter_ball=True) for i in np.array_split(np.arange(len(scenes)), 3)]
     assert pd.concat(shards, ignore_index=True).equals(whole)
     keys = ["t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t"]
     for row in whole.iloc[::37].to_dict("records"):
@@ -132,7 +132,7 @@ def test_random_balls_of_a_kernel_less_law_meet_the_contract(model, monkeypatch)
                            "angle": rng.uniform(0, 85, n), "separation": rng.choice(["force", "penetration"], n)})
     built = []
     monkeypatch.setattr(paths, "FamilyInterpolant", lambda *a, **k: built.append(a) or similarity.FamilyInterpolant(*a, **k))
-    table = sweep(scenes)
+    table = sweep(scenes, chapter_ball=True)
     assert len(built) == 2
     keys = ["t_m", "delta_m", "t_f", "cor", "omega_f", "ve_t"]
     for row in table.iloc[::25].to_dict("records"):

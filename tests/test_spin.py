@@ -117,18 +117,18 @@ def test_with_keeps_one_description():
 
 
 def test_the_sweep_matches_simulate_with_spin_and_paths(capsys):
-    table = sweep(grid(angle_to_surface=[10.0, 45.0, 80.0], spin=[-300.0, 0.0, 300.0]))
+    table = sweep(grid(angle_to_surface=[10.0, 45.0, 80.0], spin=[-300.0, 0.0, 300.0]), chapter_ball=True)
     for row in table.to_dict("records"):
         one = simulate(Scene(angle_to_surface=row["angle_to_surface"], spin=row["spin"]))
         for key in OUTPUTS:
             assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
         assert row["regime"] == one.regime
-    compliant = sweep(grid(angle=[20.0], spin=[-300.0, 300.0]).assign(tangential="linear", poisson=0.5))
+    compliant = sweep(grid(angle=[20.0], spin=[-300.0, 300.0]).assign(tangential="linear", poisson=0.5), chapter_ball=True)
     for row in compliant.to_dict("records"):
         one = simulate(Scene(angle=20.0, spin=row["spin"], tangential="linear", poisson=0.5))
         assert row["omega_f"] == pytest.approx(one.omega_f, rel=1e-8)
     with pytest.raises(ValueError, match=r"not both.*\(row 0\)"):
-        sweep({"angle": [10.0], "incidence": [20.0]})
+        sweep({"angle": [10.0], "incidence": [20.0]}, chapter_ball=True)
     assert run(["simulate", "--angle-to-surface", "16", "--speed", "20", "--spin", "300", "--json"]) == 0
     assert run(["simulate", "--angle", "10", "--incidence", "20"]) == 2
     assert "give the flat's tilt" in capsys.readouterr().err

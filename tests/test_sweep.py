@@ -58,13 +58,13 @@ def varied(n: int, seed: int = 1, gravity: bool = True) -> pd.DataFrame:
 
 
 def test_contract_batched_integrator_with_per_lane_parameters():
-    assert_contract(sweep(varied(400)), sample=120)
+    assert_contract(sweep(varied(400), chapter_ball=True), sample=120)
 
 
 @pytest.mark.parametrize("target", [1e-3, 1e-6, 1e-10])
 def test_contract_holds_across_the_target_range(target):
     """Loose targets still take a dozen steps per contact and resolve the ramp (steps are capped)."""
-    assert_contract(sweep(varied(150, seed=7, gravity=False), target=target), sample=60, target=target)
+    assert_contract(sweep(varied(150, seed=7, gravity=False), target=target, chapter_ball=True), sample=60, target=target)
 
 
 @pytest.mark.parametrize("target", [1e-6, 1e-8, 1e-10])
@@ -92,7 +92,7 @@ def test_large_lam_with_gravity_leaves_the_runge_kutta_lanes():
     lam = np.logspace(2, 4, 200)
     scenes = [scene_for(0.01, q, "penetration") for q in lam]
     table = sweep(pd.DataFrame({"b": [s.b for s in scenes], "speed": [s.speed for s in scenes],
-                                "gravity": 9.81, "separation": "penetration"}))
+                                "gravity": 9.81, "separation": "penetration"}), chapter_ball=True)
     assert (table["path"] == np.where(lam > LANES_LAM_MAX, "single", "runge-kutta-lanes")).all()
     assert_contract(table[lam > 2e3], sample=4)
 
@@ -100,25 +100,26 @@ def test_large_lam_with_gravity_leaves_the_runge_kutta_lanes():
 def test_contract_similarity_path_for_one_ball():
     scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
     assert len(scenes) >= SIMILARITY_MIN
-    assert_contract(sweep(scenes, outputs=FAST), sample=60)
+    assert_contract(sweep(scenes, outputs=FAST, chapter_ball=True), sample=60)
 
 
 @pytest.mark.parametrize("target", [1e-4, 1e-6, 1e-10])
 def test_contract_similarity_path_across_the_target_range(target):
     scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.1, 30.01, 0.5), separation=["force", "penetration"])
-    assert_contract(sweep(scenes, target=target, outputs=FAST), sample=30, seed=2, target=target)
+    assert_contract(sweep(scenes, target=target, outputs=FAST, chapter_ball=True), sample=30, seed=2, target=target)
 
 
 def test_contract_closed_form_path():
     scenes = grid(angle=np.arange(0, 90, 3.0), speed=np.arange(0.5, 30.01, 2.5), b=[0.0, 10.5, 80.0])
-    assert_contract(sweep(scenes.assign(model="kelvin-voigt")), sample=40)
+    assert_contract(sweep(scenes.assign(model="kelvin-voigt"), chapter_ball=True), sample=40)
 
 
 def test_results_do_not_depend_on_chunk_size():
     scenes = varied(300, seed=3, gravity=False)
-    assert sweep(scenes, chunk_size=7).equals(sweep(scenes, chunk_size=300))
+    assert sweep(scenes, chunk_size=7, chapter_ball=True).equals(sweep(scenes, chunk_size=300, chapter_ball=True))
     few = scenes.iloc[:12]
-    assert sweep(few, chunk_size=1).equals(sweep(few, chunk_size=12))  # one lane per batch, too
+    # one lane per batch, too
+    assert sweep(few, chunk_size=1, chapter_ball=True).equals(sweep(few, chunk_size=12, chapter_ball=True))
 
 
 @pytest.mark.parametrize("width", [1, 2, 7, 8, 33, 1000])
@@ -136,12 +137,13 @@ def test_stage_sums_are_sequential_whatever_the_batch_width(width):
 
 def test_merged_shards_equal_the_whole_sweep():
     scenes = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
-    whole = sweep(scenes, outputs=FAST)
-    shards = [sweep(scenes.iloc[i], span=scenes, outputs=FAST) for i in np.array_split(np.arange(len(scenes)), 3)]
+    whole = sweep(scenes, outputs=FAST, chapter_ball=True)
+    shards = [sweep(scenes.iloc[i], span=scenes, outputs=FAST, chapter_ball=True)
+              for i in np.array_split(np.arange(len(scenes)), 3)]
     assert pd.concat(shards, ignore_index=True).equals(whole)
     few = scenes.iloc[::97]  # the per-family outputs too, shard by shard
-    assert pd.concat([sweep(few.iloc[i], span=few) for i in np.array_split(np.arange(len(few)), 3)],
-                     ignore_index=True).equals(sweep(few))
+    assert pd.concat([sweep(few.iloc[i], span=few, chapter_ball=True) for i in np.array_split(np.arange(len(few)), 3)],
+                     ignore_index=True).equals(sweep(few, chapter_ball=True))
 
 
 @pytest.mark.parametrize("scenes", [
@@ -154,16 +156,16 @@ def test_merged_shards_equal_the_whole_sweep():
 def test_history_outputs_on_every_path(scenes):
     """t_roll, force_min and force_max from one solve per dimensionless family, scaled to each scene, equal
     simulate's on every fast path; the fast outputs alone leave those columns out."""
-    table = sweep(scenes)
+    table = sweep(scenes, chapter_ball=True)
     assert_contract(table, sample=len(table))
-    assert not set(HISTORY_OUTPUTS) & set(sweep(scenes, outputs=FAST).columns)
-    assert list(sweep(scenes, outputs=["cor"]).columns) == [*SCENE_COLUMNS, "cor", "path"]
+    assert not set(HISTORY_OUTPUTS) & set(sweep(scenes, outputs=FAST, chapter_ball=True).columns)
+    assert list(sweep(scenes, outputs=["cor"], chapter_ball=True).columns) == [*SCENE_COLUMNS, "cor", "path"]
     with pytest.raises(ValueError, match="outputs must be some of"):
-        sweep(scenes, outputs=["spin_rate"])
+        sweep(scenes, outputs=["spin_rate"], chapter_ball=True)
 
 
 def test_table_layout():
-    table = sweep({"angle": [0.0, 30.0, 60.0]})
+    table = sweep({"angle": [0.0, 30.0, 60.0]}, chapter_ball=True)
     assert list(table.columns) == [*SCENE_COLUMNS, *SWEEP_OUTPUTS, "path"]
     assert list(table["regime"]) == ["none", "rolling", "sliding"]
 
@@ -180,7 +182,7 @@ def test_table_layout():
 ])
 def test_bad_scene_tables_name_the_parameter(scenes, message):
     with pytest.raises(ValueError, match=message):
-        sweep(scenes)
+        sweep(scenes, chapter_ball=True)
 
 
 def test_one_table_however_its_rows_are_described():
@@ -195,21 +197,21 @@ def test_one_table_however_its_rows_are_described():
         "k": [np.nan, 6e4, 1.2e6, np.nan, np.nan, np.nan],
         "modulus": [np.nan, np.nan, np.nan, 1e7, 1e7, np.nan],
         "mass": [np.nan, 0.1, 0.145, np.nan, 0.2, 0.145]})
-    swept = sweep(table)
+    swept = sweep(table, chapter_ball=True)
     for i, row in table.iterrows():
         given = {k: v for k, v in row.items() if v is not None and v == v}
-        alone = sweep(pd.DataFrame([given])).iloc[0]
+        alone = sweep(pd.DataFrame([given]), chapter_ball=True).iloc[0]
         assert list(swept[list(SCENE_COLUMNS)].iloc[i].dropna()) == list(alone[list(SCENE_COLUMNS)].dropna())
         scene = Scene(**given)
         one = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12)).to_dict()
         for got in (swept.iloc[i], alone):  # the same scene, within the target, alone or with the others
             assert max(relative_errors(got, one, scene, KEYS).values()) <= CONTRACT, i
-    assert swept.equals(sweep(swept[list(SCENE_COLUMNS)]))
+    assert swept.equals(sweep(swept[list(SCENE_COLUMNS)], chapter_ball=True))
 
 
 def test_never_separating_scene_is_an_error():
     with pytest.raises(ImpactError, match="no separation"):
-        sweep({"model": ["kelvin-voigt"], "b": [500.0], "separation": ["penetration"]})
+        sweep({"model": ["kelvin-voigt"], "b": [500.0], "separation": ["penetration"]}, chapter_ball=True)
 
 
 def test_parse_range():
@@ -270,8 +272,8 @@ def test_slow_lanes_go_to_the_single_impact_path():
 
 def test_a_slow_lane_sent_alone_keeps_shards_equal_and_meets_the_contract():
     scenes = _stiff_mix()
-    whole = sweep(scenes)
-    shards = [sweep(scenes.iloc[i], span=scenes) for i in np.array_split(np.arange(len(scenes)), 3)]
+    whole = sweep(scenes, chapter_ball=True)
+    shards = [sweep(scenes.iloc[i], span=scenes, chapter_ball=True) for i in np.array_split(np.arange(len(scenes)), 3)]
     assert pd.concat(shards, ignore_index=True).equals(whole)
     assert_contract(whole.iloc[-3:], sample=3)
 
@@ -322,19 +324,19 @@ def test_lists_mean_every_combination_in_the_api_and_on_the_command_line(tmp_pat
     out = tmp_path / "grid.csv"
     assert run(["sweep", "--chapter-ball", "--angle", "30:45:15", "--speed", "3:20:17", "--out", str(out)]) == 0
     cli = pd.read_csv(out)
-    api = sweep({"angle": [30.0, 45.0], "speed": [3.0, 20.0]})
+    api = sweep({"angle": [30.0, 45.0], "speed": [3.0, 20.0]}, chapter_ball=True)
     assert len(api) == len(cli) == 4
     np.testing.assert_allclose(api["omega_f"], cli["omega_f"], rtol=1e-15)
     from sphereimpact.sweep import rows
 
-    assert len(sweep(rows(angle=[30.0, 45.0], speed=[3.0, 20.0]))) == 2
+    assert len(sweep(rows(angle=[30.0, 45.0], speed=[3.0, 20.0]), chapter_ball=True)) == 2
 
 
 def test_the_path_column_names_the_path_that_solved_each_row():
     """Each row says which path solved it, and that path is the one the engine's rules give the row."""
     from sphereimpact.sweep.engine import PATHS
 
-    paths = {name: list(sweep(scenes)["path"]) for name, scenes in {
+    paths = {name: list(sweep(scenes, chapter_ball=True)["path"]) for name, scenes in {
         "closed": grid(angle=[0.0, 30.0], speed=[1.0, 3.0], model="kelvin-voigt"),  # linear, no gravity
         "taylor-lanes": grid(angle=[30.0], speed=[1.0, 3.0], model="modified"),  # a few modified scenes
         "single": grid(angle=[30.0], speed=[3.0], tangential="linear", kappa=0.7),  # compliant: one by one
@@ -342,5 +344,5 @@ def test_the_path_column_names_the_path_that_solved_each_row():
     }.items()}
     assert paths == {"closed": ["closed"] * 4, "taylor-lanes": ["taylor-lanes"] * 2, "single": ["single"],
                      "per-family": ["per-family"]}
-    many = sweep(grid(angle=[30.0], speed=np.linspace(0.5, 30.0, SIMILARITY_MIN)), outputs=["cor"])  # many lam
+    many = sweep(grid(angle=[30.0], speed=np.linspace(0.5, 30.0, SIMILARITY_MIN)), outputs=["cor"], chapter_ball=True)  # many lam
     assert set(many["path"]) == {"lambda-interpolant"} and set(paths) <= set(PATHS)

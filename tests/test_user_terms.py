@@ -9,9 +9,11 @@ import textwrap
 
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
-from sphereimpact import Scene, load_ball, save_ball
+from sphereimpact import Scene, load_ball, save_ball, simulate
 from sphereimpact.cli import run
 from sphereimpact.impact.ball import Ball
 
@@ -123,6 +125,32 @@ def test_the_api_says_which_parts_of_the_ball_are_the_chapters(capsys):
     assert run(["simulate", "--json", "--mass", "0.2", "--cor", "0.7"]) == 0
     said = capsys.readouterr().err
     assert "(diameter 0.063 m, k 60000 N/m); describe yours with --diameter, --k or --contact-time" in said
+
+
+def test_the_api_sweep_refuses_a_ball_it_was_not_given():
+    """Before: sweep() of a table without mass or diameter swept the chapter's 145 g, 63 mm ball without a word, where
+    the command line's sweep refused it (issue 42 item 1).  Now the API refuses, naming the first row and what it
+    lacks, and takes the chapter's ball only when asked; the answer asked for is the described ball's."""
+    from sphereimpact.sweep import sweep
+
+    chapter = {"mass": 0.145, "diameter": 0.063, "k": 6e4, "b": 10.5}
+    with pytest.raises(ValueError, match=r"row 0 lacks mass, diameter, k, b \("):
+        sweep({"angle": [30.0]})
+    with pytest.raises(ValueError, match=r"row 0 lacks b \("):
+        sweep({"angle": [30.0], **{n: v for n, v in chapter.items() if n != "b"}})
+    table = pd.DataFrame({"angle": [30.0, 40.0, 50.0], "mass": [0.145, 0.145, np.nan], "diameter": 0.063})
+    with pytest.raises(ValueError, match=r"row 2 lacks mass"):  # an empty cell: that row is silent
+        sweep(table.assign(k=6e4, b=10.5))
+    with pytest.raises(ValueError, match=r"row 1 lacks k \("):  # per row, per law
+        sweep(table.iloc[:2].assign(model=["hertz", "modified"], k=[1e7, np.nan], b=10.5))
+    hertz = sweep({"angle": [30.0], "mass": 0.1, "diameter": 0.05, "model": "hertz", "modulus": 1e8})
+    assert hertz["mass"].iloc[0] == 0.1  # a law without the chapter's defaults needs only the ball
+    described = sweep({"angle": [30.0], **chapter})
+    asked = sweep({"angle": [30.0]}, chapter_ball=True)
+    assert described.equals(asked)
+    assert asked["vc_t"].iloc[0] == pytest.approx(simulate(Scene(angle=30.0)).vc_t, rel=1e-8)
+    with pytest.raises(ValueError, match="chapter_ball must be True or False"):
+        sweep({"angle": [30.0]}, chapter_ball="yes")
 
 
 def long_table(tmp_path, rows, columns="quantity,incidence_deg,value"):
@@ -313,7 +341,7 @@ def test_a_partner_rows_ball_is_checked_as_given_whatever_the_other_rows_leave_e
     for name, bad, shown in (("mass", -0.5, "got -0.5 (row 0)"), ("diameter", -0.063, "got -0.063 (row 0)"),
                              ("inertia_factor", 5.0, "got 5.0 (row 0)")):
         with pytest.raises(ValueError, match=rf"{name} must be .*{re.escape(shown)}"):
-            sweep(pd.DataFrame([pair | {name: bad}, pair | {name: np.nan}]), outputs=["cor"])
+            sweep(pd.DataFrame([pair | {name: bad}, pair | {name: np.nan}]), outputs=["cor"], chapter_ball=True)
 
 
 def test_an_empty_gravity_cell_on_a_partner_row_is_the_default():
@@ -326,7 +354,7 @@ def test_an_empty_gravity_cell_on_a_partner_row_is_the_default():
 
     rows = [dict(angle=30.0, speed=3.0, gravity=9.80665, partner_mass=np.nan, partner_diameter=np.nan),
             dict(angle=30.0, speed=3.0, gravity=np.nan, partner_mass=0.3, partner_diameter=0.1)]
-    table = sweep(pd.DataFrame(rows), outputs=["cor", "vc_t", "omega_f", "partner_vc_n"])
+    table = sweep(pd.DataFrame(rows), outputs=["cor", "vc_t", "omega_f", "partner_vc_n"], chapter_ball=True)
     flat = simulate(Scene(angle=30.0, gravity=9.80665))
     partner = simulate(Scene(angle=30.0, partner_mass=0.3, partner_diameter=0.1))
     for row, out in ((0, flat), (1, partner)):
@@ -349,7 +377,7 @@ def test_a_ball_no_ball_resembles_is_flagged_with_its_likely_unit_slip(capsys):
     with pytest.warns(UnitWarning, match="partner sphere's mean density"):
         Scene(partner_mass=300.0, partner_diameter=0.1)
     with pytest.warns(UnitWarning, match=r"\(2 of 3 rows, the first row 1\)") as swept:
-        sweep(pd.DataFrame({"mass": [0.0459, 45.9, 45.9], "diameter": [0.0427, 42.7, 42.7]}), outputs=["cor"])
+        sweep(pd.DataFrame({"mass": [0.0459, 45.9, 45.9], "diameter": [0.0427, 42.7, 42.7]}), outputs=["cor"], chapter_ball=True)
     assert len([w for w in swept if w.category is UnitWarning]) == 1  # once for the table, not once per row
     assert run(["simulate", "--mass", "45.9", "--diameter", "42.7", "--model", "hertz", "--modulus", "1e8"]) == 0
     assert f"sphereimpact: warning: {said[0].message}" in capsys.readouterr().err  # the API's words, one line
@@ -379,7 +407,7 @@ def test_the_api_warns_where_the_command_line_does(tmp_path, capsys):
     energetic = {"incidence": [20.0, 40.0], "speed": 5.0, "model": "hertz", "modulus": 1e7,  # test_f14's scene
                  "tangential": "mindlin-displacement", "kappa": 0.99, "mu": 0.65}
     with pytest.warns(EnergyGainWarning, match=r"in 1 of 2 scenes the tangential model made energy") as gained:
-        sweep(energetic)
+        sweep(energetic, chapter_ball=True)
     out = tmp_path / "e.csv"
     args = ["sweep", "--chapter-ball", "--incidence", "20:40:20", "--speed", "5", "--model", "hertz", "--modulus", "1e7",
             "--tangential", "mindlin-displacement", "--kappa", "0.99", "--mu", "0.65", "--out", str(out)]
@@ -404,7 +432,7 @@ def test_a_linear_spring_at_a_force_that_closes_at_separation_does_not_chatter(s
     for out in outs[:2]:
         assert out.vc_t == pytest.approx(outs[2].vc_t, rel=1e-6) and out.omega_f == pytest.approx(outs[2].omega_f, rel=1e-6)
     row = sweep({key: [value] for key, value in spec.items()} | dict(model="modified", b=40.0, separation="penetration",
-                                                                     tangential="linear"))
+                                                                     tangential="linear"), chapter_ball=True)
     one = simulate(scene)
     assert row["regime"][0] == one.regime and row["vc_t"][0] == pytest.approx(one.vc_t, rel=1e-7)
 
@@ -436,7 +464,7 @@ def test_the_single_path_keeps_one_chunk_of_outcomes_at_a_time(monkeypatch):
 
     monkeypatch.setattr(paths, "simulate_many", counting)
     table = pd.DataFrame({"angle": np.linspace(5.0, 60.0, 2 * paths.SINGLES_CHUNK + 10), "gravity": 9.80665})
-    out = sweep(table, outputs=["vc_t", "omega_f"])
+    out = sweep(table, outputs=["vc_t", "omega_f"], chapter_ball=True)
     assert set(out["path"]) == {"single"} and len(seen) == 3 and seen == [0, 0, 0]
     for i in (0, len(table) - 1):
         one = simulate(Scene(angle=float(table["angle"][i]), gravity=9.80665))
@@ -563,7 +591,7 @@ def test_the_similar_path_scales_every_numeric_output_as_simulate_gives_it():
     ball = dict(model="hertz", k=1e7, tangential="microslip", kappa=0.8, mu=0.3, incidence=30.0)
     import pandas as pd
 
-    table = sweep(pd.DataFrame({"speed": [3.0, 6.0]} | {key: [value] * 2 for key, value in ball.items()}))
+    table = sweep(pd.DataFrame({"speed": [3.0, 6.0]} | {key: [value] * 2 for key, value in ball.items()}), chapter_ball=True)
     assert table["path"].tolist() == ["similar", "similar"]
     for row in (0, 1):
         one = simulate(Scene(speed=float(table["speed"][row]), **ball))
@@ -590,6 +618,6 @@ def test_a_pair_sweep_judges_each_body_not_their_reduced_sphere():
     real = dict(angle=30.0, mass=0.145, diameter=0.063)  # 1107 kg/m^3: a ball; the partner a steel ball
     with warnings.catch_warnings():
         warnings.simplefilter("error", UnitWarning)
-        sweep(pd.DataFrame([real | dict(partner_mass=0.5, partner_diameter=0.0496)]), outputs=["cor"])
+        sweep(pd.DataFrame([real | dict(partner_mass=0.5, partner_diameter=0.0496)]), outputs=["cor"], chapter_ball=True)
     with pytest.warns(UnitWarning, match="the partner sphere.s mean density is 7.83e\\+06"):
-        sweep(pd.DataFrame([real | dict(partner_mass=500.0, partner_diameter=0.0496)]), outputs=["cor"])
+        sweep(pd.DataFrame([real | dict(partner_mass=500.0, partner_diameter=0.0496)]), outputs=["cor"], chapter_ball=True)

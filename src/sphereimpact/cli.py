@@ -572,7 +572,7 @@ def _sweep(args) -> None:
     elif measurement is not None:  # a ball file's: calibrate_table says it for --cor
         warn_if_extrapolating(table, measurement)
     tty = sys.stderr.isatty()
-    result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs,
+    result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs, chapter_ball=args.chapter_ball,
                    progress=_Progress(start) if tty else None, settings=settings)
     write_table(result, args.out)
     seconds = time.perf_counter() - start

@@ -97,7 +97,7 @@ def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sampl
 
 def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders, every_output, memory) -> dict:
     log.info("sweep bench: %s (%d scenes)", name, len(scenes))
-    table = sweep(scenes, outputs=FAST_OUTPUTS)
+    table = sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)  # the chapter's ball where the scenes are silent
     pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)), replace=False))
     outputs = table.iloc[pick].to_dict("records")
     sample = [_scene(row) for row in outputs]
@@ -107,15 +107,15 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contender
     error = _worst(outputs, refs, sample)
     chosen = {label: per_scene(solve, sample, refs, max(error, TOLERANCES[-1])) for label, solve in contenders.items()}
     # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
-    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS)} | (
-        {"engine_all": lambda: sweep(scenes)} if every_output else {}) | {
+    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)} | (
+        {"engine_all": lambda: sweep(scenes, chapter_ball=True)} if every_output else {}) | {
         label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
         for label, solve in contenders.items()}
     seconds = interleaved_seconds(calls, repeats)
     peak = math.nan
     if memory:
         tracemalloc.start()  # a separate run: tracing allocations slows numpy, so it is kept out of the timing
-        sweep(scenes, outputs=FAST_OUTPUTS)
+        sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)
         peak = tracemalloc.get_traced_memory()[1]
         tracemalloc.stop()
     throughput = n / seconds["engine"]

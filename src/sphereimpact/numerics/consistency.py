@@ -233,7 +233,7 @@ def compare(table: pd.DataFrame, reference: pd.DataFrame, swept: pd.DataFrame | 
     restricted to some paths) are left out."""
     if (reference["refused"] != "").any():
         raise ValueError("compare: leave out the scenes simulate refuses (reference['refused'])")
-    swept = sweep(table, target=target) if swept is None else swept
+    swept = sweep(table, target=target, chapter_ball=True) if swept is None else swept  # as simulate takes them
     taken = np.flatnonzero(swept["path"].to_numpy() != "")
     got, ref = swept.iloc[taken].reset_index(drop=True), reference.iloc[taken].reset_index(drop=True).copy()
     alone = single_options(target)

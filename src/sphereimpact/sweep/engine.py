@@ -30,7 +30,7 @@ from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Work, single_options
 from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, grid, incidence, numbers, rows, scene_of,
-                     scene_table)
+                     scene_table, undescribed_row)
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
@@ -44,7 +44,7 @@ FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
-          outputs=None, settings=None, paths=None) -> pd.DataFrame:
+          outputs=None, settings=None, paths=None, chapter_ball: bool = False) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -53,7 +53,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
         ``separation``, ``tangential``, ``kappa``, ``spin``, ...) or a model's own parameters; missing ones take
-        the chapter's defaults.  ``partner_mass`` and ``partner_diameter`` (``partner_inertia_factor``,
+        their defaults, but the ball is the user's: each row gives ``mass`` and ``diameter`` and, for a law whose
+        defaults are the chapter's (``modified``, ``kelvin-voigt``), its stiffness and damping, unless
+        ``chapter_ball``.  ``partner_mass`` and ``partner_diameter`` (``partner_inertia_factor``,
         ``partner_spin``) give a row a partner sphere instead of the flat (empty cells: the flat): the table then
         gains the partner's outputs (:mod:`.pairs`).
         A DataFrame is one scene per row (:func:`rows` builds one from paired lists); a dict of values or
@@ -78,6 +80,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Only these paths (names of :data:`PATHS`, in their precedence), for studies of a path alone: a row
         none of them takes is left empty (NaN outputs, ``path`` ''), where the default (every path) solves
         every row.
+    chapter_ball : bool
+        Take the chapter's ball (0.145 kg, 0.063 m, k = 60000 N/m, b = 10.5 N s/m) where a row is silent (default
+        False: such a row is refused, as on the command line; only ``simulate`` takes the chapter's ball unasked).
 
     Returns
     -------
@@ -89,7 +94,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     Raises
     ------
     ValueError
-        A parameter out of range (naming it and the first bad row), or a bad target or chunk size.
+        A parameter out of range (naming it and the first bad row), a row that does not describe its ball (unless
+        ``chapter_ball``), or a bad target or chunk size.
     ImpactError
         A scene that never separates.
     """
@@ -98,9 +104,17 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
+    if not isinstance(chapter_ball, (bool, np.bool_)):
+        raise ValueError(f"chapter_ball must be True or False; got {chapter_ball!r}")
+    silent = None if chapter_ball else undescribed_row(scenes)
+    if silent is not None:
+        row, missing = silent
+        raise ValueError(f"sweep: describe your ball: row {row} lacks {', '.join(missing)} (a column each, its cell "
+                         "filled; a measured COR through calibrate_table; or chapter_ball=True for the chapter's); "
+                         "only simulate takes the chapter's ball unasked")
     if has_partner(scenes) or (span is not None and has_partner(span)):  # each pair as its reduced sphere
         return pair_sweep(sweep, scenes, target=target, chunk_size=chunk_size, progress=progress, span=span,
-                          outputs=outputs, settings=settings, paths=paths)
+                          outputs=outputs, settings=settings, paths=paths, chapter_ball=True)  # described
     wanted = outputs_wanted(outputs)
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_table(scenes)

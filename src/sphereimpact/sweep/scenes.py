@@ -87,6 +87,48 @@ def scene_table(scenes) -> pd.DataFrame:
     return frame
 
 
+def undescribed_row(scenes) -> tuple[int, list[str]] | None:
+    """The first row of ``scenes`` (a sweep's table or dict, as given) whose ball the table does not describe, and
+    what it lacks (:func:`~sphereimpact.impact.ball.undescribed`: mass, diameter, and a chapter law's stiffness and
+    damping, given by a column with the row's cell filled); None when every row describes its ball.  A dict names
+    the row of its grid's first combination."""
+    from ..impact.ball import undescribed
+
+    if isinstance(scenes, dict):
+        given = {name for name, values in scenes.items() if not pd.isna(pd.Series(np.ravel(
+            np.asarray(values, dtype=object)), dtype=object)).any()}
+        models = pd.unique(np.ravel(np.asarray(scenes.get("model", DEFAULTS["model"]), dtype=object)))
+        for model in models:
+            missing = undescribed(given, model if isinstance(model, str) else DEFAULTS["model"])
+            if missing:
+                return 0, _as_columns(missing)
+        return None
+    table = given_table(scenes)
+    named = [name for name in table.columns if name not in ("model", *PARTNER_FIELDS)]
+    filled = {name: table[name].notna().to_numpy() for name in named}
+    model = (table["model"].fillna(DEFAULTS["model"]).to_numpy(dtype=object) if "model" in table
+             else _objects(len(table), DEFAULTS["model"]))
+    if all(cells.all() for cells in filled.values()):  # the common table: every cell filled, one check per law
+        firsts = pd.Series(model).drop_duplicates()
+        patterns = {i: set(named) for i in firsts.index}
+    else:
+        cells = pd.DataFrame(filled).assign(model=model).drop_duplicates()
+        patterns = {i: {name for name in named if row[name]} for i, row in zip(cells.index, cells.to_dict("records"))}
+    for i, given in patterns.items():
+        if model[i] in LAWS:  # an unknown law is refused by the scene checks, naming its row
+            missing = undescribed(given, model[i])
+            if missing:
+                return int(i), _as_columns(missing)
+    return None
+
+
+def _as_columns(missing: list[str]) -> list[str]:
+    """Parts of a description (``"k or contact_time"``) as the columns of a sweep's table that give them: a measured
+    COR or contact time is no column (:func:`~.calibrate.calibrate_table` turns it into the damping or k)."""
+    columns = set(SCENE_COLUMNS) | set(own_parameters())
+    return [" or ".join(name for name in part.split(" or ") if name in columns) for part in missing]
+
+
 def given_table(scenes) -> pd.DataFrame:
     """The scenes as given, one per row: a DataFrame as is, a dict every combination of its values (:func:`grid`),
     sized before the grid is made, as the command line sizes its ranges.  A ``parameters`` column (rows of
