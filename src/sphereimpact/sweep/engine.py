@@ -15,7 +15,6 @@ integrated independently and interpolants are built on the whole sweep.
 from __future__ import annotations
 
 import warnings
-from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -29,8 +28,8 @@ from ..contact.tangential import TANGENTIALS
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Work, single_options
-from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, grid, incidence, numbers, rows, scene_of,
-                     scene_table, undescribed_row)
+from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, given_table, grid, incidence, numbers, rows,
+                     scene_of, scene_table, undescribed_row)
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
@@ -106,6 +105,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
     if not isinstance(chapter_ball, (bool, np.bool_)):
         raise ValueError(f"chapter_ball must be True or False; got {chapter_ball!r}")
+    if not isinstance(scenes, dict):  # once: the ball's check and the table read the same columns
+        scenes = given_table(scenes)
     silent = None if chapter_ball else undescribed_row(scenes)
     if silent is not None:
         row, missing = silent
@@ -229,10 +230,10 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
 
 
 class _Rows:
-    """The columns of ``rows`` (a :func:`tangential_rows` namespace) at ``index``, each sliced when a model first
+    """The columns of ``rows`` (a :func:`tangential_rows` view) at ``index``, each sliced when a model first
     reads it (a model reads a few of the table's columns; slicing them all cost a tenth of a large sweep)."""
 
-    def __init__(self, rows: SimpleNamespace, index: np.ndarray):
+    def __init__(self, rows, index: np.ndarray):
         self._rows, self._index = rows, index
 
     def __getattr__(self, name: str):
@@ -241,12 +242,31 @@ class _Rows:
         return value
 
 
-def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+class _Columns:
+    """The numeric columns of a scene table as arrays, each read when first asked for (a tangential model reads a
+    few of them; reading all of a table's columns cost more than a small sweep's solve)."""
+
+    def __init__(self, part: pd.DataFrame, **given):
+        self._part = part
+        self.__dict__.update(given)
+
+    def __getattr__(self, name: str):
+        if name.startswith("_") or name not in self._part or name in TEXT_COLUMNS:
+            raise AttributeError(name)
+        value = self._part[name].to_numpy()
+        setattr(self, name, value)
+        return value
+
+
+#: The text columns of a scene table, which a tangential model does not read as numbers.
+TEXT_COLUMNS = ("model", "separation", "tangential")
+
+
+def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> _Columns:
     """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s]: what a tangential
     model's :class:`~sphereimpact.contact.tangential.SweptTangential` reads."""
     v_t = approach_speeds(part)[1]
-    columns = {name: part[name].to_numpy() for name in part.columns if name not in ("model", "separation", "tangential")}
-    return SimpleNamespace(**columns, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
+    return _Columns(part, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
 
 
 def _path_names(paths) -> list:

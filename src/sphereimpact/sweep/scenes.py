@@ -103,14 +103,13 @@ def undescribed_row(scenes) -> tuple[int, list[str]] | None:
             if missing:
                 return 0, _as_columns(missing)
         return None
-    table = given_table(scenes)
-    named = [name for name in table.columns if name not in ("model", *PARTNER_FIELDS)]
-    filled = {name: table[name].notna().to_numpy() for name in named}
-    model = (table["model"].fillna(DEFAULTS["model"]).to_numpy(dtype=object) if "model" in table
-             else _objects(len(table), DEFAULTS["model"]))
+    table = scenes if isinstance(scenes, pd.DataFrame) and "parameters" not in scenes else given_table(scenes)
+    named = [name for name in _describing() if name in table]
+    filled = {name: ~pd.isna(table[name].to_numpy()) for name in named}
+    model = ([DEFAULTS["model"] if not isinstance(v, str) else v for v in table["model"].tolist()] if "model" in table
+             else [DEFAULTS["model"]] * len(table))
     if all(cells.all() for cells in filled.values()):  # the common table: every cell filled, one check per law
-        firsts = pd.Series(model).drop_duplicates()
-        patterns = {i: set(named) for i in firsts.index}
+        patterns = {model.index(law): set(named) for law in dict.fromkeys(model)}
     else:
         cells = pd.DataFrame(filled).assign(model=model).drop_duplicates()
         patterns = {i: {name for name in named if row[name]} for i, row in zip(cells.index, cells.to_dict("records"))}
@@ -120,6 +119,14 @@ def undescribed_row(scenes) -> tuple[int, list[str]] | None:
             if missing:
                 return int(i), _as_columns(missing)
     return None
+
+
+def _describing() -> set:
+    """The columns that can describe a ball (:func:`~sphereimpact.impact.ball.undescribed`'s parts): its mass and
+    diameter, the stiffness, and every registered law's damping."""
+    from ..impact.ball import STIFFNESS_GIVEN
+
+    return {"mass", "diameter", *STIFFNESS_GIVEN, *(law.damping for law in LAWS.values() if law.damping)}
 
 
 def _as_columns(missing: list[str]) -> list[str]:
@@ -136,9 +143,12 @@ def given_table(scenes) -> pd.DataFrame:
     column per own parameter, as a table names them."""
     if not isinstance(scenes, dict):
         table = _own_columns(pd.DataFrame(scenes))
-        text = [c for c in table.columns if isinstance(table[c].dtype, pd.StringDtype)]
+        text = [c for c, dtype in table.dtypes.items() if isinstance(dtype, pd.StringDtype)]
+        if not text:
+            return table
         # as object columns: pandas' string dtype makes each of the sweep's reads of them several times slower
-        return table.astype(dict.fromkeys(text, object)) if text else table
+        return table.assign(**{c: pd.Series(table[c].to_numpy(dtype=object), index=table.index, dtype=object)
+                               for c in text})
     check_size({name: int(np.size(values)) for name, values in scenes.items()},
                "sweep shards of it (span= keeps them one sweep) or coarser values")
     return grid(**scenes)
