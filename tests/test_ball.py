@@ -92,7 +92,7 @@ def test_the_command_line_sweeps_a_ball_calibrated_from_its_measured_numbers(gol
     assert run(["sweep", *GOLF_FLAGS, "--speed", "30", "--angle-to-surface", "45", "--out", str(out)]) == 0
     row = pd.read_csv(out).iloc[0]
     assert row["k"] == pytest.approx(golf.scene.k, rel=1e-12) and row["chi"] == pytest.approx(golf.scene.chi, rel=1e-12)
-    assert run(["sweep", *GOLF_FLAGS[:-2], "--modulus", "1e9", "--contact-time", "4.5e-4", "--out",
+    assert run(["sweep", *GOLF_FLAGS[:-2], "--modulus", "1e9", "--contact-time", "4.5e-4", "--speed", "30", "--out",
                 str(tmp_path / "x.csv")]) == 2
     assert "give --modulus or --contact-time, not both" in capsys.readouterr().err
 

@@ -129,23 +129,26 @@ def test_the_api_says_which_parts_of_the_ball_are_the_chapters(capsys):
 
 def test_the_api_sweep_refuses_a_ball_it_was_not_given():
     """Before: sweep() of a table without mass or diameter swept the chapter's 145 g, 63 mm ball without a word, where
-    the command line's sweep refused it (issue 42 item 1).  Now the API refuses, naming the first row and what it
-    lacks, and takes the chapter's ball only when asked; the answer asked for is the described ball's."""
+    the command line's sweep refused it, and a table without speed took the chapter's 3 m/s (issue 42 item 1).  Now
+    the API refuses, naming the first row and what it lacks, and takes the chapter's ball and speed only when asked;
+    the answer asked for is the described ball's."""
     from sphereimpact.sweep import sweep
 
     chapter = {"mass": 0.145, "diameter": 0.063, "k": 6e4, "b": 10.5}
-    with pytest.raises(ValueError, match=r"row 0 lacks mass, diameter, k, b \("):
+    with pytest.raises(ValueError, match=r"row 0 lacks mass, diameter, k, b, speed \("):
         sweep({"angle": [30.0]})
     with pytest.raises(ValueError, match=r"row 0 lacks b \("):
-        sweep({"angle": [30.0], **{n: v for n, v in chapter.items() if n != "b"}})
-    table = pd.DataFrame({"angle": [30.0, 40.0, 50.0], "mass": [0.145, 0.145, np.nan], "diameter": 0.063})
+        sweep({"angle": [30.0], "speed": 3.0, **{n: v for n, v in chapter.items() if n != "b"}})
+    with pytest.raises(ValueError, match=r"row 0 lacks speed \("):  # the approach is the user's too
+        sweep({"angle": [30.0], **chapter})
+    table = pd.DataFrame({"angle": [30.0, 40.0, 50.0], "mass": [0.145, 0.145, np.nan], "diameter": 0.063, "speed": 3.0})
     with pytest.raises(ValueError, match=r"row 2 lacks mass"):  # an empty cell: that row is silent
         sweep(table.assign(k=6e4, b=10.5))
     with pytest.raises(ValueError, match=r"row 1 lacks k \("):  # per row, per law
         sweep(table.iloc[:2].assign(model=["hertz", "modified"], k=[1e7, np.nan], b=10.5))
-    hertz = sweep({"angle": [30.0], "mass": 0.1, "diameter": 0.05, "model": "hertz", "modulus": 1e8})
+    hertz = sweep({"angle": [30.0], "speed": 3.0, "mass": 0.1, "diameter": 0.05, "model": "hertz", "modulus": 1e8})
     assert hertz["mass"].iloc[0] == 0.1  # a law without the chapter's defaults needs only the ball
-    described = sweep({"angle": [30.0], **chapter})
+    described = sweep({"angle": [30.0], "speed": 3.0, **chapter})
     asked = sweep({"angle": [30.0]}, chapter_ball=True)
     assert described.equals(asked)
     assert asked["vc_t"].iloc[0] == pytest.approx(simulate(Scene(angle=30.0)).vc_t, rel=1e-8)
@@ -258,10 +261,15 @@ def test_sweep_refuses_a_ball_it_was_not_given(tmp_path, capsys):
     out = tmp_path / "s.csv"
     assert run(["sweep", "--angle", "30", "--out", str(out)]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "sweep: describe your ball: give --mass, --diameter, --k or --contact-time" in err
+    assert err.count("\n") == 1 and ("sweep: describe your ball and its speed: give --mass, --diameter, --k or "
+                                      "--contact-time, --b or --cor, --speed (or --ball FILE") in err
     assert not out.exists()
-    assert run(["sweep", "--angle", "30", "--model", "hunt-crossley", "--modulus", "1e7", "--out", str(out)]) == 2
+    hertz = ["sweep", "--angle", "30", "--model", "hunt-crossley", "--modulus", "1e7", "--out", str(out)]
+    assert run([*hertz, "--speed", "3"]) == 2
     assert "give --mass, --diameter (or --ball FILE" in capsys.readouterr().err
+    # the approach is the user's too: before, a sweep of a described ball took the chapter's 3 m/s unasked
+    assert run([*hertz, "--mass", "0.1", "--diameter", "0.05"]) == 2
+    assert "sweep: give --speed, the approach speed [m/s]" in capsys.readouterr().err and not out.exists()
     assert run(["sweep", "--chapter-ball", "--angle", "30", "--out", str(out)]) == 0 and out.exists()
     assert run(["simulate", "--chapter-ball", "--angle", "30", "--json"]) == 0
     assert "note" not in capsys.readouterr().err

@@ -81,8 +81,8 @@ APPROACH_HELP = {
 }
 #: Help for --chapter-ball, shared by simulate, fit and sweep.
 CHAPTER_BALL_HELP = ("the chapter's ball where the options are silent: mass 0.145 kg, diameter 0.063 m and, for its "
-                     "linear laws, k 60000 N/m and b 10.5 N s/m (simulate takes them by default and says so; sweep "
-                     "and fit refuse a ball that is not described)")
+                     "linear laws, k 60000 N/m and b 10.5 N s/m; for sweep, the chapter's 3 m/s too (simulate takes "
+                     "them by default and says so; sweep and fit refuse a ball that is not described)")
 #: Help for the partner sphere, shared by simulate, fit and sweep.
 PARTNER_HELP = {
     "partner_mass": "strike a partner sphere at rest instead of the flat: its mass [kg], > 0 (with "
@@ -734,8 +734,15 @@ def _described(args, command: str) -> None:
     """Refuse a ball that ``command``'s options do not describe (ValueError naming what is missing): only
     simulate takes the chapter's ball unasked; --ball FILE and --chapter-ball describe it too."""
     missing = [] if args.ball is not None or args.chapter_ball else undescribed(args.given, args.model)
+    if command == "sweep" and "speed" not in args.given and not args.chapter_ball:
+        # the approach is the user's too (fit reads it from the bounces, plan from its candidates)
+        if not missing:
+            raise ValueError("sweep: give --speed, the approach speed [m/s], a value or a range (or --chapter-ball "
+                             "for the chapter's 3 m/s); only simulate takes the chapter's scene unasked")
+        missing = [*missing, "speed"]
     if missing:
-        whose = {"fit": "the ball you measured", "plan": "the ball you will measure"}.get(command, "your ball")
+        whose = {"fit": "the ball you measured", "plan": "the ball you will measure"}.get(
+            command, "your ball and its speed" if "speed" in missing else "your ball")
         raise ValueError(f"{command}: describe {whose}: give {_as_options(missing)} (or --ball FILE, or "
                          "--chapter-ball for the chapter's); only simulate takes the chapter's ball unasked")
 

@@ -52,9 +52,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Named as :class:`sphereimpact.Scene` fields (``angle`` [deg], ``speed`` [m/s], ``mass``,
         ``diameter``, ``inertia_factor``, ``mu``, ``model``, ``k``, ``b``, ``ramp``, ``gravity``,
         ``separation``, ``tangential``, ``kappa``, ``spin``, ...) or a model's own parameters; missing ones take
-        their defaults, but the ball is the user's: each row gives ``mass`` and ``diameter`` and, for a law whose
-        defaults are the chapter's (``modified``, ``kelvin-voigt``), its stiffness and damping, unless
-        ``chapter_ball``.  ``partner_mass`` and ``partner_diameter`` (``partner_inertia_factor``,
+        their defaults, but the ball and its speed are the user's: each row gives ``mass``, ``diameter``,
+        ``speed`` and, for a law whose defaults are the chapter's (``modified``, ``kelvin-voigt``), its stiffness
+        and damping, unless ``chapter_ball``.  ``partner_mass`` and ``partner_diameter`` (``partner_inertia_factor``,
         ``partner_spin``) give a row a partner sphere instead of the flat (empty cells: the flat): the table then
         gains the partner's outputs (:mod:`.pairs`).
         A DataFrame is one scene per row (:func:`rows` builds one from paired lists); a dict of values or
@@ -80,8 +80,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         none of them takes is left empty (NaN outputs, ``path`` ''), where the default (every path) solves
         every row.
     chapter_ball : bool
-        Take the chapter's ball (0.145 kg, 0.063 m, k = 60000 N/m, b = 10.5 N s/m) where a row is silent (default
-        False: such a row is refused, as on the command line; only ``simulate`` takes the chapter's ball unasked).
+        Take the chapter's ball (0.145 kg, 0.063 m, k = 60000 N/m, b = 10.5 N s/m) and speed (3 m/s) where a row is
+        silent (default False: such a row is refused, as on the command line; only ``simulate`` takes the chapter's
+        scene unasked).
 
     Returns
     -------
@@ -110,9 +111,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     silent = None if chapter_ball else undescribed_row(scenes)
     if silent is not None:
         row, missing = silent
-        raise ValueError(f"sweep: describe your ball: row {row} lacks {', '.join(missing)} (a column each, its cell "
-                         "filled; a measured COR through calibrate_table; or chapter_ball=True for the chapter's); "
-                         "only simulate takes the chapter's ball unasked")
+        raise ValueError(f"sweep: describe your ball and its speed: row {row} lacks {', '.join(missing)} (a column "
+                         "each, its cell filled; a measured COR through calibrate_table; or chapter_ball=True for the "
+                         "chapter's); only simulate takes the chapter's scene unasked")
     if has_partner(scenes) or (span is not None and has_partner(span)):  # each pair as its reduced sphere
         return pair_sweep(sweep, scenes, target=target, chunk_size=chunk_size, progress=progress, span=span,
                           outputs=outputs, settings=settings, paths=paths, chapter_ball=True)  # described

@@ -88,20 +88,18 @@ def scene_table(scenes) -> pd.DataFrame:
 
 
 def undescribed_row(scenes) -> tuple[int, list[str]] | None:
-    """The first row of ``scenes`` (a sweep's table or dict, as given) whose ball the table does not describe, and
-    what it lacks (:func:`~sphereimpact.impact.ball.undescribed`: mass, diameter, and a chapter law's stiffness and
-    damping, given by a column with the row's cell filled); None when every row describes its ball.  A dict names
-    the row of its grid's first combination."""
-    from ..impact.ball import undescribed
-
+    """The first row of ``scenes`` (a sweep's table or dict, as given) whose ball or approach speed the table does not
+    describe, and what it lacks (:func:`~sphereimpact.impact.ball.undescribed`: mass, diameter, and a chapter law's
+    stiffness and damping; then ``speed``), each given by a column with the row's cell filled; None when every row
+    describes them.  A dict names the row of its grid's first combination."""
     if isinstance(scenes, dict):
         given = {name for name, values in scenes.items() if not pd.isna(pd.Series(np.ravel(
             np.asarray(values, dtype=object)), dtype=object)).any()}
         models = pd.unique(np.ravel(np.asarray(scenes.get("model", DEFAULTS["model"]), dtype=object)))
         for model in models:
-            missing = undescribed(given, model if isinstance(model, str) else DEFAULTS["model"])
+            missing = _undescribed(given, model if isinstance(model, str) else DEFAULTS["model"])
             if missing:
-                return 0, _as_columns(missing)
+                return 0, missing
         return None
     table = scenes if isinstance(scenes, pd.DataFrame) and "parameters" not in scenes else given_table(scenes)
     named = [name for name in _describing() if name in table]
@@ -115,18 +113,25 @@ def undescribed_row(scenes) -> tuple[int, list[str]] | None:
         patterns = {i: {name for name in named if row[name]} for i, row in zip(cells.index, cells.to_dict("records"))}
     for i, given in patterns.items():
         if model[i] in LAWS:  # an unknown law is refused by the scene checks, naming its row
-            missing = undescribed(given, model[i])
+            missing = _undescribed(given, model[i])
             if missing:
-                return int(i), _as_columns(missing)
+                return int(i), missing
     return None
 
 
+def _undescribed(given: set, model: str) -> list[str]:
+    """What a row with the columns ``given`` lacks: the ball's parts (as columns) and the approach speed."""
+    from ..impact.ball import undescribed
+
+    return _as_columns(undescribed(given, model)) + ([] if "speed" in given else ["speed"])
+
+
 def _describing() -> set:
-    """The columns that can describe a ball (:func:`~sphereimpact.impact.ball.undescribed`'s parts): its mass and
-    diameter, the stiffness, and every registered law's damping."""
+    """The columns that can describe a ball (:func:`~sphereimpact.impact.ball.undescribed`'s parts: its mass and
+    diameter, the stiffness, and every registered law's damping) and its approach speed."""
     from ..impact.ball import STIFFNESS_GIVEN
 
-    return {"mass", "diameter", *STIFFNESS_GIVEN, *(law.damping for law in LAWS.values() if law.damping)}
+    return {"mass", "diameter", "speed", *STIFFNESS_GIVEN, *(law.damping for law in LAWS.values() if law.damping)}
 
 
 def _as_columns(missing: list[str]) -> list[str]:
