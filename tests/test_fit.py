@@ -38,7 +38,7 @@ def test_mu_comes_back_within_its_standard_error_at_the_nominal_rate(sigma):
     and one a factor 2 too small fails it nine times in ten (0.38 expected)."""
     z = []
     for seed in range(30):
-        result = fit(read_measured(bounces(seed, sigma=sigma)), Ball(TRUTH.with_(mu=0.1)), ["mu"])
+        result = fit(read_measured(bounces(seed, sigma=sigma)), Ball(TRUTH.with_(mu=0.1)), ["mu"], chapter_ball=True)
         p = result.parameters["mu"]
         assert p.identifiable and result.statistics["dof"] == 39
         z.append(abs(p.value - 0.25) / p.stderr)
@@ -52,7 +52,7 @@ def test_two_parameters_of_a_compliant_contact_come_back():
     truth = Ball(TRUTH.with_(tangential="linear", kappa=0.6, mu=0.3))
     data = read_measured(bounces(7, n=10, truth=truth, incidences=(5.0, 45.0)))
     start = Ball(truth.scene.with_(mu=0.2, kappa=1.0))
-    result = fit(data, start, ["mu", "kappa"])
+    result = fit(data, start, ["mu", "kappa"], chapter_ball=True)
     for name, value in (("mu", 0.3), ("kappa", 0.6)):
         p = result.parameters[name]
         assert p.identifiable and abs(p.value - value) < 3 * p.stderr, (name, p)
@@ -65,7 +65,7 @@ def test_the_exact_microslip_contact_gives_back_its_friction_and_stiffness():
     come back within 3 standard errors."""
     truth = Ball(Scene(model="hertz", modulus=1e7, mu=0.3, tangential="microslip", kappa=0.8, speed=3.0))
     data = read_measured(bounces(0, n=10, truth=truth, incidences=(5.0, 50.0)))
-    result = fit(data, Ball(truth.scene.with_(mu=0.2, kappa=1.2)), ["mu", "kappa"])
+    result = fit(data, Ball(truth.scene.with_(mu=0.2, kappa=1.2)), ["mu", "kappa"], chapter_ball=True)
     for name, value in (("mu", 0.3), ("kappa", 0.8)):
         p = result.parameters[name]
         assert p.identifiable and abs(p.value - value) < 3 * p.stderr, (name, p)
@@ -73,7 +73,7 @@ def test_the_exact_microslip_contact_gives_back_its_friction_and_stiffness():
 
 def test_bootstrap_is_seeded_and_agrees_with_the_jacobian():
     data = read_measured(bounces(3))
-    one, two = (fit(data, Ball(TRUTH), ["mu"], bootstrap=20, seed=5) for _ in range(2))
+    one, two = (fit(data, Ball(TRUTH), ["mu"], bootstrap=20, seed=5, chapter_ball=True) for _ in range(2))
     p = one.parameters["mu"]
     assert p.bootstrap_stderr == two.parameters["mu"].bootstrap_stderr
     assert 0.5 < p.bootstrap_stderr / p.stderr < 2.0
@@ -84,7 +84,7 @@ def test_a_parameter_the_bounces_do_not_depend_on_is_not_identifiable():
     the ball's inertia: with only vc_t measured, inertia_factor is reported as not identifiable, with a note,
     while mu is fitted."""
     data = bounces(11, n=10, incidences=(70.0, 85.0)).drop(columns=["omega_f", "sigma_omega_f"])
-    result = fit(read_measured(data), Ball(TRUTH.with_(mu=0.2, inertia_factor=0.5)), ["mu", "inertia_factor"])
+    result = fit(read_measured(data), Ball(TRUTH.with_(mu=0.2, inertia_factor=0.5)), ["mu", "inertia_factor"], chapter_ball=True)
     mu = result.parameters["mu"]
     assert mu.identifiable and abs(mu.value - 0.25) < 3 * mu.stderr
     assert not result.parameters["inertia_factor"].identifiable
@@ -132,14 +132,14 @@ def test_bad_measured_tables_are_refused_naming_the_column(table, message):
 def test_bad_requests_are_refused_before_any_work(free, ball, message):
     data = read_measured(bounces(1, n=5))
     with pytest.raises(ValueError, match=message):
-        fit(data, ball, free)
+        fit(data, ball, free, chapter_ball=True)
 
 
 def test_more_values_than_free_parameters_and_no_e_t_of_a_normal_impact():
     with pytest.raises(ValueError, match="more than 1 measured values"):
-        fit(read_measured(pd.DataFrame({"incidence": [30.0], "vc_t": [1.0]})), Ball(TRUTH), ["mu"])
+        fit(read_measured(pd.DataFrame({"incidence": [30.0], "vc_t": [1.0]})), Ball(TRUTH), ["mu"], chapter_ball=True)
     with pytest.raises(ValueError, match="e_t of a normal impact"):
-        fit(read_measured(pd.DataFrame({"incidence": [0.0, 30.0], "e_t": [0.5, 0.6]})), Ball(TRUTH), ["mu"])
+        fit(read_measured(pd.DataFrame({"incidence": [0.0, 30.0], "e_t": [0.5, 0.6]})), Ball(TRUTH), ["mu"], chapter_ball=True)
 
 
 def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
@@ -152,7 +152,7 @@ def test_fit_on_the_command_line_writes_a_ball_that_simulate_reuses(tmp_path):
                "--out", str(tmp_path / "fitted"))
     assert run.returncode == 0, run.stderr
     printed = json.loads(run.stdout)["parameters"]["mu"]
-    api = fit(read_measured(csv), Ball(TRUTH.with_(mu=0.1)), ["mu"]).parameters["mu"]
+    api = fit(read_measured(csv), Ball(TRUTH.with_(mu=0.1)), ["mu"], chapter_ball=True).parameters["mu"]
     assert printed["value"] == pytest.approx(api.value, rel=1e-12) and printed["stderr"] == pytest.approx(api.stderr, rel=1e-9)
     ball = load_ball(tmp_path / "fitted/ball.json")
     assert ball.scene.mu == pytest.approx(api.value, rel=1e-12) and "bounces.csv" in ball.source

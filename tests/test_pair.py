@@ -220,7 +220,7 @@ def test_fit_recovers_friction_from_bounces_on_a_partner(tmp_path, capsys):
         rows.append({"speed": 3.0, "incidence": incidence, "vc_t": out.vc_t, "omega_f": out.omega_f})
     path = tmp_path / "bounces.csv"
     pd.DataFrame(rows).to_csv(path, index=False)
-    result = fit(read_measured(path), Ball(Scene(mu=0.3, **pair)), ["mu"])
+    result = fit(read_measured(path), Ball(Scene(mu=0.3, **pair)), ["mu"], chapter_ball=True)
     assert result.parameters["mu"].value == pytest.approx(0.1, rel=1e-7)
     assert run(["fit", str(path), "--free", "mu", "--mu", "0.3", "--partner-mass", "0.3", "--partner-diameter", "0.1",
                 "--partner-spin", "5", "--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5",

@@ -507,7 +507,7 @@ def test_a_fit_frees_an_own_parameter_through_the_api_and_the_command_line(share
     pd.DataFrame(rows).to_csv(path, index=False)
     ball = Ball(Scene(tangential="share-slide", parameters={"slide_share": 0.3}), plugins=("plugin_model",))
     assert own_bounds(ball) == {"slide_share": (1e-3, 1.0, False)}
-    result = fit(read_measured(path), ball, ["slide_share"])
+    result = fit(read_measured(path), ball, ["slide_share"], chapter_ball=True)
     assert result.parameters["slide_share"].value == pytest.approx(0.6, rel=1e-7)
     assert result.ball.scene.slide_share == pytest.approx(0.6, rel=1e-7)
     chapter = ["--mass", "0.145", "--diameter", "0.063", "--k", "60000", "--b", "10.5"]  # the ball of Scene()

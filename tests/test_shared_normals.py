@@ -121,7 +121,7 @@ def test_a_fit_solves_its_bounces_normal_motions_once(monkeypatch):
     bounces["vc_t"] = [simulate(truth.with_(incidence=theta)).vc_t for theta in bounces["incidence"]]
     calls = []
     monkeypatch.setattr(solve, "normal_motion", lambda scene, options: calls.append(scene) or normal_motion(scene, options))
-    result = fit(read_measured(bounces), Ball(truth.with_(mu=0.2, kappa=1.1)), ["mu", "kappa"])
+    result = fit(read_measured(bounces), Ball(truth.with_(mu=0.2, kappa=1.1)), ["mu", "kappa"], chapter_ball=True)
     assert result.statistics["evaluations"] > 10 and len(calls) == len(bounces)
     assert result.parameters["mu"].value == pytest.approx(0.3, rel=1e-6)
 

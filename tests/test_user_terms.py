@@ -156,6 +156,23 @@ def test_the_api_sweep_refuses_a_ball_it_was_not_given():
         sweep({"angle": [30.0]}, chapter_ball="yes")
 
 
+def test_the_api_fit_and_plan_refuse_a_ball_they_were_not_given():
+    """Before: fit(measured, Ball(Scene()), ["mu"]) fitted the bounces as the chapter's 145 g, 63 mm ball, exit
+    without a word, where the command line refuses it (issue 42 item 1); plan likewise.  Now both name the parts the
+    ball took from the chapter and take them only when asked."""
+    from sphereimpact.fit import fit, read_measured
+    from sphereimpact.fit.plan import plan
+
+    bounces = pd.DataFrame({"speed": 3.0, "incidence": [10.0, 20.0, 30.0, 40.0], "e_t": [0.7, 0.6, 0.65, 0.7]})
+    with pytest.raises(ValueError, match=r"fit: describe the ball: its mass, diameter, k, b are the chapter's"):
+        fit(read_measured(bounces), Ball(Scene()), ["mu"])
+    with pytest.raises(ValueError, match=r"plan: describe the ball: its mass, diameter are the chapter's"):
+        plan(bounces[["speed", "incidence"]], Ball(Scene(model="hertz", modulus=1e8)), ["mu"], "e_t=0.02")
+    described = Ball(Scene(mass=0.145, diameter=0.063, k=6e4, b=10.5))
+    asked = fit(read_measured(bounces), Ball(Scene()), ["mu"], chapter_ball=True)
+    assert asked.parameters["mu"].value == fit(read_measured(bounces), described, ["mu"]).parameters["mu"].value
+
+
 def long_table(tmp_path, rows, columns="quantity,incidence_deg,value"):
     path = tmp_path / "long.csv"
     path.write_text(columns + "\n" + "\n".join(rows) + "\n")
@@ -507,7 +524,8 @@ def test_a_fit_says_what_its_chi2_means_and_flags_data_no_ball_gives(tmp_path, c
     from sphereimpact.fit import fit, read_measured
 
     impossible = pd.DataFrame({"speed": 3.0, "incidence": 0.0, "cor": [2.0, 2.1, 1.9, 2.0]})
-    result = fit(read_measured(impossible), Ball(Scene(model="kelvin-voigt", k=6e4, b=10.5)), ["b"])
+    result = fit(read_measured(impossible), Ball(Scene(model="kelvin-voigt", k=6e4, b=10.5)), ["b"],
+                 chapter_ball=True)
     assert result.statistics["weights"] == "scatter"
     assert any(note.startswith("4 of 4 measured cor lie outside what the model can give ([0, 1] for a passive contact")
                for note in result.notes)
@@ -517,7 +535,8 @@ def test_a_fit_says_what_its_chi2_means_and_flags_data_no_ball_gives(tmp_path, c
     out = capsys.readouterr().out
     assert "near 1 by construction" in out and "no parameter reaches them" in out
     stated = pd.DataFrame({"speed": 3.0, "incidence": 0.0, "cor": [0.9, 0.91, 0.89, 0.9], "sigma_cor": 0.001})
-    misfit = fit(read_measured(stated), Ball(Scene(model="linear-hunt-crossley", k=6e4, chi=0.05)), ["chi"])
+    misfit = fit(read_measured(stated), Ball(Scene(model="linear-hunt-crossley", k=6e4, chi=0.05)), ["chi"],
+                 chapter_ball=True)
     assert misfit.statistics["weights"] == "given"
     assert any(note.startswith("the model misses the data beyond their stated uncertainties: chi2/dof 66.7")
                for note in misfit.notes)

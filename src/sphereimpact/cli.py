@@ -810,7 +810,7 @@ def _fit(args) -> None:
     if "speed" not in measured.bounces and "speed" not in args.given:
         raise ValueError(f"fit: {args.measured!r} has no speed column: give the bounces' approach speed along the "
                          "path with --speed [m/s]")
-    result = fit(measured, ball, free, args.bootstrap, args.seed, args.target)
+    result = fit(measured, ball, free, args.bootstrap, args.seed, args.target, chapter_ball=args.chapter_ball)
     if _delivered(result, args, write_fit):
         return
     stats = result.statistics
@@ -850,7 +850,7 @@ def _plan(args) -> None:
     if args.out is not None:
         _check_out_files(args.out, PLAN_FILES, args.force)
     result = plan(args.candidates, _user_ball(args), _names(args.free), args.noise, args.size, args.criterion,
-                  args.target)
+                  args.target, chapter_ball=args.chapter_ball)
     if _delivered(result, args, write_plan):
         return
     size, total = len(result.chosen), len(result.candidates)

@@ -26,7 +26,7 @@ from scipy.stats import chi2 as chi2_distribution
 from scipy.stats import f as f_distribution
 
 from ..contact.tangential import TANGENTIALS
-from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball
+from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball, check_described
 from ..impact.pair import PARTNER_UNITS
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
@@ -188,7 +188,8 @@ def _start(ball: Ball, names) -> np.ndarray:
     return np.array([ball.measurement.cor if n == "cor" else float(getattr(ball.scene, n)) for n in names])
 
 
-def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0, target: float = 1e-8) -> FitResult:
+def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0, target: float = 1e-8,
+        chapter_ball: bool = False) -> FitResult:
     """Fit the ``free`` parameters of ``ball`` to ``measured`` bounces.
 
     Parameters
@@ -205,13 +206,17 @@ def fit(measured: Measured, ball: Ball, free, bootstrap: int = 0, seed: int = 0,
         The bootstrap's random seed (the same seed gives the same result).
     target : float
         The sweep's relative accuracy of each model value.
+    chapter_ball : bool
+        Accept a ball that took parts of the chapter's where its Scene was silent (default False: refused, as the
+        command line refuses an undescribed ball).
 
     Raises
     ------
     ValueError
-        A parameter that cannot be freed, fewer measured values than free parameters, or a measured e_t of
-        a normal impact.
+        A parameter that cannot be freed, fewer measured values than free parameters, a measured e_t of
+        a normal impact, or a ball not described (unless ``chapter_ball``).
     """
+    check_described(ball, "fit", chapter_ball)
     with reusing_normal_motions():  # the bounces' normal motions are solved once when only mu, kappa... are free
         return _fit(measured, ball, free_names(ball, free), bootstrap, seed, target)
 

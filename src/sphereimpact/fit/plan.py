@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..impact.ball import APPROACH, Ball, ball_columns
+from ..impact.ball import APPROACH, Ball, ball_columns, check_described
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
 from ..sweep.scenes import incidence
@@ -218,7 +218,7 @@ def size_problem(size, free: int, candidates: int) -> str | None:
 
 
 def plan(candidates, ball: Ball, free, noise, size: int | None = None, criterion: str = "D",
-         target: float = 1e-8) -> Plan:
+         target: float = 1e-8, chapter_ball: bool = False) -> Plan:
     """The expected standard errors of fitting ``free`` to the ``noise``-d outputs of bounces, and the best plan.
 
     Parameters
@@ -238,12 +238,16 @@ def plan(candidates, ball: Ball, free, noise, size: int | None = None, criterion
         ``D`` or ``A`` (:data:`CRITERIA`).
     target : float
         The sweep's relative accuracy of each model value.
+    chapter_ball : bool
+        Accept a ball that took parts of the chapter's where its Scene was silent (default False: refused).
 
     Raises
     ------
     ValueError
-        A parameter that cannot be freed, a size out of range, an unknown criterion, or bad candidates or noise.
+        A parameter that cannot be freed, a size out of range, an unknown criterion, bad candidates or noise, or a
+        ball not described (unless ``chapter_ball``).
     """
+    check_described(ball, "plan", chapter_ball)
     table = read_candidates(candidates)
     names = free_names(ball, free)
     noise = parse_noise(noise)
@@ -505,7 +509,7 @@ def realised_spread(plan_: Plan, ball: Ball, seeds: int, target: float = 1e-8) -
         for name in plan_.noise:
             synthetic[name] = rows[name].to_numpy() + rng.normal(0.0, 1.0, len(rows)) * rows[f"sigma_{name}"].to_numpy()
         result = fit(read_measured(synthetic, f"synthetic bounces, seed {seed}"), ball, list(plan_.free),
-                     target=target)
+                     target=target, chapter_ball=True)  # bounces of this very ball: the plan judged its description
         estimates.append([result.parameters[name].value for name in plan_.free])
     estimates = np.array(estimates)
     realised = estimates.std(axis=0, ddof=1)

@@ -165,6 +165,20 @@ def undescribed(given, model: str) -> list[str]:
     return missing
 
 
+def check_described(ball, door: str, chapter_ball: bool) -> None:
+    """Refuse (ValueError naming the parts) a ``ball`` whose scene took parts of the chapter's ball where its maker was
+    silent (:attr:`Scene.chapter_ball <sphereimpact.Scene.chapter_ball>`), unless ``chapter_ball``: the API's
+    ``fit`` and ``plan`` take the user's ball, as their command lines do; only ``simulate`` takes the chapter's
+    unasked."""
+    if not isinstance(chapter_ball, (bool, np.bool_)):
+        raise ValueError(f"chapter_ball must be True or False; got {chapter_ball!r}")
+    taken = () if chapter_ball else ball.scene.chapter_ball
+    if taken:
+        raise ValueError(f"{door}: describe the ball: its {', '.join(taken)} are the chapter's defaults, not given "
+                         f"(give them to Scene, or chapter_ball=True for the chapter's); only simulate takes the "
+                         "chapter's ball unasked")
+
+
 def chapter_parts(scene) -> list[str]:
     """The parts of ``scene``'s ball taken from the chapter's (:attr:`Scene.chapter_ball
     <sphereimpact.Scene.chapter_ball>`), named as :func:`undescribed` names them: what a note asks the user to give."""
