@@ -4,8 +4,8 @@ Quasi-static checks drive the element row with a prescribed history (:func:`quas
 Cattaneo-Mindlin curve, its initial stiffness 8 G_eff a, the Mindlin-Deresiewicz loop and its dissipated
 energy, and a growing contact loaded at Q/P = c < mu that never slips.  Dynamic checks: Maw, Barber &
 Fawcett's gross-slip result psi_2 = psi_1 - 4 chi for psi_1 >= 4 chi - 1, the rigid model's answer when the
-contact slides throughout, energy never gained, the rigid limit kappa -> infinity, and the batched kernel
-against one contact at a time.
+contact slides throughout, energy never gained, the rigid limit kappa -> infinity, and the compiled row's edge
+band against every cell weighed alone.
 """
 
 import math
@@ -17,8 +17,8 @@ import pytest
 from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.impact.solve import simulate_many
 from sphereimpact.sweep.engine import sweep
-from sphereimpact.contact.tangential.microslip import (ELEMENTS, TIME_STEPS, _Block, cell_weights, march,
-                                                       quasi_static)
+from sphereimpact.contact.tangential import microslip_march
+from sphereimpact.contact.tangential.microslip import ELEMENTS, TIME_STEPS, quasi_static
 
 #: Kharaz et al.'s alumina sphere (see test_compliance.ALUMINA), exact tangential contact.
 ALUMINA = dict(mass=4000.0 * math.pi * 0.005 ** 3 / 6.0, diameter=0.005, speed=3.9, mu=0.092, model="hunt-crossley",
@@ -141,52 +141,35 @@ def test_low_incidence_is_not_the_rigid_answer():
     assert 0.74 < e_t < 0.80
 
 
-def test_batched_kernel_equals_one_contact_at_a_time():
-    rng = np.random.default_rng(1)
-    steps, elements, batch = 200, 32, 3
-    xi = np.sqrt(np.sin(np.linspace(0.0, math.pi, steps + 1)))[:, None] * rng.uniform(0.6, 1.0, batch)
-    cap = 1e-3 * xi ** 3
-    impulse = 0.5 * (cap[1:] + cap[:-1]) * 1e-6
-    parameters = [rng.uniform(1e-7, 2e-7, batch), rng.uniform(1e5, 2e5, batch), rng.uniform(1e3, 2e3, batch),
-                  np.zeros(batch), rng.uniform(-0.1, 0.1, batch)]
-    force, j_t, held = march(xi, cap, impulse, *parameters, np.zeros((batch, elements)))
-    for b in range(batch):
-        one = march(xi[:, b], cap[:, b], impulse[:, b], *(float(p[b]) for p in parameters), np.zeros(elements))
-        np.testing.assert_allclose(one[0], force[:, b], rtol=1e-14, atol=1e-300)
-        np.testing.assert_allclose(one[1], j_t[:, b], rtol=1e-14, atol=1e-300)
-
-
-@pytest.mark.parametrize("lanes", [None, 4], ids=["one contact", "four at once"])
-def test_the_edge_band_weighs_every_cell_as_the_dense_row_does(lanes):
-    """The march weighs only the cells the contact's edge crosses in a step (``_Block``); every other cell's limit
-    comes from the affine formula.  Against every cell weighed by :func:`cell_weights`, on contact radii that
-    jump several cells a step, shrink, stall, land on cell edges and reach 0: the limits and one step of the
-    row agree to round-off."""
+def test_the_edge_band_weighs_every_cell_as_the_dense_row_does():
+    """A step of the row weighs only the cells the contact's edge crosses (``row_weights``); every other cell's
+    limit comes from the affine formula.  Against every cell weighed by ``cell_weight``, on contact radii that jump
+    several cells a step, shrink, stall, land on cell edges and reach 0: the limits and one step of the row agree
+    to round-off."""
     rng = np.random.default_rng(3)
     elements, steps = 16, 40
-    shape = (steps,) if lanes is None else (steps, lanes)
-    xi = rng.uniform(0.0, 1.0, shape)
+    xi = rng.uniform(0.0, 1.0, steps)
     xi[5] = xi[4]  # a stalled step
     xi[7], xi[8], xi[-1] = 5.0 / elements, 0.0, 0.0  # a cell's edge, then no contact, then the end
-    before = np.full(shape[1:], 0.3)
-    cap, stiffness = rng.uniform(0.5, 2.0, shape), 2.0 if lanes is None else rng.uniform(1.0, 3.0, lanes)
-    block = _Block(xi, cap, stiffness, elements, before)
-    width = 1.0 / elements
-    left = np.arange(elements) * width
-    a0 = np.concatenate([before[None], xi[:-1]])
-    mean, share = cell_weights(a0[..., None], xi[..., None], left, width)
-    np.testing.assert_allclose(block.limit, (cap / np.asarray(stiffness))[..., None] * share, rtol=1e-12, atol=1e-15)
-    held = rng.uniform(-0.05, 0.05, (elements,) if lanes is None else (lanes, elements))
+    a0 = np.concatenate([[0.3], xi[:-1]])
+    cap, stiffness, width = rng.uniform(0.5, 2.0, steps), 2.0, 1.0 / elements
+    moments = microslip_march.cell_moments(elements)
+    limit, mean = np.empty(elements), np.empty(elements)
+    held = rng.uniform(-0.05, 0.05, elements)
     for j in range(steps):
-        d_u = 0.01 if lanes is None else rng.uniform(-0.01, 0.01, (lanes, 1))
-        dense = np.clip(held + mean[j] * d_u, -block.limit[j], block.limit[j])
-        np.testing.assert_allclose(block.hold(j, held, d_u), dense, rtol=1e-12, atol=1e-15)
+        microslip_march.row_weights(a0[j], xi[j], cap[j], stiffness, moments, limit, mean)
+        dense = np.array([microslip_march.cell_weight(a0[j], xi[j], i * width, width) for i in range(elements)])
+        np.testing.assert_allclose(limit, cap[j] / stiffness * dense[:, 1], rtol=1e-12, atol=1e-15)
+        expected = np.clip(held + dense[:, 0] * 0.01, -limit, limit)
+        total = microslip_march.hold(held, limit, mean, 0.01)
+        np.testing.assert_allclose(held, expected, rtol=1e-12, atol=1e-15)
+        assert total == pytest.approx(expected.sum(), rel=1e-12, abs=1e-15)
 
 
-def test_a_batch_mixing_resolutions_gives_each_contact_its_own():
-    """A stiff tangential contact needs more time steps than the default (kappa 100: 769); batched with a soft one,
-    each is marched at its own resolution, so both are what simulate gives them alone, batched and swept (one march
-    at the finer resolution moved the soft one's e_t by 9e-6)."""
+def test_contacts_of_several_resolutions_are_each_marched_at_their_own():
+    """A stiff tangential contact needs more time steps than the default (kappa 100: 769); solved with a soft one
+    (simulate_many, a sweep), each is marched at its own resolution, so both are what simulate gives them alone (one
+    march at the finer resolution moved the soft one's e_t by 9e-6)."""
     soft, stiff = (Scene(angle=20.0, **{**ALUMINA, "shear_modulus": None, "kappa": k}) for k in (0.8, 100.0))
     batched = simulate_many([soft, stiff, soft.with_(angle=35.0)])
     for outcome in batched:

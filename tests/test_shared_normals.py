@@ -63,8 +63,8 @@ def test_the_normal_motion_does_not_read_what_the_normal_problem_leaves_out():
 
 
 def test_outcomes_inside_the_block_are_those_solved_afresh():
-    """simulate and simulate_many (whose microslip scenes share one batched march) inside the block, against
-    simulate outside it, on the mixed scenes: every output equal, bit for bit."""
+    """simulate and simulate_many inside the block, against simulate outside it, on the mixed scenes: every output
+    equal, bit for bit."""
     scenes = _scenes()
     fresh = [_outputs(simulate(scene)) for scene in scenes]
     with reusing_normal_motions():

@@ -74,13 +74,13 @@ class ReducedMotion:
     normal impact has none.
     """
 
-    def __init__(self, normal: NormalMotion, options: SolverOptions, tangential=None):
+    def __init__(self, normal: NormalMotion, options: SolverOptions):
         self.normal, self.scene = normal, normal.scene
         self.t_m, self.t_f, self.grid, self.stats = normal.t_m, normal.t_f, normal.grid, normal.stats
         if not self.scene.has_tangential_motion:
             self.tangential, self.t_roll, self.regime, self.switches = None, None, "none", 0
             return
-        self.tangential = tangential or TANGENTIALS[self.scene.tangential].motion(normal, options)
+        self.tangential = TANGENTIALS[self.scene.tangential].motion(normal, options)
         self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
         self.switches = self.tangential.switches
 
@@ -217,42 +217,15 @@ def _checked(outcome: Outcome, strict: bool) -> Outcome:
 
 
 def simulate_many(scenes, options: SolverOptions | None = None, strict: bool = False) -> list[Outcome]:
-    """Simulate several impacts (reduced body): :func:`simulate` on each, except that the scenes whose
-    tangential model declares a batched kernel (``TangentialModel.many``: ``microslip``) share runs of it.
-
-    Every outcome equals what :func:`simulate` gives its scene alone (to round-off: a batched kernel runs each
-    scene at its own resolution).  ``wall_time`` is the batch's time shared out equally.
+    """Simulate several impacts: :func:`simulate` of each scene, in order, at the same options (the sweep's
+    single-impact path calls it a chunk of scenes at a time).
 
     Raises
     ------
     ImpactError
         As :func:`simulate`, for the first scene that fails.
     """
-    options = SolverOptions() if options is None else options
-    given = list(scenes)
-    scenes = [scene.reduced if isinstance(scene, Scene) else scene for scene in given]
-    outcomes: list = [None] * len(scenes)
-    batches: dict = {}
-    for i, scene in enumerate(scenes):
-        model = TANGENTIALS[scene.tangential]
-        if model.many is None or not scene.has_tangential_motion:
-            outcomes[i] = simulate(scene, options, strict=strict)
-            continue
-        start = time.perf_counter()
-        with _beyond_double(scene):
-            batches.setdefault(model.name, []).append((i, _normal(scene, options), time.perf_counter() - start))
-    for name, members in batches.items():
-        start = time.perf_counter()
-        motions = TANGENTIALS[name].many([normal for _, normal, _ in members], options)
-        share = (time.perf_counter() - start) / len(members)
-        for (i, normal, normal_time), tangential in zip(members, motions):
-            with _beyond_double(normal.scene):
-                start = time.perf_counter()
-                motion = ReducedMotion(normal, options, tangential)
-                outcome = Outcome.from_motion(motion, 0.0)
-            outcomes[i] = _checked(replace(outcome, wall_time=normal_time + share + time.perf_counter() - start),
-                                   strict)
-    return [pair_outcome(outcome, scene) if scene.has_partner else outcome for outcome, scene in zip(outcomes, given)]
+    return [simulate(scene, options, strict=strict) for scene in scenes]
 
 
 def pair_outcome(outcome: Outcome, scene: Scene) -> Outcome:

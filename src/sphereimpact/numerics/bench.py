@@ -10,6 +10,7 @@ whose error (against :func:`sphereimpact.numerics.reference.reference`) is no la
 from __future__ import annotations
 
 import logging
+import math
 
 import numpy as np
 import pandas as pd
@@ -96,48 +97,73 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     return pd.DataFrame(rows)
 
 
-def microslip_bench(scene: Scene, angles, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
-    """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact
-    on the same scene, and a curve over ``angles`` [deg] batched (:func:`~sphereimpact.impact.solve.simulate_many`)
-    beside one impact at a time.
+def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
+    """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact on
+    the same scene and beside its element row's march alone (the compiled kernel, on the impact's own inputs),
+    and, once per process rather than per impact, the kernels' compilation on a fresh machine and their load from
+    the disk cache (:func:`kernel_seconds`).
 
     Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
-    error against the ``reference`` resolution (cells, time steps); the curve's, the largest difference of
-    e_t and spin between batched and one at a time.  ``time`` is per impact; ``time_ratio`` is over the
-    row's comparison contender (the rigid contact; one impact at a time).
+    error against the ``reference`` resolution (cells, time steps); NaN for the march and the kernels (not an
+    answer).  ``time`` is per impact (per process for the kernels); ``time_ratio`` is over the row's comparison
+    contender (the rigid contact for the impact, the impact for the march, the load for the compilation).
     """
-    from ..impact.solve import simulate_many
+    from ..contact.tangential.microslip import _inputs, march
 
     rows = []
     default = SolverOptions()
     out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
     ref = simulate(scene, SolverOptions(settings={"elements": reference[0], "time_steps": reference[1]}))
     error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
+    row = out.motion.tangential
+    _, inputs = _inputs(out.motion.normal, row.time_steps)
     timed = per_call_seconds({"microslip": lambda: simulate(scene, default),
-                              "rigid": lambda: simulate(scene.with_(tangential="rigid"), default)}, repeats)
+                              "rigid": lambda: simulate(scene.with_(tangential="rigid"), default),
+                              "march": lambda: march(*inputs, row.elements)}, repeats)
     base = {"scene": f"{scene.angle:g}deg-{scene.speed:g}ms/{scene.model}/microslip", "model": scene.model,
-            "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": BATCH}
-    rows.append(base | {"contender": "simulate", "method": out.method, "rtol": out.rtol, "error": error,
-                        "reached": True, "time": timed["microslip"], "nfev": out.nfev,
+            "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": BATCH, "method": out.method,
+            "rtol": out.rtol, "reached": True}
+    rows.append(base | {"contender": "simulate", "error": error, "time": timed["microslip"], "nfev": out.nfev,
                         "time_ratio": timed["microslip"] / timed["rigid"]})
     rows.append(base | {"contender": "simulate, rigid contact", "method": rigid.method, "rtol": rigid.rtol,
-                        "error": 0.0, "reached": True, "time": timed["rigid"], "nfev": rigid.nfev, "time_ratio": 1.0})
-    scenes = [scene.with_(angle=float(a)) for a in angles]
-    batched, alone = simulate_many(scenes, default), [simulate(s, default) for s in scenes]
-    spread = max(max(abs(a.vc_t - b.vc_t) / s.v_tangent, abs(a.omega_f / b.omega_f - 1.0))
-                 for a, b, s in zip(batched, alone, scenes))
-    curve = interleaved_seconds({"batched": lambda: simulate_many(scenes, default),
-                                 "alone": lambda: [simulate(s, default) for s in scenes]}, repeats)
-    base = base | {"scene": f"curve of {len(scenes)} angles-{scene.speed:g}ms/{scene.model}/microslip",
-                   "angle": float(np.mean(angles)), "batch": len(scenes)}
-    nfev = int(np.mean([o.nfev for o in batched]))
-    rows.append(base | {"contender": "simulate_many", "method": out.method, "rtol": out.rtol, "error": spread,
-                        "reached": True, "time": curve["batched"] / len(scenes), "nfev": nfev,
-                        "time_ratio": curve["batched"] / curve["alone"]})
-    rows.append(base | {"contender": "simulate, one at a time", "method": out.method, "rtol": out.rtol,
-                        "error": 0.0, "reached": True, "time": curve["alone"] / len(scenes), "nfev": nfev,
-                        "time_ratio": 1.0})
+                        "error": 0.0, "time": timed["rigid"], "nfev": rigid.nfev, "time_ratio": 1.0})
+    rows.append(base | {"contender": f"its march alone ({row.elements} cells x {row.time_steps} steps)",
+                        "error": math.nan, "time": timed["march"], "nfev": 0,
+                        "time_ratio": timed["march"] / timed["microslip"]})
+    compiled, loaded = kernel_seconds(repeats)
+    kernels = base | {"scene": "the microslip kernels, once per process", "batch": 1, "error": math.nan, "nfev": 0}
+    rows.append(kernels | {"contender": "compile (fresh disk cache)", "time": compiled, "time_ratio": compiled / loaded})
+    rows.append(kernels | {"contender": "load (from the disk cache)", "time": loaded, "time_ratio": 1.0})
     return pd.DataFrame(rows)
+
+
+#: A fresh process's first use of the microslip kernels: numba imported, every kernel compiled or loaded.
+_FIRST_USE = ("import time; start = time.perf_counter(); "
+              "from sphereimpact.contact.tangential import microslip_march; microslip_march.compile_all(); "
+              "print(time.perf_counter() - start)")
+
+
+def kernel_seconds(repeats: int = 3) -> tuple[float, float]:
+    """Seconds [s] a fresh process takes to import numba and compile the microslip kernels into an empty disk cache
+    (``NUMBA_CACHE_DIR``, a temporary folder: what a fresh machine pays once), and the median over ``repeats``
+    processes to load them from the cache that run filled (what every later process pays)."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as cache:
+        env = os.environ | {"NUMBA_CACHE_DIR": cache}
+
+        def first_use() -> float:
+            run = subprocess.run([sys.executable, "-c", _FIRST_USE], env=env, capture_output=True, text=True)
+            if run.returncode:
+                raise RuntimeError(f"the microslip kernels failed to compile: {run.stderr.strip()[-500:]}")
+            return float(run.stdout)
+
+        compiled = first_use()
+        loaded = float(np.median([first_use() for _ in range(repeats)]))
+    return compiled, loaded
 
 
 def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:

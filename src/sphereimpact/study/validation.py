@@ -6,8 +6,8 @@ paper's own numbers: E and nu of sphere and anvil give E* and G*, the density an
 mu = 0.092; the normal damping (Hunt-Crossley on the Hertz spring) is calibrated to the measured
 e_n = 0.98 at normal incidence (:func:`sphereimpact.impact.calibrate.calibrate`).  Nothing is fitted to the
 oblique data: the tangential stiffness follows from G* / E*.  Every configured tangential model is run
-(the rigid contact, the Mindlin springs, the exact microslip contact), batched over the incidences where
-the model has a batched kernel (:func:`sphereimpact.impact.solve.simulate_many`).
+(the rigid contact, the Mindlin springs, the exact microslip contact) over the incidences
+(:func:`sphereimpact.impact.solve.simulate_many`).
 
 For the chapter's own ball, a map of impact angle x kappa says where the rigid tangential contact is
 within a tolerance of the compliant one, on spin and on rebound velocity.

@@ -104,10 +104,6 @@ class TangentialModel:
         The end of the tangential motion in closed form from the normal impulse, vectorised over many scenes
         (:class:`SweptTangential`): sweeps then solve only the normal motion of its scenes on their fast
         paths.  None: a sweep solves its scenes with :func:`sphereimpact.impact.solve.simulate_many`.
-    many : callable or None
-        ``many(normals, options)``: the motions over several solved normal motions at once (a batched
-        kernel, cheaper than one at a time), as a list in their order, each the motion ``motion`` gives it
-        alone (to round-off); None: one at a time.
     settings : tuple of Setting
         Its numerical settings (a resolution), read as ``options.setting(name)`` (None: not given).
     scale_free : bool
@@ -124,7 +120,6 @@ class TangentialModel:
     spring: str | None
     motion: Callable
     swept: "SweptTangential | None" = None
-    many: Callable | None = None
     settings: tuple = ()
     scale_free: bool = False
 

@@ -32,6 +32,8 @@ Discretisation (the model's settings ``elements`` and ``time_steps``, given in `
   the mean of the friction fraction F / (mu P+) at its ends times the exact normal impulse mu dJ+, so a
   contact that slides throughout gives the rigid model's impulse exactly.  A spring entering during a step
   takes the part of the step's displacement after it entered.
+
+The march is the compiled kernel of :mod:`.microslip_march` (numba, imported on the first microslip impact).
 """
 
 from __future__ import annotations
@@ -60,8 +62,6 @@ TIME_STEPS_SETTING = Setting("time_steps", "microslip's time steps over the cont
 #: Most cells x time steps one impact may take: the march costs about this many cell updates, so the bound
 #: keeps one impact to minutes where the settings' own maxima together would take days.
 MAX_CELL_STEPS = 10**10
-#: Time steps advanced per block of precomputed element weights (bounds the working memory).
-BLOCK = 64
 #: A contact counts as sticking in part while its tangential force is below mu P+ by more than this fraction
 #: (a friction force within it of mu P+ is gross slip to the row's resolution: at the slide-throughout
 #: threshold the discrete row flickers between the two with deficits of 1e-7 to 1e-4).
@@ -77,181 +77,25 @@ def hertz_moduli(scene) -> tuple[float, float]:
     return e_star, scene.kappa * e_star
 
 
-def cell_weights(a0, a1, left, width):
-    """Weights of element-row cells whose contact radius goes linearly in time from ``a0`` to ``a1`` over a step.
-
-    Parameters
-    ----------
-    a0, a1 : arrays
-        Contact radius at the step's start and end, over a_max [-] (broadcast with ``left``).
-    left : array
-        Left edges of the cells [a_max].
-    width : float
-        Width of a cell [a_max].
-
-    Returns
-    -------
-    mean_length : array
-        Each cell's covered length clip(a - left, 0, width), averaged over the step exactly [a_max]: a cell
-        that enters or leaves the contact part-way through is credited with the mean, where the ends' mean
-        would credit a cell entering at the step's end with half its length.
-    share : array
-        The cell's share at the step's end of the integral of w = (a^2 - x^2) / R over the contact [-]: the
-        shares of a row add up to 1 where a1 > 0, else 0.
-    """
-    length0 = np.clip(a0 - left, 0.0, width)
-    length = np.clip(a1 - left, 0.0, width)
-    right = left + length
-    load = a1 * a1 * length - (right * right * right - left * left * left) / 3.0  # int of a^2 - x^2, covered part
-    total = 2.0 * a1 * a1 * a1 / 3.0
-    change = a1 - a0
-    crossing = ((np.minimum(a0, a1) < left + width) & (np.maximum(a0, a1) > left)
-                & (np.abs(change) > 1e-9 * width))  # the covered length changes slope within the step
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share = np.where(total > 0, load / total, 0.0)
-        exact = (_covered_integral(a1, left, width) - _covered_integral(a0, left, width)) / change
-    return np.where(crossing, exact, 0.5 * (length0 + length)), share
-
-
-def _covered_integral(a, left, width):
-    """The integral over the contact radius, from 0 to ``a``, of a cell's covered length clip(a - left, 0, width)."""
-    inside = np.clip(a - left, 0.0, width)
-    return 0.5 * inside * inside + width * np.maximum(a - left - width, 0.0)
-
-
-class _Block:
-    """The element row's weights for a block of steps of one contact (``xi_a`` of shape (S,)) or B at once
-    ((S, B)): each cell's limit, its share of the Coulomb cap over the row's stiffness, as an array (S, [B,] N);
-    and the few cells whose covered length is not the full width all through a step (the band at the contact's
-    edge), with their exact mean covered lengths.
-
-    A cell covered all through a step has mean length ``width`` and limit cap / stiffness times
-    (a^2 width - c_i) / (2 a^3 / 3), with c_i the integral of x^2 over the cell; a cell beyond the contact at
-    the step's end has limit 0 (that formula is negative there), which clears what it held.  Only the band is
-    weighed cell by cell (:func:`cell_weights`), so a step costs a few passes over the row."""
-
-    def __init__(self, xi_a, cap, stiffness, elements, xi_before):
-        width = 1.0 / elements
-        left = np.arange(elements) * width
-        a1 = np.asarray(xi_a, dtype=float)
-        a0 = np.concatenate([np.asarray(xi_before, dtype=float)[None], a1[:-1]])
-        with np.errstate(invalid="ignore", divide="ignore"):
-            scale = np.where(a1 > 0, cap / (np.asarray(stiffness) * (2.0 / 3.0) * a1 * a1 * a1), 0.0)
-        c = ((left + width) ** 3 - left ** 3) / 3.0
-        limit = np.maximum(scale[..., None] * ((a1 * a1 * width)[..., None] - c), 0.0)
-        low = np.clip(np.floor(np.minimum(a0, a1) * elements), 0, elements).astype(np.int64)
-        high = np.clip(np.ceil(a1 * elements), 0, elements).astype(np.int64)
-        counts = np.maximum(high - low, 0).ravel()
-        lanes = np.repeat(np.arange(counts.size), counts)  # flat (step, lane) of each band cell
-        cells = low.ravel()[lanes] + np.arange(lanes.size) - np.repeat(np.cumsum(counts) - counts, counts)
-        mean, share = cell_weights(a0.ravel()[lanes], a1.ravel()[lanes], cells * width, width)
-        flat = limit.reshape(-1, elements)
-        flat[lanes, cells] = (np.broadcast_to(cap / np.asarray(stiffness), a1.shape).ravel()[lanes] * share)
-        per_step = a1[0].size if a1.ndim > 1 else 1
-        bounds = np.searchsorted(lanes, np.arange(0, a1.shape[0] + 1) * per_step)
-        self.limit, self.width = limit, width
-        self.band = [(lanes[i:j] % per_step, cells[i:j], mean[i:j]) for i, j in zip(bounds[:-1], bounds[1:])]
-
-    def hold(self, j, held, d_u):
-        """Step ``j`` of the block: each cell's held displacement (the integral of u over its part in contact)
-        grows by its mean covered length times the rigid displacement ``d_u`` (float, or (B, 1)) while it
-        sticks, and is held to its limit when it slides."""
-        lanes, cells, mean = self.band[j]
-        grown = held + self.width * d_u
-        if held.ndim == 1:
-            grown[cells] = held[cells] + mean * d_u
-        else:
-            grown[lanes, cells] = held[lanes, cells] + mean * d_u[lanes, 0]
-        limit = self.limit[j]
-        return np.minimum(np.maximum(grown, -limit), limit)
-
-
 def quasi_static(xi_a, cap, displacement, stiffness=1.0, elements=ELEMENTS):
-    """The tangential force of the contact under a prescribed history, without inertia.
+    """The tangential force of the contact under a prescribed history, without inertia: the compiled kernel's
+    :func:`~.microslip_march.quasi_static` (arrays (K,) of contact radius over a_max [-], Coulomb cap mu P+ [N]
+    and rigid tangential displacement U [m] from a fresh contact; ``stiffness`` 2 G* a_max [N/m]), returning
+    the force Q [N] on the moving body, positive along U."""
+    from . import microslip_march
 
-    Parameters
-    ----------
-    xi_a, cap, displacement : arrays (K,)
-        Contact radius over a_max [-], Coulomb cap mu P+ [N] and the rigid tangential displacement of the
-        bodies U [m] at K instants, starting from a fresh contact at the first.
-    stiffness : float
-        2 G* a_max [N/m].
-    elements : int
-        Cells of the element row.
-
-    Returns
-    -------
-    array (K,)
-        The tangential force Q = 2 G* int u dx [N] on the moving body, positive along U (the force that
-        holds it; the force on the ball in :class:`MicroslipTangential` is its opposite).
-    """
-    xi_a, cap, displacement = (np.asarray(v, dtype=float) for v in (xi_a, cap, displacement))
-    block = _Block(xi_a[1:], cap[1:], stiffness, elements, xi_a[0])
-    held, force = np.zeros(elements), np.zeros(xi_a.shape)
-    for n, d_u in enumerate(np.diff(displacement)):
-        held = block.hold(n, held, float(d_u))
-        force[n + 1] = stiffness * held.sum()
-    return force
+    xi_a, cap, displacement = (np.ascontiguousarray(v, dtype=float) for v in (xi_a, cap, displacement))
+    return microslip_march.quasi_static(xi_a, cap, displacement, float(stiffness), int(elements))
 
 
-def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, held):
-    """Advance the element row and the slip through the contact: one contact (numbers) or B at once (arrays).
+def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, elements):
+    """The element row and the slip marched through one contact from a fresh row of ``elements`` cells: the
+    compiled kernel's :func:`~.microslip_march.march` (its arguments and results), imported on first use."""
+    from . import microslip_march
 
-    Each cell's state is the integral of u over its part in contact [m a_max].  While the cell sticks it grows
-    by the covered length times the rigid displacement dU (the material entering the contact brings none),
-    and it is held to the cell's share of mu P+ / (2 G* a_max).
-
-    Parameters
-    ----------
-    xi_a : array (M + 1,) or (M + 1, B)
-        Contact radius over a_max at the step ends [-].
-    cap : array like ``xi_a``
-        Coulomb cap mu P+ at the step ends [N]; zero at the first.
-    impulse : array (M,) or (M, B)
-        mu times the normal impulse of P+ over each step [N s].
-    dt, stiffness, inverse_mass, g_t, slip0 : float or array (B,)
-        Step [s]; 2 G* a_max, the row's tangential force per unit of held displacement [N/m];
-        (1 + 1/alpha) / m, the slip's acceleration per unit tangential force [1/kg]; gravity along the flat
-        [m/s^2]; the slip velocity v_t - omega R at the start [m/s].
-    held : array (N,) or (B, N)
-        The cells' integrals of u at the start [m a_max] (zero: a fresh contact).
-
-    Returns
-    -------
-    force, tangential_impulse : arrays like ``xi_a``
-        Tangential force on the ball [N] and the tangential impulse on it since the start [N s], at the
-        step ends.
-    held : array like ``held``
-        The cells' integrals of u at the end.
-    """
-    points, elements = xi_a.shape[0], held.shape[-1]
-    one = xi_a.ndim == 1  # one contact: its numbers are plain floats (numpy's per-call cost is most of a step)
-    force, j_t = np.zeros(xi_a.shape), np.zeros(xi_a.shape)
-    with np.errstate(divide="ignore"):
-        per_cap = np.where(cap > 0, 1.0 / cap, 0.0)  # F / cap is the friction fraction phi
-    no_cap = (cap <= 0).astype(float)  # the contact's ends: phi is 0 / 0 there and takes its neighbour's value
-    if one:
-        per_cap, no_cap, impulse = per_cap.tolist(), no_cap.tolist(), impulse.tolist()
-        dt, stiffness, inverse_mass, g_t, slip0 = (float(v) for v in (dt, stiffness, inverse_mass, g_t, slip0))
-    slip, f_now, phi_now, j_now = slip0, 0.0 * slip0, 0.0 * slip0, 0.0 * slip0
-    half_dt2 = 0.5 * dt * dt
-    for start in range(0, points - 1, BLOCK):  # the row's weights for a block of steps at once
-        stop = min(start + BLOCK, points - 1)
-        block = _Block(xi_a[start + 1:stop + 1], cap[start + 1:stop + 1], stiffness, elements, xi_a[start])
-        forces, impulses = [], []
-        for j, n in enumerate(range(start, stop)):
-            d_u = dt * slip + half_dt2 * (f_now * inverse_mass + g_t)
-            held = block.hold(j, held, d_u if one else d_u[:, None])
-            f_next = -stiffness * (float(held.sum()) if one else held.sum(axis=-1))
-            phi_next = f_next * per_cap[n + 1] + no_cap[n + 1] * phi_now
-            step_impulse = 0.5 * ((phi_now if n else phi_next) + phi_next) * impulse[n]
-            j_now = j_now + step_impulse
-            slip = slip + step_impulse * inverse_mass + g_t * dt
-            forces.append(f_next)
-            impulses.append(j_now)
-            f_now, phi_now = f_next, phi_next
-        force[start + 1:stop + 1], j_t[start + 1:stop + 1] = forces, impulses
-    return force, j_t, held
+    return microslip_march.march(np.ascontiguousarray(xi_a, dtype=float), np.ascontiguousarray(cap, dtype=float),
+                                 np.ascontiguousarray(impulse, dtype=float), float(dt), float(stiffness),
+                                 float(inverse_mass), float(g_t), float(slip0), np.zeros(int(elements)))
 
 
 def resolution(scene, normal, options) -> tuple[int, int]:
@@ -354,29 +198,8 @@ class MicroslipTangential:
     def __init__(self, normal, options):
         self.elements, self.time_steps = resolution(normal.scene, normal, options)
         t, inputs = _inputs(normal, self.time_steps)
-        force, j_t, _ = march(*inputs, np.zeros(self.elements))
-        self._settle(normal, t, inputs[1], force, j_t)
-
-    @classmethod
-    def many(cls, normals, options) -> list:
-        """The motions over several solved normal motions: those of one resolution share a march of the batched
-        kernel, so each is the motion :class:`MicroslipTangential` gives it alone (a march at a finer resolution
-        than its own would differ from that by the resolution's error, 1e-5 of e_t)."""
-        sizes = [resolution(n.scene, n, options) for n in normals]
-        motions = [None] * len(normals)
-        for size in dict.fromkeys(sizes):
-            members = [i for i, own in enumerate(sizes) if own == size]
-            sampled = [_inputs(normals[i], size[1]) for i in members]
-            stacked = [np.stack(parts, axis=-1) for parts in zip(*(inputs for _, inputs in sampled))]
-            force, j_t, _ = march(*stacked, np.zeros((len(members), size[0])))
-            for b, (i, (t, inputs)) in enumerate(zip(members, sampled)):
-                motion = motions[i] = cls.__new__(cls)
-                motion.elements, motion.time_steps = size
-                motion._settle(normals[i], t, inputs[1], force[:, b], j_t[:, b])
-        return motions
-
-    def _settle(self, normal, t, cap, force, j_t):
-        """The motion from the march's tangential force and impulse at the step ends ``t`` (cap: mu P+ there)."""
+        force, j_t = march(*inputs, self.elements)
+        cap = inputs[1]
         s = self.scene = normal.scene
         self.normal, self.t, self._force, self._j = normal, t, force, j_t
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -414,6 +237,6 @@ class MicroslipTangential:
 MICROSLIP_MODEL = TANGENTIALS.register(TangentialModel(
     "microslip", doc="exact elastic microslip of a Hertz contact (method of dimensionality reduction), Hertz laws",
     stiffness="k_t = 2 G* a, resolved across the contact", parameters=(KAPPA, POISSON, SHEAR_MODULUS),
-    spring="hertz", motion=MicroslipTangential, many=MicroslipTangential.many,
+    spring="hertz", motion=MicroslipTangential,
     settings=(ELEMENTS_SETTING, TIME_STEPS_SETTING), scale_free=True))
 
