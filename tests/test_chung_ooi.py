@@ -223,3 +223,20 @@ def test_departure_of_the_dem_rules_on_the_kharaz_ball():
     assert found[("Kharaz ball", "mindlin+dashpot", "e_t")] == pytest.approx(expected, rel=1e-12)
     undamped = table[table["rule"] == "mindlin"].reset_index(drop=True)
     assert not np.allclose(undamped["omega_f"], damped["omega_f"], rtol=1e-6)  # the dashpot is there (e_n 0.98)
+
+
+def test_the_departure_study_refuses_what_it_cannot_run(tmp_path, capsys):
+    """The departure study's command line (issue 41 item 6's third door) refuses in one line, before any work: a
+    test that is not an oblique one on a plane, and a config without the Kharaz ball; and writes nothing."""
+    from sphereimpact.cli import run
+
+    out = tmp_path / "out"
+    assert run(["benchmark", "departure", "--tests", "7", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "tests must be some of 4, 5, 6 (the oblique tests on a plane); got 7" in err
+    config = tmp_path / "config.yaml"
+    config.write_text("validation:\n  sphere: {modulus: 3.8e+11, poisson: 0.23, density: 4000.0}\n  speed: 3.9\n")
+    assert run(["benchmark", "departure", "--config", str(config), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "lacks validation.sphere.diameter, validation.anvil.modulus" in err
+    assert not out.exists()

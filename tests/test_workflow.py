@@ -369,5 +369,12 @@ def test_the_pipeline_writes_the_chung_ooi_references_as_the_command_line_does(w
     expected = np.max(np.abs(damped["omega_f"] - exact["omega_f"])) / np.max(np.abs(exact["omega_f"]))
     assert mine.set_index("quantity").loc["omega_f", "max_rel"] == pytest.approx(expected, rel=1e-5)
     assert "`mindlin+dashpot`" in (workdir / "results/readme/dem_departure.md").read_text()
+    # the departure study's command-line door: the pipeline's own files, from its used config's Kharaz ball
+    out = tmp_path / "departure"
+    assert run(["benchmark", "departure", "--tests", "5", "--config", str(workdir / "results/config.yaml"),
+                "--out", str(out)]) == 0
+    for name in ("departure.csv", "departure_kharaz.csv"):
+        assert (out / name).read_bytes() == (workdir / "results/chung_ooi" / name).read_bytes(), name
+    assert (out / "departure.png").stat().st_size > 0
     published = pd.read_csv(workdir / "results/chung_ooi/published.csv")  # the paper's curves beside the references
     assert set(published["test"]) == {5} and published["points"].min() > 10

@@ -415,6 +415,21 @@ def _parser() -> argparse.ArgumentParser:
                             "damped-mindlin: the DEM codes' Mindlin spring with the tangential dashpot Kratos sets from "
                             "the test's COR (only the oblique tests with a COR below 1: 4, 6, 7, 8)")
     chung.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
+    costs = tests.add_parser(
+        "departure", help="what a DEM code's tangential rule costs: each rule's largest departure from the exact contact",
+        formatter_class=_Help,
+        description="Solve Chung & Ooi's oblique tests on a plane (4, 5, 6) with each DEM tangential rule (the linear "
+                    "spring and Mindlin's, capped by Coulomb friction, with and without Kratos' tangential dashpot; "
+                    "the rigid contact) and the exact elastic microslip contact, and write DIR/departure.csv (each "
+                    "rule's largest departure from the exact contact per test and quantity, relative to the exact "
+                    "quantity's largest magnitude) and DIR/departure.png. With --config, the Kharaz ball of a study "
+                    "config's validation section too, over its incidences (DIR/departure_kharaz.csv).")
+    costs.add_argument("--out", required=True, metavar="DIR", help="folder of the files (created)")
+    costs.add_argument("--tests", default=None, metavar="LIST", help="comma-separated, some of 4,5,6 (default: all)")
+    costs.add_argument("--config", default=None, metavar="FILE",
+                       help="a study config (e.g. config/config.yaml) whose validation section describes the Kharaz "
+                            "ball: its materials, speed, mu, measured e_n, normal law and incidences")
+    costs.add_argument("--force", action="store_true", help="overwrite the files in DIR if they exist")
     against = tests.add_parser(
         "compare", help="judge a DEM code's results against the reference files (exit 0 pass, 1 fail, 2 bad input)",
         formatter_class=_Help,
@@ -871,7 +886,8 @@ def _plan(args) -> None:
 
 
 def _benchmark(args) -> None:
-    """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, or a code's deviation from them."""
+    """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, a code's deviation from them, or the
+    DEM rules' departure from the exact contact."""
     from .study.chung_ooi import chosen_tests, variant_tests, write_reference
 
     if args.benchmark == "compare":
@@ -894,10 +910,9 @@ def _benchmark(args) -> None:
                              f"{worst['quantity']} {worst['max_rel']:.3g} of tolerance {worst['tolerance']:g}, "
                              f"{worst['worst']})\n")
         return 0 if verdict.passed else 1
-    try:
-        numbers = None if args.tests is None else [int(n) for n in args.tests.split(",") if n.strip()]
-    except ValueError:
-        raise ValueError(f"tests must be comma-separated test numbers, e.g. 1,4; got {args.tests!r}") from None
+    numbers = _test_numbers(args.tests)
+    if args.benchmark == "departure":
+        return _departure(args, numbers)
     check_out_folder(args.out)
     numbers = chosen_tests(numbers)
     if args.variant != "exact":
@@ -910,6 +925,50 @@ def _benchmark(args) -> None:
         check_out(os.path.join(args.out, f"test{number}.csv"), args.force, (".csv",))
     for path in write_reference(args.out, numbers, variant=args.variant):
         sys.stdout.write(f"{path}\n")
+
+
+def _test_numbers(text: str | None) -> list[int] | None:
+    """The --tests list as test numbers (None: not given)."""
+    try:
+        return None if text is None else [int(n) for n in text.split(",") if n.strip()]
+    except ValueError:
+        raise ValueError(f"tests must be comma-separated test numbers, e.g. 1,4; got {text!r}") from None
+
+
+#: What ``benchmark departure --config`` reads of a study config's validation section: the Kharaz ball.
+KHARAZ_KEYS = {"sphere": ("modulus", "poisson", "density", "diameter"), "anvil": ("modulus", "poisson"), "speed": (),
+               "mu": (), "cor": (), "model": (), "angles": ()}
+
+
+def _departure(args, numbers) -> None:
+    """``sphereimpact benchmark departure``: each DEM rule's largest departure from the exact contact."""
+    from .study.departure import check_tests, write_departure
+
+    numbers, section = check_tests(numbers), None
+    if args.config is not None:
+        import yaml
+
+        try:
+            with open(args.config, encoding="utf-8") as handle:
+                config = yaml.safe_load(handle)
+        except (OSError, yaml.YAMLError) as err:
+            raise ValueError(f"config: cannot read {args.config!r}: {str(err).splitlines()[0]}") from None
+        section = config.get("validation") if isinstance(config, dict) else None
+        missing = ["validation"] if not isinstance(section, dict) else [
+            f"validation.{key}" + (f".{part}" if part else "") for key, parts in KHARAZ_KEYS.items()
+            for part in (parts or ("",)) if key not in section
+            or (part and not (isinstance(section[key], dict) and part in section[key]))]
+        if missing:
+            raise ValueError(f"config: {args.config!r} lacks {', '.join(missing)} (a study config's validation "
+                             "section describes the Kharaz ball, as config/config.yaml does)")
+    check_out_folder(args.out)
+    os.makedirs(args.out, exist_ok=True)
+    for name in ("departure.csv", "departure.png", *(("departure_kharaz.csv",) if section else ())):
+        check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
+    write_departure(args.out, numbers, section)
+    sys.stdout.write(f"{os.path.join(args.out, 'departure.csv')}\n")
+    if section is None:
+        sys.stderr.write("sphereimpact: note: Chung & Ooi's tests only; give --config FILE for the Kharaz ball too\n")
 
 
 def run(argv=None) -> int:

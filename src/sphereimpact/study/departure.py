@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..impact.solve import simulate_many
-from .chung_ooi import EXACT, deviation, parse_rule
+from .chung_ooi import EXACT, dem_rules, deviation, deviations, parse_rule, reference
 from .tables import text_table
 
 #: The tests of Chung & Ooi whose departures are shown (the oblique ones on a plane).
@@ -47,16 +47,65 @@ def kharaz_table(section: dict, angles, rules=KHARAZ_RULES) -> pd.DataFrame:
     return pd.concat(parts, ignore_index=True)
 
 
-def departures(chung_deviations: pd.DataFrame, kharaz: pd.DataFrame) -> pd.DataFrame:
+def chung_deviations(numbers=TESTS) -> pd.DataFrame:
+    """Each DEM rule's deviations from the exact contact on Chung & Ooi's oblique tests ``numbers`` (some of
+    :data:`TESTS`), as the ``chung_ooi`` study's ``deviations.csv`` holds them (ValueError naming another test)."""
+    return pd.concat([deviations(dem_rules(n), reference(n)) for n in check_tests(numbers)], ignore_index=True)
+
+
+def check_tests(numbers) -> list[int]:
+    """``numbers`` (None: :data:`TESTS`) as a list without repeats, each one of :data:`TESTS` (ValueError otherwise)."""
+    numbers = list(dict.fromkeys(TESTS if numbers is None else numbers))
+    other = [n for n in numbers if n not in TESTS]
+    if other or not numbers:
+        raise ValueError(f"tests must be some of {', '.join(map(str, TESTS))} (the oblique tests on a plane); got "
+                         f"{other[0] if other else 'none'}")
+    return numbers
+
+
+def write_departure(folder, numbers=TESTS, section: dict | None = None) -> pd.DataFrame:
+    """The study on its own (the command line's door, ``sphereimpact benchmark departure``): in ``folder``,
+    ``departure.csv`` (:func:`departures`) for Chung & Ooi's tests ``numbers`` (:func:`chung_deviations`) and, with
+    a study config's ``validation`` section ``section``, the Kharaz ball over its incidences
+    (``departure_kharaz.csv``), and its figure ``departure.png``.  Each file is written beside and renamed."""
+    from ..figures.departure import departure_figure
+    from ..parsing import parse_range
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    kharaz = None if section is None else kharaz_table(section, parse_range(section["angles"]))
+    table = departures(chung_deviations(numbers), kharaz)
+    if kharaz is not None:
+        _write(kharaz, folder / "departure_kharaz.csv", KHARAZ_DIGITS)
+    _write(table, folder / "departure.csv", DEPARTURE_DIGITS)
+    departure_figure(folder / "departure.csv", [folder / "departure.png"])
+    return table
+
+
+#: Digits of the written tables: the Kharaz ball's outputs, and the departures.
+KHARAZ_DIGITS, DEPARTURE_DIGITS = "%.10g", "%.6g"
+
+
+def _write(frame: pd.DataFrame, path, digits: str) -> None:
+    """``frame`` as CSV at ``path``, written beside and renamed (a failed write keeps the old file)."""
+    from ..files import replacing
+
+    with replacing(path) as partial:
+        frame.to_csv(partial, index=False, float_format=digits, lineterminator="\n")
+
+
+def departures(chung_deviations: pd.DataFrame, kharaz: pd.DataFrame | None) -> pd.DataFrame:
     """One row per scene set, rule and quantity: the largest departure from the exact contact, relative to the exact
     quantity's largest magnitude over the set (``max_rel``), from Chung & Ooi's deviations (tests :data:`TESTS` that
-    were run) and the Kharaz ball's table (:func:`kharaz_table`)."""
+    were run) and the Kharaz ball's table (:func:`kharaz_table`; None: left out)."""
     rows = []
     for number in TESTS:
         mine = chung_deviations[(chung_deviations["test"] == number) & chung_deviations["quantity"].isin(QUANTITIES)]
         for item in mine.itertuples(index=False):
             rows.append({"scenes": f"Chung & Ooi test {number}", "rule": item.rule, "quantity": item.quantity,
                          "max_rel": float(item.max_rel)})
+    if kharaz is None:
+        return pd.DataFrame(rows, columns=["scenes", "rule", "quantity", "max_rel"])
     exact = kharaz[kharaz["rule"] == EXACT].reset_index(drop=True)
     for rule, part in kharaz[kharaz["rule"] != EXACT].groupby("rule", sort=False):
         for quantity in QUANTITIES:
@@ -72,9 +121,9 @@ def run_departure(section: dict, deviations_csv, kharaz_csv, departure_csv) -> p
     from ..parsing import parse_range
 
     kharaz = kharaz_table(section, parse_range(section["angles"]))
-    kharaz.to_csv(kharaz_csv, index=False, float_format="%.10g", lineterminator="\n")
+    _write(kharaz, kharaz_csv, KHARAZ_DIGITS)
     table = departures(pd.read_csv(deviations_csv), kharaz)
-    table.to_csv(departure_csv, index=False, float_format="%.6g", lineterminator="\n")
+    _write(table, departure_csv, DEPARTURE_DIGITS)
     return table
 
 

@@ -39,7 +39,7 @@ TIMING_CHARTS = ("work_precision", "microslip_resolution", "sweep_paths")
 #: off), and a speed-up is the ratio of two timings.
 TIMING_RANGE = 3.0
 #: Table headers whose cells are timings or ratios of timings.
-TIMED = ("simulate [ms]", "script [ms]", "simulate / script", "time", "impacts/s", "speed-up", "time per impact [ms]",
+TIMED = ("simulate [ms]", "script [ms]", "simulate / script", "time", "impacts/s", "speed-up", "time [ms]",
          "time ratio", "time, every output", "every / fast", "bounces solved/s")
 
 _BEGIN = re.compile(r"<!-- BEGIN GENERATED (\w+)[^>]*-->\n")
