@@ -97,11 +97,11 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     return pd.DataFrame(rows)
 
 
-def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
+def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, kernels: bool = True) -> pd.DataFrame:
     """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact on
     the same scene and beside its element row's march alone (the compiled kernel, on the impact's own inputs),
-    and, once per process rather than per impact, the kernels' compilation on a fresh machine and their load from
-    the disk cache (:func:`kernel_seconds`).
+    and, once per process rather than per impact and with ``kernels``, the kernels' compilation on a fresh machine
+    and their load from the disk cache (:func:`kernel_seconds`).
 
     Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
     error against the ``reference`` resolution (cells, time steps); NaN for the march and the kernels (not an
@@ -130,10 +130,11 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     rows.append(base | {"contender": f"its march alone ({row.elements} cells x {row.time_steps} steps)",
                         "error": math.nan, "time": timed["march"], "nfev": 0,
                         "time_ratio": timed["march"] / timed["microslip"]})
-    compiled, loaded = kernel_seconds(repeats)
-    kernels = base | {"scene": "the microslip kernels, once per process", "batch": 1, "error": math.nan, "nfev": 0}
-    rows.append(kernels | {"contender": "compile (fresh disk cache)", "time": compiled, "time_ratio": compiled / loaded})
-    rows.append(kernels | {"contender": "load (from the disk cache)", "time": loaded, "time_ratio": 1.0})
+    if kernels:
+        compiled, loaded = kernel_seconds(repeats)
+        once = base | {"scene": "the microslip kernels, once per process", "batch": 1, "error": math.nan, "nfev": 0}
+        rows.append(once | {"contender": "compile (fresh disk cache)", "time": compiled, "time_ratio": compiled / loaded})
+        rows.append(once | {"contender": "load (from the disk cache)", "time": loaded, "time_ratio": 1.0})
     return pd.DataFrame(rows)
 
 

@@ -51,7 +51,7 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     section = config["numerics"]["microslip"]
     exact = experiment(config["validation"]).with_tangential("microslip").with_(angle=_first_oblique(section["angles"]))
     reference = (section["reference"]["elements"], section["reference"]["time_steps"])
-    microslip = microslip_bench(exact, reference, bench["repeats"])
+    microslip = microslip_bench(exact, reference, bench["repeats"], bench["kernels"])
     pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip], ignore_index=True).to_csv(
         csv_path, **CSV)
     stages(scenes, bench["repeats"]).to_csv(stages_csv, **CSV)
