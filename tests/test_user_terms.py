@@ -97,9 +97,13 @@ def test_simulate_says_when_it_runs_the_chapters_ball(capsys):
     assert run(["simulate", "--json"]) == 0
     assert ("note: the chapter's ball where the options are silent (mass 0.145 kg, diameter 0.063 m, k 60000 N/m, "
             "b 10.5 N s/m)") in capsys.readouterr().err
-    assert run(["simulate", "--json", "--mass", "0.05", "--diameter", "0.04", "--model", "hunt-crossley",
-                "--modulus", "1e7"]) == 0
+    ball = ["--mass", "0.05", "--diameter", "0.04", "--model", "hunt-crossley", "--modulus", "1e7"]
+    assert run(["simulate", "--json", *ball, "--speed", "3"]) == 0
     assert "note" not in capsys.readouterr().err
+    # before: a described ball without --speed ran at the chapter's 3 m/s without a word
+    assert run(["simulate", "--json", *ball]) == 0
+    err = capsys.readouterr().err
+    assert "note: the chapter's approach speed 3 m/s where --speed is silent" in err and "chapter's ball" not in err
 
 
 def test_the_api_says_which_parts_of_the_ball_are_the_chapters(capsys):
