@@ -86,6 +86,20 @@ def test_fit_refuses_a_ball_it_was_not_given(capsys):
     assert run(["fit", KHARAZ, "--free", "mu", *ALUMINA, "--speed", "3.9", "--json"]) == 0
 
 
+def test_plan_refuses_candidates_without_their_speed(tmp_path, capsys):
+    """Before: plan of candidates without a speed column ran them at the ball file's own speed (the 34.6 m/s its COR
+    was calibrated at), exit 0, no word; fit refused the same bounces.  Now plan refuses them as fit does."""
+    ball, candidates = tmp_path / "golf.json", tmp_path / "candidates.csv"
+    assert run(["simulate", "--mass", "0.0459", "--diameter", "0.0427", "--model", "hunt-crossley", "--modulus", "1e8",
+                "--cor", "0.8", "--speed", "40", "--save-ball", str(ball)]) == 0
+    candidates.write_text("incidence\n10\n20\n30\n40\n")
+    capsys.readouterr()
+    assert run(["plan", str(candidates), "--ball", str(ball), "--free", "mu", "--noise", "e_t=0.02"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "has no speed column: give the bounces' approach speed along the path" in err
+    assert run(["plan", str(candidates), "--ball", str(ball), "--free", "mu", "--noise", "e_t=0.02", "--speed", "30"]) == 0
+
+
 def test_fit_out_must_name_a_folder(tmp_path, monkeypatch, capsys):
     """Before: --out "" wrote ball.json, fit.json, residuals.csv and fit.png into the current folder."""
     monkeypatch.chdir(tmp_path)
