@@ -140,6 +140,10 @@ def test_the_api_says_which_parts_of_the_ball_are_the_chapters(capsys):
     pair = simulate(Scene(partner_mass=1.0, partner_diameter=0.1, mass=0.2, diameter=0.07, angle=0.0))
     assert pair.chapter_ball == ("k", "b")
     assert chapter_parts(Scene(mass=0.2)) == ["diameter", "k or contact_time", "b or cor"]
+    # the approach speed alike: the API says when it is the chapter's, and the command line's note reads it
+    assert Scene().chapter_approach == ("speed",) and Scene(speed=3.0).chapter_approach == ()
+    assert simulate(Scene(angle=60.0)).scene.chapter_approach == ("speed",)
+    assert Scene(**Scene().as_dict()).chapter_approach == ("speed",) and Scene().with_(speed=5.0).chapter_approach == ()
     assert run(["simulate", "--json", "--mass", "0.2", "--cor", "0.7"]) == 0
     said = capsys.readouterr().err
     assert "(diameter 0.063 m, k 60000 N/m); describe yours with --diameter, --k or --contact-time" in said

@@ -726,7 +726,7 @@ def _simulate(args) -> None:
     if chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
                          f"({_defaults(scene, chapter)}); describe yours with {_as_options(chapter)}\n")
-    if "speed" not in args.given and not args.chapter_ball:  # the approach, as the ball: the chapter's, said
+    if outcome.scene.chapter_approach and not args.chapter_ball:  # what the API says of its approach
         sys.stderr.write(f"sphereimpact: note: the chapter's approach speed {scene.speed:g} m/s where --speed is "
                          "silent\n")
     if args.history is not None or args.plot is not None:

@@ -50,11 +50,12 @@ def bodies_judged():
 
 
 class ChapterValue(float):
-    """A value the scene took from the chapter's ball because its user did not give it: the mass (0.145 kg) and
-    diameter (0.063 m), and the stiffness and damping of a law whose defaults are the chapter's (eq. 4.1/4.2's
-    k = 60000 N/m, b = 10.5 N s/m).  A float in every computation, told apart by its type, so that a scene knows which
-    parts of its ball are undescribed (:attr:`Scene.chapter_ball`) and every door can say so: only ``simulate``
-    runs the chapter's ball unasked (:func:`sphereimpact.impact.ball.undescribed`)."""
+    """A value the scene took from the chapter's because its user did not give it: the ball's mass (0.145 kg) and
+    diameter (0.063 m), the stiffness and damping of a law whose defaults are the chapter's (eq. 4.1/4.2's
+    k = 60000 N/m, b = 10.5 N s/m), and the approach speed (3 m/s).  A float in every computation, told apart by its
+    type, so that a scene knows which parts of its ball and approach are undescribed (:attr:`Scene.chapter_ball`,
+    :attr:`Scene.chapter_approach`) and every door can say so: only ``simulate`` runs the chapter's scene unasked
+    (:func:`sphereimpact.impact.ball.undescribed`)."""
 
     __slots__ = ()
 
@@ -62,8 +63,8 @@ class ChapterValue(float):
         return float.__repr__(self)
 
 
-#: The chapter's ball, as the Scene's defaults.
-CHAPTER_MASS, CHAPTER_DIAMETER = ChapterValue(0.145), ChapterValue(0.063)
+#: The chapter's ball and its approach speed, as the Scene's defaults.
+CHAPTER_MASS, CHAPTER_DIAMETER, CHAPTER_SPEED = ChapterValue(0.145), ChapterValue(0.063), ChapterValue(3.0)
 
 
 class FrozenMapping(Mapping):
@@ -172,7 +173,7 @@ class Scene:
     diameter: float = CHAPTER_DIAMETER
     inertia_factor: float = 0.4
     angle: float = 0.0
-    speed: float = 3.0
+    speed: float = CHAPTER_SPEED
     mu: float = 0.2
     model: str = "modified"
     k: float | None = None
@@ -270,6 +271,12 @@ class Scene:
         ``diameter``, and the law's stiffness ``k`` and damping where they are the chapter's defaults): empty when
         the ball is described (:class:`ChapterValue`)."""
         return tuple(name for name in ("mass", "diameter", *PARAMETER_NAMES) if type(getattr(self, name)) is ChapterValue)
+
+    @property
+    def chapter_approach(self) -> tuple:
+        """``("speed",)`` when this scene took the chapter's approach speed (3 m/s) because its user did not give
+        one, else empty (:class:`ChapterValue`)."""
+        return ("speed",) if type(self.speed) is ChapterValue else ()
 
     @property
     def reduced(self) -> "Scene":
