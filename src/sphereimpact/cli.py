@@ -968,10 +968,8 @@ def _departure(args, numbers) -> None:
         if missing:
             raise ValueError(f"config: {args.config!r} lacks {', '.join(missing)} (a study config's validation "
                              "section describes the Kharaz ball, as config/config.yaml does)")
-    check_out_folder(args.out)
-    os.makedirs(args.out, exist_ok=True)
-    for name in ("departure.csv", "departure.png", *(("departure_kharaz.csv",) if section else ())):
-        check_out(os.path.join(args.out, name), args.force, (os.path.splitext(name)[1],))
+    _check_out_files(args.out, ("departure.csv", "departure.png", *(("departure_kharaz.csv",) if section else ())),
+                     args.force)
     write_departure(args.out, numbers, section)
     sys.stdout.write(f"{os.path.join(args.out, 'departure.csv')}\n")
     if section is None:

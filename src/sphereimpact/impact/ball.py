@@ -28,7 +28,7 @@ from ..errors import ExtrapolationWarning
 from ..files import write_text
 from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
-from .inputs import as_number
+from .inputs import as_number, check_flag
 from .scene import Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
@@ -170,9 +170,7 @@ def check_described(ball, door: str, chapter_ball: bool) -> None:
     silent (:attr:`Scene.chapter_ball <sphereimpact.Scene.chapter_ball>`), unless ``chapter_ball``: the API's
     ``fit`` and ``plan`` take the user's ball, as their command lines do; only ``simulate`` takes the chapter's
     unasked."""
-    if not isinstance(chapter_ball, (bool, np.bool_)):
-        raise ValueError(f"chapter_ball must be True or False; got {chapter_ball!r}")
-    taken = () if chapter_ball else ball.scene.chapter_ball
+    taken = () if check_flag("chapter_ball", chapter_ball) else ball.scene.chapter_ball
     if taken:
         raise ValueError(f"{door}: describe the ball: its {', '.join(taken)} are the chapter's defaults, not given "
                          f"(give them to Scene, or chapter_ball=True for the chapter's); only simulate takes the "

@@ -72,6 +72,13 @@ def as_number(name: str, value) -> float:
                          "(about 1.8e308)") from None
 
 
+def check_flag(name: str, value) -> bool:
+    """``value`` as a flag of the API (``chapter_ball``, ...): True or False, else ValueError naming ``name``."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False; got {value!r}")
+    return bool(value)
+
+
 def _check(name: str, value, allowed: str, ok) -> float:
     """``value`` as a float; ``ValueError`` unless it is finite and satisfies ``ok``."""
     number = as_number(name, value)

@@ -108,7 +108,7 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
     answer).  ``time`` is per impact (per process for the kernels); ``time_ratio`` is over the row's comparison
     contender (the rigid contact for the impact, the impact for the march, the load for the compilation).
     """
-    from ..contact.tangential.microslip import _inputs, march
+    from ..contact.tangential.microslip import march, march_inputs
 
     rows = []
     default = SolverOptions()
@@ -116,7 +116,7 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
     ref = simulate(scene, SolverOptions(settings={"elements": reference[0], "time_steps": reference[1]}))
     error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
     row = out.motion.tangential
-    _, inputs = _inputs(out.motion.normal, row.time_steps)
+    _, inputs = march_inputs(out.motion.normal, row.time_steps)
     timed = per_call_seconds({"microslip": lambda: simulate(scene, default),
                               "rigid": lambda: simulate(scene.with_(tangential="rigid"), default),
                               "march": lambda: march(*inputs, row.elements)}, repeats)

@@ -21,7 +21,7 @@ import pandas as pd
 
 from ..errors import EnergyGainWarning, ImpactError, UnitWarning
 from ..impact.declarations import HISTORY_OUTPUTS
-from ..impact.inputs import density_problem
+from ..impact.inputs import check_flag, density_problem
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_energy, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
 from ..contact.tangential import TANGENTIALS
@@ -104,8 +104,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
-    if not isinstance(chapter_ball, (bool, np.bool_)):
-        raise ValueError(f"chapter_ball must be True or False; got {chapter_ball!r}")
+    check_flag("chapter_ball", chapter_ball)
     if not isinstance(scenes, dict):  # once: the ball's check and the table read the same columns
         scenes = given_table(scenes)
     silent = None if chapter_ball else undescribed_row(scenes)

@@ -141,8 +141,8 @@ def _samples(normal, time_steps: int):
     return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal)(t)), delta_m
 
 
-def _inputs(normal, time_steps: int):
-    """The step ends t [s] and the arguments of :func:`march` but the held displacements, for one contact (the
+def march_inputs(normal, time_steps: int):
+    """The step ends t [s] and the arguments of :func:`march` but the number of cells, for one contact (the
     normal motion's samples kept with it: a normal motion shared by scenes of other friction is sampled once)."""
     s = normal.scene
     t, xi_a, load, step_impulse, delta_m = normal.kept(("microslip", time_steps), lambda: _samples(normal, time_steps))
@@ -197,7 +197,7 @@ class MicroslipTangential:
 
     def __init__(self, normal, options):
         self.elements, self.time_steps = resolution(normal.scene, normal, options)
-        t, inputs = _inputs(normal, self.time_steps)
+        t, inputs = march_inputs(normal, self.time_steps)
         force, j_t = march(*inputs, self.elements)
         cap = inputs[1]
         s = self.scene = normal.scene
