@@ -62,6 +62,41 @@ def yaml_config(tmp_path, text: str) -> dict:
     return yaml.safe_load(textwrap.dedent(text))
 
 
+def test_a_ball_file_saved_from_the_chapters_defaults_says_so_at_every_door(tmp_path, capsys):
+    """Before: ``simulate --save-ball`` without a ball wrote the chapter's 145 g, 63 mm ball as plain numbers, and every
+    door that read the file (sweep, fit, a study's ball_file) took it as the user's, without a word (issue 42 item
+    1).  Now the file lists the parts it took (``chapter``); they read back marked, and each door refuses or notes
+    them as it does the options' silence."""
+    from sphereimpact.fit import fit, read_measured
+    from sphereimpact.study.config_check import config_errors
+
+    path = tmp_path / "ball.json"
+    assert run(["simulate", "--json", "--mass", "0.05", "--save-ball", str(path)]) == 0
+    assert json.loads(path.read_text())["chapter"] == ["diameter", "k", "b", "speed"]
+    ball = load_ball(path)
+    assert ball.scene.chapter_ball == ("diameter", "k", "b") and ball.scene.mass == 0.05
+    assert ball.scene.diameter == 0.063 and ball.scene.k == 60000.0
+    capsys.readouterr()
+    assert run(["simulate", "--json", "--ball", str(path), "--speed", "2"]) == 0
+    assert (f"the ball file {str(path)!r} holds the chapter's ball where its maker was silent (diameter 0.063 m, "
+            "k 60000 N/m, b 10.5 N s/m)") in capsys.readouterr().err
+    out = tmp_path / "sweep.csv"
+    assert run(["sweep", "--ball", str(path), "--speed", "2", "--angle", "30:60:30", "--out", str(out)]) == 2
+    assert "its diameter, k, b are the chapter's defaults" in capsys.readouterr().err and not out.exists()
+    assert run(["sweep", "--ball", str(path), "--speed", "2", "--angle", "30:60:30", "--out", str(out),
+                "--chapter-ball"]) == 0
+    assert len(pd.read_csv(out)) == 2
+    bounces = read_measured(pd.DataFrame({"speed": 2.0, "incidence": [10.0, 30.0], "e_t": [0.7, 0.6]}))
+    with pytest.raises(ValueError, match="fit: describe the ball: its diameter, k, b are the chapter's"):
+        fit(bounces, ball, ["mu"])
+    errors = config_errors(yaml_config(tmp_path, f"study: mine\nball_file: {path}\n"), "config/schema.yaml")
+    assert any("takes the chapter's diameter, k, b" in line for line in errors)
+    described = tmp_path / "mine.json"  # a described ball keeps no list
+    assert run(["simulate", "--json", "--mass", "0.05", "--diameter", "0.04", "--k", "1e4", "--b", "1",
+                "--speed", "2", "--save-ball", str(described)]) == 0
+    assert "chapter" not in json.loads(described.read_text()) and load_ball(described).scene.chapter_ball == ()
+
+
 def test_plugins_in_a_ball_file_must_be_a_list_of_names(tmp_path):
     path = tmp_path / "ball.json"
     save_ball(Ball(Scene()), path)
@@ -314,8 +349,8 @@ def test_sweep_refuses_a_ball_it_was_not_given(tmp_path, capsys):
     assert "note" not in capsys.readouterr().err
     ball = tmp_path / "ball.json"
     save_ball(Ball(Scene()), ball)
-    assert run(["simulate", "--ball", str(ball), "--chapter-ball"]) == 2
-    assert "--chapter-ball: the ball file" in capsys.readouterr().err
+    assert run(["simulate", "--ball", str(ball), "--chapter-ball", "--json"]) == 0  # the file's chapter parts, asked for
+    assert "note" not in capsys.readouterr().err
 
 
 def test_a_failed_ball_write_keeps_the_old_ball(tmp_path, monkeypatch):

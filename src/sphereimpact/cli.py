@@ -18,8 +18,8 @@ from dataclasses import replace
 import numpy as np
 
 from . import __version__, plugins
-from .impact.ball import (APPROACH, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, load_ball,
-                          chapter_parts, save_ball, undescribed)
+from .impact.ball import (APPROACH, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, chapter_parts,
+                          check_described, load_ball, save_ball, undescribed)
 from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, ImpactError, SphereImpactWarning
 from .integrators import method_names
@@ -82,7 +82,8 @@ APPROACH_HELP = {
 #: Help for --chapter-ball, shared by simulate, fit and sweep.
 CHAPTER_BALL_HELP = ("the chapter's ball where the options are silent: mass 0.145 kg, diameter 0.063 m and, for its "
                      "linear laws, k 60000 N/m and b 10.5 N s/m; for sweep, the chapter's 3 m/s too (simulate takes "
-                     "them by default and says so; sweep and fit refuse a ball that is not described)")
+                     "them by default and says so; sweep and fit refuse a ball that is not described); with --ball, the parts the "
+                     "file took from the chapter's ball")
 #: Help for the partner sphere, shared by simulate, fit and sweep.
 PARTNER_HELP = {
     "partner_mass": "strike a partner sphere at rest instead of the flat: its mass [kg], > 0 (with "
@@ -557,6 +558,7 @@ def _sweep(args) -> None:
     settings, measurement = _settings(args), None
     if args.ball is not None:
         ball = _ball(args)
+        check_described(ball, "sweep", args.chapter_ball)  # a file saved from the chapter's defaults says so
         measurement, settings = ball.measurement, dict(ball.options.settings) | settings
         kept = {name: values for name, values in ranges.items()
                 if name in APPROACH or name in PARTNER_FIELDS or (name in SURFACE and name in args.given)}
@@ -667,7 +669,7 @@ def _ball(args) -> Ball | None:
     """The ball of ``--ball FILE``, or the one ``--cor`` (``--cor-speed``, ``--contact-time``) calibrates from the
     other flags; None when neither is given.  With a ball file, a flag that describes the ball is refused."""
     if args.ball is not None:
-        describing = {"chapter_ball", "mass", "diameter", "inertia_factor", "model", "separation", "tangential",
+        describing = {"mass", "diameter", "inertia_factor", "model", "separation", "tangential",
                       *TANGENTIAL_PARAMETERS,
                       *_law_flags(), *own_parameters(), *CALIBRATION, *MATERIAL_HELP}
         clash = sorted(name for name in args.given if name in describing)
@@ -723,7 +725,10 @@ def _simulate(args) -> None:
     outcome = simulate(scene, options, body=args.body, strict=args.strict)
     outputs = outcome.to_dict() | fitted | {"gravity": scene.gravity}  # the one input a default sets, recorded
     chapter = [] if args.chapter_ball else chapter_parts(outcome.scene)  # what the API says of its ball
-    if chapter:  # said once the impact is solved: an error stays one line
+    if chapter and args.ball is not None:  # the file was saved from the chapter's defaults
+        sys.stderr.write(f"sphereimpact: note: the ball file {args.ball!r} holds the chapter's ball where its maker "
+                         f"was silent ({_defaults(scene, chapter)})\n")
+    elif chapter:  # said once the impact is solved: an error stays one line
         sys.stderr.write(f"sphereimpact: note: the chapter's ball where the options are silent "
                          f"({_defaults(scene, chapter)}); describe yours with {_as_options(chapter)}\n")
     if outcome.scene.chapter_approach and not args.chapter_ball:  # what the API says of its approach

@@ -26,16 +26,18 @@ import numpy as np
 from .. import plugins as plugin_modules
 from ..errors import ExtrapolationWarning
 from ..files import write_text
-from ..contact.laws import LAWS
+from ..contact.laws import LAWS, PARAMETER_NAMES
 from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
 from .inputs import as_number, check_flag
-from .scene import Scene, SolverOptions, chapter_law_parameters
+from .scene import ChapterValue, Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
 #: extrapolation of the calibrated law, and is said to be.
 FAR = 2.0
 #: The ball file's format, written into every file and checked on reading.
 FORMAT = "sphereimpact-ball/1"
+#: The Scene fields that can be the chapter's (:class:`ChapterValue`): a ball file's ``chapter`` names some of them.
+CHAPTER_PARTS = ("mass", "diameter", *PARAMETER_NAMES, "speed")
 #: Scene fields that describe the approach (not the ball, its contact or the surface); a measured bounce's
 #: approach columns, in this order (:mod:`sphereimpact.fit.measured`).
 APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
@@ -173,8 +175,8 @@ def check_described(ball, door: str, chapter_ball: bool) -> None:
     taken = () if check_flag("chapter_ball", chapter_ball) else ball.scene.chapter_ball
     if taken:
         raise ValueError(f"{door}: describe the ball: its {', '.join(taken)} are the chapter's defaults, not given "
-                         f"(give them to Scene, or chapter_ball=True for the chapter's); only simulate takes the "
-                         "chapter's ball unasked")
+                         f"(give them, or ask for the chapter's: chapter_ball=True, --chapter-ball); only simulate "
+                         "takes the chapter's ball unasked")
 
 
 def chapter_parts(scene) -> list[str]:
@@ -267,9 +269,12 @@ def ball_columns(ball: Ball, exclude=()) -> dict:
 
 def save_ball(ball: Ball, path) -> None:
     """Write ``ball`` as JSON (format :data:`FORMAT`): its scene, measurement, what was fitted, its settings,
-    plug-ins and source."""
+    plug-ins and source.  The parts its scene took from the chapter's ball and approach (:class:`ChapterValue`) are
+    listed under ``chapter``, so that the ball read back is as undescribed as it was: a number alone cannot say it."""
     scene = {k: v for k, v in ball.scene.as_dict().items() if k != "modulus" or ball.scene.modulus is not None}
+    chapter = [*ball.scene.chapter_ball, *ball.scene.chapter_approach]
     record = {"format": FORMAT, "source": ball.source,
+              **({"chapter": chapter} if chapter else {}),
               **({"plugins": list(ball.plugins)} if ball.plugins else {}),
               **({"settings": dict(ball.options.settings)} if ball.options.settings else {}),
               "scene": scene,
@@ -311,8 +316,13 @@ def load_ball(path, plugins=()) -> Ball:
         raise ValueError(f"ball: {str(path)!r} uses the plug-in {missing[0]!r}, which is not loaded; a ball file "
                          f"never imports code: load it yourself (--plugin {missing[0]}, the study config's plugins, "
                          f"or import {missing[0]}) if you trust it")
+    chapter = record.get("chapter", [])
+    if not isinstance(chapter, list) or not set(chapter) <= set(CHAPTER_PARTS):
+        raise ValueError(f"ball: {str(path)!r}: chapter must be a list of the parts taken from the chapter's ball "
+                         f"({', '.join(CHAPTER_PARTS)}); got {chapter!r}")
     try:
-        scene = Scene(**record["scene"])
+        fields = dict(record["scene"])
+        scene = Scene(**fields | {name: ChapterValue(fields[name]) for name in chapter if fields.get(name) is not None})
         measured = record.get("measurement")
         measurement = None if measured is None else Measurement(measured["cor"], measured["cor_speed"],
                                                                 measured.get("contact_time"),

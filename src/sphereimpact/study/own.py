@@ -124,6 +124,10 @@ def own_errors(config: dict) -> list[str]:
             ball = study_ball(config).scene
         except ValueError as err:
             return errors + [f"config key ball_file: {err}"]
+        if ball.chapter_ball:  # saved from simulate's defaults: its file says so
+            return errors + [f"config key ball_file: {config['ball_file']!r} takes the chapter's "
+                             f"{', '.join(ball.chapter_ball)} (saved from simulate's defaults), not your ball's: "
+                             "describe your ball; no ball is assumed"]
     else:
         contact = config["contact"]
         if contact.get("model") not in LAWS:
