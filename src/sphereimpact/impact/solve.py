@@ -39,8 +39,9 @@ _SHARED: ContextVar[dict | None] = ContextVar("shared normal motions", default=N
 
 @contextmanager
 def reusing_normal_motions():
-    """Inside this block :func:`simulate` and :func:`simulate_many` (and so the sweep's single impacts) solve each
-    normal problem once: scenes that differ only in friction, the tangential contact or the spin
+    """Inside this block :func:`simulate` and :func:`simulate_many` (and so the sweep's single impacts and per-family
+    solves, through :func:`shared_normal_motion`) solve each normal problem once: scenes that differ only in
+    friction, the tangential contact or the spin
     (:attr:`~sphereimpact.impact.scene.Scene.normal_problem`) share one solved normal motion, which does not
     depend on them.  Every outcome is bit for bit the one solved afresh.  A fit of friction or tangential
     stiffness (:func:`sphereimpact.fit.fit`) runs in one, so its bounces' normal motions are solved once, not at
@@ -53,9 +54,9 @@ def reusing_normal_motions():
         _SHARED.reset(token)
 
 
-def _normal(scene: Scene, options: SolverOptions) -> NormalMotion:
+def shared_normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
     """``scene``'s normal motion: solved, or inside :func:`reusing_normal_motions` shared with the scenes of the
-    same normal problem."""
+    same normal problem (the single impacts' and the sweep's per-family solves alike)."""
     shared = _SHARED.get()
     if shared is None:
         return normal_motion(scene, options)
@@ -168,7 +169,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     start = time.perf_counter()
     with _beyond_double(scene):
         if body == "reduced":
-            motion = ReducedMotion(_normal(scene, options), options)
+            motion = ReducedMotion(shared_normal_motion(scene, options), options)
         else:
             motion = motion_of(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)

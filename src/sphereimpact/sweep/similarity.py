@@ -49,7 +49,7 @@ from scipy.optimize import brentq
 
 from ..errors import InterpolationError
 from ..impact.scene import Scene, SolverOptions
-from ..impact.solve import normal_motion
+from ..impact.solve import shared_normal_motion
 from ..contact.laws.linear import modified_per_compression
 from ..contact.separation import Separation
 from ..contact.tangential import PositiveImpulse
@@ -434,7 +434,7 @@ def dimensionless_motion(scene: Scene, options: SolverOptions, extremes: bool = 
     instants J+ reaches them; with ``asked``, its extremes and grip profile (:class:`Asked`)."""
     from ..ode.events import extremum
 
-    normal = normal_motion(scene, options)
+    normal = shared_normal_motion(scene, options)  # inside a fit, solved once for every evaluation
     w, v, m = scene.frequency, scene.v_normal, scene.mass
     impulse = PositiveImpulse(normal)
     out = {"tau_m": normal.t_m * w, "x_m": normal.delta_m * w / v, "tau_f": normal.t_f * w,
