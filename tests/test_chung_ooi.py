@@ -172,6 +172,26 @@ def test_the_files_give_the_dem_codes_frames_and_normalised_quantities():
     assert np.allclose(sliding["beta"], line, rtol=1e-6) and np.allclose(sliding["spin_ratio"], 5.0, rtol=1e-6)
 
 
+def test_test_8_has_both_shear_cases_of_its_source():
+    """Test 8 as PySPH sets it up (issue 41 item 1): case A with each sphere's shear modulus 1000 times E / (2 (1 +
+    nu)), case B with it, per material.  Before, the file held case B alone under the test's name.  Case A's contact is
+    1000 times stiffer tangentially, so at a slow spin it nears the rigid contact's answer (the limit of infinite
+    stiffness), where case B's compliance turns the spin well away from it."""
+    _, tests = load_tests()
+    assert tests[8]["shear_cases"] == {"A": 1000.0, "B": 1.0}
+    table = scenes_of_test(8)
+    cases = table.drop_duplicates("case").set_index("case")["kappa"]
+    assert list(cases.index) == ["al-alloy, case A", "al-alloy, case B", "nylon, case A", "nylon, case B"]
+    for material, nu in (("al-alloy", 0.33), ("nylon", 0.40)):
+        b = cases[f"{material}, case B"]
+        assert b == pytest.approx(2 * (1 - nu) / (2 - nu), rel=1e-12)  # 4 G*/E* of like spheres
+        assert cases[f"{material}, case A"] == pytest.approx(1000.0 * b, rel=1e-12)
+    slow = table[table["spin"] == table["spin"].min()].reset_index(drop=True)
+    exact, rigid = solve(slow), solve(scenes_of_test(8, "rigid").iloc[[0]])
+    gap = np.abs(exact["omega_f"] - rigid["omega_f"].iloc[0]).to_numpy()
+    assert gap[[0, 2]].max() < 2e-3 * rigid["omega_f"].iloc[0] and gap[[1, 3]].min() > 0.05 * rigid["omega_f"].iloc[0]
+
+
 def test_damped_mindlin_variant_is_the_dem_codes_contact(tmp_path, capsys):
     """The reference's second variant (issue 41): the DEM codes' Mindlin spring with Kratos's tangential dashpot set
     from the test's COR.  Test 7's spheres do not slip, so the dashpot is idle and the paper's V'ct = 0, omega' =

@@ -112,39 +112,44 @@ def scenes_of_test(number: int, tangential: str = EXACT, model: str = "hunt-cros
 
 
 def _scenes(number: int, test: dict, materials: dict, rule: str, model: str) -> pd.DataFrame:
-    """:func:`scenes_of_test`'s rows."""
-    tangential, extra = parse_rule(rule)
+    """:func:`scenes_of_test`'s rows: per material (and, for a test with ``shear_cases``, per case of the spheres'
+    shear modulus), one per varied input."""
     rows = []
     for name in test["materials"]:
         material = materials[name]
         radius, partner = test["radius"], test.get("partner")
-        mass = material["rho"] * 4.0 / 3.0 * math.pi * radius ** 3
+        body = dict(mass=material["rho"] * 4.0 / 3.0 * math.pi * radius ** 3, diameter=2 * radius)
         other = math.inf if partner is None else material["E"]  # a rigid plane, or a partner of the same material
         e_star, g_star = effective_moduli(material["E"], material["nu"], other, material["nu"])
         beta = dundurs_beta(material["E"], material["nu"], other, material["nu"])
-        if partner is None:
-            bodies = {}
-        else:
+        if partner is not None:
             r2 = radius * partner["radius_factor"]
-            bodies = dict(partner_mass=material["rho"] * partner["density_factor"] * 4.0 / 3.0 * math.pi * r2 ** 3,
-                          partner_diameter=2 * r2)
-        kappa = 4.0 * g_star / e_star
-        for approach in _approaches(test):
-            cor = approach.pop("cor")
-            spin = approach.get("spin", 0.0)
-            both = {"opposite": dict(partner_spin=-spin), None: {}}[test.get("partner_spins")]  # in the ball's sense
-            dashpot = {"parameters": {"dashpot_cor": cor}} if extra else {}
-            scene = _scene(dict(mass=mass, diameter=2 * radius, mu=test["mu"], **approach, **bodies, **both, **dashpot),
-                           e_star, kappa, cor, tangential, "kelvin-voigt" if tangential == "linear" else model)
-            rows.append({"test": number, "case": name, "model": scene.model, "tangential": tangential, "rule": rule,
-                         "dashpot_cor": scene.parameters.get("dashpot_cor", math.nan),
-                         "speed": scene.speed, "incidence": scene.incidence_deg, "spin": scene.spin, "mass": mass,
-                         "diameter": 2 * radius, "partner_mass": bodies.get("partner_mass", math.nan),
-                         "partner_diameter": bodies.get("partner_diameter", math.nan),
-                         "partner_spin": scene.partner_spin if scene.has_partner else math.nan,
-                         "modulus": e_star, "kappa": kappa, "mu": test["mu"], "cor_target": cor,
-                         "dundurs_beta": beta, **_frame(scene, test.get("lab")), "scene": scene})
+            body |= dict(partner_mass=material["rho"] * partner["density_factor"] * 4.0 / 3.0 * math.pi * r2 ** 3,
+                         partner_diameter=2 * r2)
+        for label, factor in test.get("shear_cases", {"": 1.0}).items():  # G times factor: G* and kappa too
+            case = {"case": f"{name}, case {label}" if label else name, "kappa": factor * 4.0 * g_star / e_star,
+                    "modulus": e_star, "dundurs_beta": beta}
+            rows += [_row(number, test, case, body, approach, rule, model) for approach in _approaches(test)]
     return pd.DataFrame(rows)
+
+
+def _row(number: int, test: dict, case: dict, body: dict, approach: dict, rule: str, model: str) -> dict:
+    """One row of a test: its ``case`` (name, E*, kappa, Dundurs' beta), the bodies' fields and one approach."""
+    tangential, extra = parse_rule(rule)
+    approach = dict(approach)
+    cor, spin = approach.pop("cor"), approach.get("spin", 0.0)
+    both = {"opposite": dict(partner_spin=-spin), None: {}}[test.get("partner_spins")]  # in the ball's sense
+    dashpot = {"parameters": {"dashpot_cor": cor}} if extra else {}
+    scene = _scene(dict(mu=test["mu"], **body, **approach, **both, **dashpot), case["modulus"], case["kappa"], cor,
+                   tangential, "kelvin-voigt" if tangential == "linear" else model)
+    return {"test": number, "case": case["case"], "model": scene.model, "tangential": tangential, "rule": rule,
+            "dashpot_cor": scene.parameters.get("dashpot_cor", math.nan),
+            "speed": scene.speed, "incidence": scene.incidence_deg, "spin": scene.spin, "mass": body["mass"],
+            "diameter": body["diameter"], "partner_mass": body.get("partner_mass", math.nan),
+            "partner_diameter": body.get("partner_diameter", math.nan),
+            "partner_spin": scene.partner_spin if scene.has_partner else math.nan,
+            "modulus": case["modulus"], "kappa": case["kappa"], "mu": test["mu"], "cor_target": cor,
+            "dundurs_beta": case["dundurs_beta"], **_frame(scene, test.get("lab")), "scene": scene}
 
 
 def _frame(scene: Scene, lab: str | None) -> dict:
