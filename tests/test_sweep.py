@@ -346,3 +346,20 @@ def test_the_path_column_names_the_path_that_solved_each_row():
                      "per-family": ["per-family"]}
     many = sweep(grid(angle=[30.0], speed=np.linspace(0.5, 30.0, SIMILARITY_MIN)), outputs=["cor"], chapter_ball=True)  # many lam
     assert set(many["path"]) == {"lambda-interpolant"} and set(paths) <= set(PATHS)
+
+
+def test_constant_columns_built_at_once_are_those_assign_gives():
+    """with_constants (a fit's and a plan's table at each evaluation) is DataFrame.assign of the same values: the same
+    table as the sweep reads it, a column of the same name replaced, and the same sweep."""
+    from sphereimpact.impact.ball import Ball, ball_columns
+    from sphereimpact.sweep.scenes import given_table, with_constants
+
+    table = pd.DataFrame({"speed": [2.0, 3.0, 4.0], "incidence": [10.0, 30.0, 50.0], "mu": [0.9, 0.9, 0.9]},
+                         index=[4, 5, 6])
+    constants = ball_columns(Ball(Scene(model="hunt-crossley", modulus=2e7, chi=0.1, mass=0.05, diameter=0.04,
+                                        tangential="mindlin", kappa=0.7)))
+    assert {"model", "tangential", "mu", "chi"} <= set(constants)
+    built, assigned = with_constants(table, constants), table.assign(**constants)
+    pd.testing.assert_frame_equal(given_table(built), given_table(assigned))
+    assert (built["mu"] == constants["mu"]).all()
+    pd.testing.assert_frame_equal(sweep(built.reset_index(drop=True)), sweep(assigned.reset_index(drop=True)))

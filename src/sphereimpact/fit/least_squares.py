@@ -30,7 +30,7 @@ from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball, check_d
 from ..impact.pair import PARTNER_UNITS
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
-from ..sweep.scenes import incidence
+from ..sweep.scenes import incidence, with_constants
 from .measured import MEASURABLE, SOURCES, Measured, quantity
 from .names import FREE
 
@@ -253,7 +253,7 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
             raise ValueError(f"fit: the ball cannot be built at {', '.join(f'{n} = {v:.6g}' for n, v in trial.items())} "
                              f"({err}); start nearer the data or fix a parameter") from None
         rows = table if bounces is None else table.iloc[bounces].reset_index(drop=True)
-        return sweep(rows.assign(**ball_columns(current)), target=target, outputs=outputs,
+        return sweep(with_constants(rows, ball_columns(current)), target=target, outputs=outputs,
                      settings=dict(current.options.settings))
 
     def predictions(theta, vals=values, bounces=None):

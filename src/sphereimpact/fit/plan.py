@@ -28,7 +28,7 @@ import pandas as pd
 from ..impact.ball import APPROACH, Ball, ball_columns, check_described
 from ..impact.solve import reusing_normal_motions
 from ..sweep.engine import sweep
-from ..sweep.scenes import incidence
+from ..sweep.scenes import incidence, with_constants
 from .least_squares import DIFF_STEP, _bounces, _start, _uncertainties, fit_limits, free_names
 from .measured import SOURCES, quantity
 from .names import MEASURABLE
@@ -376,7 +376,7 @@ def _jacobians(rows, ball, names, outputs, x, logs, lower, upper, target, bendin
         # when the COR or a normal-law parameter moves, not for each step in friction or the tangential stiffness.
         trial = dict(zip(names, np.where(logs, np.exp(point), point)))
         current = with_values(ball, {n: v for n, v in trial.items() if v != expected[n]})
-        out = sweep(rows.assign(**ball_columns(current)), target=target, outputs=sources,
+        out = sweep(with_constants(rows, ball_columns(current)), target=target, outputs=sources,
                     settings=dict(current.options.settings))
         return np.column_stack([quantity(name, out) for name in outputs])
 
