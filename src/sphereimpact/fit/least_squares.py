@@ -22,8 +22,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
-from scipy.stats import chi2 as chi2_distribution
-from scipy.stats import f as f_distribution
 
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball, check_described
@@ -320,9 +318,10 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
                   "chi2": chi2, "reduced_chi2": chi2 / dof, "weights": weights, "rms": rms,
                   "evaluations": int(evaluations), "status": result.message, "gravity": ball.scene.gravity,
                   "start": {n: float(v) for n, v in zip(names, initial)}}
-    if weights == "given" and dof > 0 and chi2_distribution.sf(chi2, dof) < MISFIT_P:
+    misfit = _misfit_p(chi2, dof) if weights == "given" and dof > 0 else 1.0
+    if misfit < MISFIT_P:
         notes.append(f"the model misses the data beyond their stated uncertainties: chi2/dof {chi2 / dof:.3g} "
-                     f"({dof} degrees of freedom, p = {chi2_distribution.sf(chi2, dof):.2g})")
+                     f"({dof} degrees of freedom, p = {misfit:.2g})")
     parameters = {n: FittedParameter(float(v), float(e), float(b), bool(ok))
                   for n, v, e, b, ok in zip(names, x, stderr, boot, identifiable)}
     return FitResult(fitted, parameters, pd.DataFrame(correlation, index=names, columns=names), residuals,
@@ -354,7 +353,17 @@ def _significant(cost: float, better: float, n: int, p: int) -> bool:
     if n <= p or better <= 0:
         return True
     statistic = (cost - better) / (better / (n - p))
-    return bool(f_distribution.sf(statistic, 1, n - p) < RESTART_P)
+    from scipy.stats import f  # imported on use: scipy.stats costs a job that only imports the fit 0.3 s
+
+    return bool(f.sf(statistic, 1, n - p) < RESTART_P)
+
+
+def _misfit_p(chi2: float, dof: int) -> float:
+    """The chance of a chi-square at least ``chi2`` with ``dof`` degrees of freedom, were the stated uncertainties
+    right."""
+    from scipy.stats import chi2 as distribution  # imported on use (see _significant)
+
+    return float(distribution.sf(chi2, dof))
 
 
 def _restarted(result, solve, sigma, names, initial, bounds, logs, natural):
