@@ -31,15 +31,13 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
            "results/validation.csv", "results/validation_summary.csv", "results/compliance_map.csv",
            "paper_figures/validation_kharaz.png", "paper_figures/validation_maw.png", "paper_figures/compliance_map.png",
            "paper_figures/README.md",
-           "results/notebooks/validation.html",
-           "results/notebooks/replication.html", "results/notebooks/numerics.html",
+           "results/notebooks/numerics.html",
            "results/work_precision.csv", "results/bench.csv", "results/stability.csv", "results/ablation.csv",
            "results/figures/work_precision.png", "paper_figures/stability.png",
            "results/microslip_resolution.csv", "results/figures/microslip_resolution.png",
            "results/sweep/angle_speed.csv", "results/sweep/speed.csv", "results/bench_sweep.csv",
            "results/sweep_paths.csv", "results/figures/sweep_paths.png",
            "paper_figures/spin_map.png", "paper_figures/cor_speed.png", "paper_figures/contact_speed.png",
-           "results/notebooks/sweeps.html",
            *[f"paper_figures/{f}.{ext}" for f in FIGURES for ext in ("png", "pdf")],
            *[f"results/runs/{c}_{m}.{ext}" for c in ("normal", "oblique60") for m in ("kelvin-voigt", "modified")
              for ext in ("csv", "json")]]

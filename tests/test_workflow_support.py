@@ -1,5 +1,6 @@
 """What the rules ask of the package: config subsets and the package sources each job runs."""
 
+import re
 from pathlib import Path
 
 import pytest
@@ -105,3 +106,14 @@ def test_every_figure_has_a_caption_and_the_committed_index_holds_them():
                for name in drawn)  # each one the pipeline asks for (the charts and tests by pattern)
     index = (ROOT / "paper_figures/README.md").read_text()
     assert all(f"**{name}.png**: {caption}" in index for name, (_, caption) in CAPTIONS.items())
+
+
+def test_the_config_offers_every_notebook_and_the_replication_runs_them_all():
+    """``notebooks`` chooses the notebooks executed (the test config one, to keep the suite short): its allowed
+    names and the schema's default are the notebooks the project ships, and the shipped config runs every one."""
+    schema = yaml.safe_load((ROOT / "config/schema.yaml").read_text())["properties"]["notebooks"]
+    shipped = sorted(p.stem for p in (ROOT / "notebooks").glob("*.py"))
+    assert sorted(schema["items"]["enum"]) == shipped and sorted(schema["default"]) == shipped
+    assert sorted(CONFIG["notebooks"]) == shipped
+    rules = (ROOT / "workflow/rules/common.smk").read_text()
+    assert sorted(re.findall(r'^    "(\w+)": \[', rules[rules.index("NOTEBOOKS = {"):], re.M)) == shipped

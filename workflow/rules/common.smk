@@ -165,7 +165,7 @@ def chapter_outputs():
         "results/readme/consistency.md",
         "results/readme/fit.md",
         "results/consistency.csv",
-        *expand("results/notebooks/{name}.html", name=NOTEBOOKS),
+        *expand("results/notebooks/{name}.html", name=config["notebooks"]),
         *expand("paper_figures/chung_ooi_test{n}.png", n=config["chung_ooi"]["tests"]),
         "results/readme/chung_ooi.md",
         "paper_figures/dem_departure.png",
