@@ -82,8 +82,8 @@ APPROACH_HELP = {
 #: Help for --chapter-ball, shared by simulate, fit and sweep.
 CHAPTER_BALL_HELP = ("the chapter's ball where the options are silent: mass 0.145 kg, diameter 0.063 m and, for its "
                      "linear laws, k 60000 N/m and b 10.5 N s/m; for sweep, the chapter's 3 m/s too (simulate takes "
-                     "them by default and says so; sweep and fit refuse a ball that is not described); with --ball, the parts the "
-                     "file took from the chapter's ball")
+                     "them by default and says so; sweep and fit refuse a ball that is not described); with --ball, "
+                     "the parts the file took from the chapter's ball")
 #: Help for the partner sphere, shared by simulate, fit and sweep.
 PARTNER_HELP = {
     "partner_mass": "strike a partner sphere at rest instead of the flat: its mass [kg], > 0 (with "

@@ -26,10 +26,10 @@ import numpy as np
 from .. import plugins as plugin_modules
 from ..errors import ExtrapolationWarning
 from ..files import write_text
-from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.laws import LAWS
 from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
 from .inputs import as_number, check_flag
-from .scene import ChapterValue, Scene, SolverOptions, chapter_law_parameters
+from .scene import CHAPTER_BALL, ChapterValue, Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
 #: extrapolation of the calibrated law, and is said to be.
@@ -37,7 +37,7 @@ FAR = 2.0
 #: The ball file's format, written into every file and checked on reading.
 FORMAT = "sphereimpact-ball/1"
 #: The Scene fields that can be the chapter's (:class:`ChapterValue`): a ball file's ``chapter`` names some of them.
-CHAPTER_PARTS = ("mass", "diameter", *PARAMETER_NAMES, "speed")
+CHAPTER_PARTS = (*CHAPTER_BALL, "speed")
 #: Scene fields that describe the approach (not the ball, its contact or the surface); a measured bounce's
 #: approach columns, in this order (:mod:`sphereimpact.fit.measured`).
 APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")

@@ -65,6 +65,9 @@ class ChapterValue(float):
 
 #: The chapter's ball and its approach speed, as the Scene's defaults.
 CHAPTER_MASS, CHAPTER_DIAMETER, CHAPTER_SPEED = ChapterValue(0.145), ChapterValue(0.063), ChapterValue(3.0)
+#: The fields of a scene's ball that can be the chapter's (:attr:`Scene.chapter_ball`): its mass and diameter, and
+#: a law's stiffness and damping where their defaults are the chapter's.
+CHAPTER_BALL = ("mass", "diameter", *PARAMETER_NAMES)
 
 
 class FrozenMapping(Mapping):
@@ -270,7 +273,7 @@ class Scene:
         """The parts of the ball this scene took from the chapter's because its user did not give them (``mass``,
         ``diameter``, and the law's stiffness ``k`` and damping where they are the chapter's defaults): empty when
         the ball is described (:class:`ChapterValue`)."""
-        return tuple(name for name in ("mass", "diameter", *PARAMETER_NAMES) if type(getattr(self, name)) is ChapterValue)
+        return tuple(name for name in CHAPTER_BALL if type(getattr(self, name)) is ChapterValue)
 
     @property
     def chapter_approach(self) -> tuple:
