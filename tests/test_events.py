@@ -1,4 +1,5 @@
-"""Event location helpers against scipy: the plain-float Brent minimiser takes scipy's steps."""
+"""Event location helpers against scipy: the plain-float Brent minimiser takes scipy's steps, and the Brent root
+finder finds scipy's roots in as many evaluations."""
 
 import math
 
@@ -94,3 +95,56 @@ def test_a_brief_pull_inside_the_last_step_leaves_the_friction_impulse_exact():
     planar = simulate(scene, SolverOptions(method="DOP853", rtol=1e-12, atol=1e-12), body="planar")
     for out in outs:
         assert out.force_min < 0 and out.ve_t == pytest.approx(planar.ve_t, rel=1e-9)
+
+
+ROOT_FUNCTIONS = {  # (f, its root, a bracket)
+    "linear": (lambda x: 2.0 * x - 1.0, 0.5, (-3.0, 4.0)),
+    "steep": (lambda x: math.tanh(40.0 * (x - 0.3)), 0.3, (-1.0, 2.0)),
+    "exponential": (lambda x: math.exp(x) - 5.0, math.log(5.0), (0.0, 10.0)),
+    "cubic": (lambda x: (x - 1.25) * (1.0 + x * x), 1.25, (2.0, -1.0)),
+    "tiny": (lambda x: x - 3e-200, 3e-200, (0.0, 1.0)),
+    "cos": (lambda x: math.cos(x), 0.5 * math.pi, (1.0, 2.0)),
+}
+
+
+@pytest.mark.parametrize("name", ROOT_FUNCTIONS)
+def test_brent_finds_the_root_to_its_tolerance_in_as_few_evaluations_as_scipy(name):
+    """The package's Brent root finder (every scalar root search: events, calibrations) against the closed-form root
+    to its tolerance (xtol + rtol |x|, as scipy.optimize.brentq documents it), and against scipy's brentq: the same
+    root to that tolerance, in at most two evaluations more."""
+    from scipy.optimize import brentq
+
+    from sphereimpact.ode.roots import brent
+
+    f, root, (a, b) = ROOT_FUNCTIONS[name]
+    calls = {"ours": 0, "scipy": 0}
+
+    def counted(who):
+        def g(x):
+            calls[who] += 1
+            return f(x)
+        return g
+
+    eps = np.finfo(float).eps
+    for xtol, rtol in ((1e-300, 4 * eps), (1e-6, 4 * eps), (1e-15, 1e-10)):
+        calls.update(ours=0, scipy=0)
+        ours = brent(counted("ours"), a, b, xtol=xtol, rtol=rtol)
+        theirs = brentq(counted("scipy"), a, b, xtol=xtol, rtol=rtol)
+        tol = xtol + rtol * abs(root) + 4 * eps * abs(root)  # and f's own round-off near the root
+        assert abs(ours - root) <= tol and abs(ours - theirs) <= 2 * tol, (xtol, rtol, ours, theirs)
+        assert calls["ours"] <= calls["scipy"] + 2, (xtol, rtol, calls)
+
+
+def test_brent_refuses_a_bracket_without_a_sign_change_and_says_when_it_stops_short():
+    from sphereimpact.ode.roots import brent
+
+    with pytest.raises(ValueError, match="must be finite and of opposite signs"):
+        brent(lambda x: x * x + 1.0, -1.0, 1.0, xtol=1e-12, rtol=1e-12)
+    with pytest.raises(ValueError, match="must be finite and of opposite signs"):
+        brent(lambda x: math.nan if x > 0 else -1.0, -1.0, 1.0, xtol=1e-12, rtol=1e-12)
+    assert brent(lambda x: x, 0.0, 1.0, xtol=1e-12, rtol=1e-12) == 0.0  # an end that is a root
+    with pytest.raises(RuntimeError, match="no convergence in 3 iterations"):
+        brent(lambda x: (x - 0.123456789) ** 3, 0.0, 1.0, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=3)
+    last = brent(lambda x: (x - 0.123456789) ** 3, 0.0, 1.0, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=3,
+                 strict=False)
+    assert 0.0 < last < 1.0  # the best point so far, as the events' search takes it

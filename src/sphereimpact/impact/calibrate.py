@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import ImpactError
 from ..integrators.normal import IntegratedNormal
+from ..ode.roots import brent
 from .inputs import as_number
 from .scene import Scene, SolverOptions
 
@@ -165,9 +166,7 @@ def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
     start = relations.get("hunt-crossley") or getattr(scene, name) or 1.0
     low, high = _bracket(excess, math.log(start), f"cor {cor!r} with model {scene.model!r} at v_n = "
                                                   f"{scene.v_normal:.6g} m/s (damping parameter {name})", cor)
-    from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
-
-    value = math.exp(brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200))
+    value = math.exp(brent(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52))
     calibrated = scene.with_(**{name: value})
     reached = normal_cor(calibrated, options)
     if abs(reached - cor) > ACCURACY * cor:
@@ -244,9 +243,7 @@ def _fit_stiffness(scene: Scene, cor: float | None, relation: str, target_time: 
 
     what = f"contact_time {target_time!r} s with model {scene.model!r} (stiffness k)"
     low, high = _bracket(excess, math.log(scene.k), what, target_time)
-    from scipy.optimize import brentq
-
-    log_k = brentq(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52, maxiter=200)
+    log_k = brent(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52)
     fitted = at(log_k)
     reached = contact_time(fitted)
     if abs(reached - target_time) > ACCURACY * target_time:

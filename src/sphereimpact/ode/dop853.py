@@ -26,6 +26,7 @@ from operator import mul
 
 import numpy as np
 from .dense import StackedDOP853, horner_dop853
+from .roots import brent
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # scipy's RungeKutta step control
 EPS = np.finfo(float).eps
@@ -124,8 +125,6 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
         ``t_events`` and ``y_events`` (lists of arrays per event), ``nfev``, ``status`` (1 terminal event,
         0 end of span, -1 step too small) and ``message``.
     """
-    from scipy.optimize import brentq  # scipy's root finder for events, as solve_ivp's (imported on use)
-
     if _A is None:
         _load_tableau()
     t, t_bound = float(t_span[0]), float(t_span[1])
@@ -217,8 +216,8 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
                 if (up and directions[i] > 0) or (down and directions[i] < 0) or ((up or down) and not directions[i]):
                     # to a few ulp; an event function whose round-off keeps Brent from settling there still
                     # leaves it a bracket that narrow: its last iterate, not an error
-                    root = brentq(lambda time, e=events[i]: float(e(time, state(time))), t_old, t,
-                                  xtol=4 * EPS, rtol=4 * EPS, full_output=True, disp=False)[0]
+                    root = brent(lambda time, e=events[i]: float(e(time, state(time))), t_old, t,
+                                 xtol=4 * EPS, rtol=4 * EPS, maxiter=100, strict=False)
                     hits.append((root, i))
             hits.sort()
             for root, i in hits:

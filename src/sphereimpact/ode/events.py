@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from ..errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
+from .roots import brent
 
 
 def _scalar(f):
@@ -29,13 +30,11 @@ def _refine(f, a: float, b: float) -> float:
     time (the scalar path a function may take) the sign change can vanish into round-off at one end: the end
     that is exactly zero, or else the end nearer zero, is then the root (a random scene's force, 1e-17 from 0
     at a grid point, had Brent's method refuse the bracket)."""
-    from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
-
     g = _scalar(f)
     g_a, g_b = g(a), g(b)
     if g_a == 0.0 or g_b == 0.0 or (g_a > 0) == (g_b > 0):
         return a if g_a == 0.0 or (g_b != 0.0 and abs(g_a) < abs(g_b)) else b
-    return brentq(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=200)
+    return brent(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
 
 
 def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float]:

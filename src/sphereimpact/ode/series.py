@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from .dense import is_instant
+from .roots import brent
 from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 
 #: lam x at which the ramp band starts: exp(-37) = 8.5e-17, below round-off of 1 - exp(-lam x).
@@ -123,9 +124,7 @@ class TaylorDense:
 
 
 def _root(f, a: float, b: float) -> float:
-    from scipy.optimize import brentq  # imported on use: scipy.optimize costs half a second to import
-
-    return brentq(f, a, b, xtol=1e-300, rtol=4 * EPS, maxiter=200)
+    return brent(f, a, b, xtol=1e-300, rtol=4 * EPS)
 
 
 def solve(series, numbers: dict, gamma: float, tol: float, end: float, separation, lam: float | None = None,

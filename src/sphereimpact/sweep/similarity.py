@@ -45,9 +45,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
-
 from ..errors import InterpolationError
+from ..ode.roots import brent
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import shared_normal_motion
 from ..contact.laws.linear import modified_per_compression
@@ -249,7 +248,7 @@ def _onset(exit_ratio, series: Series, what: str) -> tuple[float | None, bool]:
         return exit_ratio(v, float(series.value("y_f", v)))
 
     j = change[0]  # nodes run from u = b down to a
-    return brentq(g_series, u[j + 1], u[j], xtol=1e-14, rtol=1e-15), bool(g[0] < 0)
+    return brent(g_series, u[j + 1], u[j], xtol=1e-14, rtol=1e-15), bool(g[0] < 0)
 
 
 class _Piece:

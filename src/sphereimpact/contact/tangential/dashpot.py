@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 
+from ...ode.roots import brent
 from ..parameters import Parameter
 
 #: a(e) of Thornton's fit, coefficients of e^1 .. e^10 as Kratos codes them.
@@ -55,8 +56,6 @@ def linear_ratio(cor: float) -> float:
     """gamma = zeta of the linear spring-dashpot whose COR (force criterion) is ``cor``: the exact relation."""
     if cor >= 1.0:
         return 0.0
-    from scipy.optimize import brentq
-
     from ..laws.exact import events
     from ..separation import Separation
 
@@ -66,7 +65,7 @@ def linear_ratio(cor: float) -> float:
     high = 1.0
     while excess(high) > 0:  # the COR falls with zeta: bracket the root
         high *= 2.0
-    return brentq(excess, 0.0, high, xtol=1e-15, rtol=4 * 2.0 ** -52)
+    return brent(excess, 0.0, high, xtol=1e-15, rtol=4 * 2.0 ** -52)
 
 
 def dashpot_ratio(cor: float, spring: str) -> float:
