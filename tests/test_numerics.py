@@ -167,3 +167,15 @@ def test_ablation_drops_only_what_a_scene_does_not_need():
     spin_scale = 3.0 / base.scene.radius  # changes are relative to max(|value|, v/R)
     assert frame.loc[("oblique60", "no friction", "omega_f")] == pytest.approx(-base.omega_f / spin_scale, rel=1e-9)
     assert abs(frame.loc[("oblique60", "ramp 10", "cor")]) > 1e-3  # the ramp constant is a real choice
+
+
+def test_a_commands_start_is_timed_in_fresh_processes_beside_pythons():
+    """The bench's start-up rows (issue 43's target for `simulate --json`): each contender run whole in a fresh
+    process, the ratio over numpy's start; the command's own run succeeds (its failure would raise).  Timings are
+    written by the pipeline, never asserted."""
+    from sphereimpact.numerics.bench import STARTUP, STARTUP_SCENE, startup_bench
+
+    table = startup_bench(1)
+    assert list(table["contender"]) == list(STARTUP) and table["scene"].eq(STARTUP_SCENE).all()
+    assert (table["time"] > 0).all() and table["time_ratio"].iloc[0] == 1.0
+    assert table["time_ratio"].iloc[1] == pytest.approx(table["time"].iloc[1] / table["time"].iloc[0], rel=1e-12)

@@ -167,6 +167,35 @@ def kernel_seconds(repeats: int = 3) -> tuple[float, float]:
     return compiled, loaded
 
 
+#: The scene of the start-up rows of the bench table: each contender a fresh Python process.
+STARTUP_SCENE = "a command's start, fresh process"
+#: The start-up contenders: Python's own start with numpy, the floor of any command, and ``simulate --json`` of the
+#: chapter's scene (its whole run: start, imports, one impact, the JSON), as arguments of the interpreter.
+STARTUP = {"python -c 'import numpy'": ("-c", "import numpy"),
+           "sphereimpact simulate --json": ("-m", "sphereimpact", "simulate", "--json", "--chapter-ball")}
+
+
+def startup_bench(repeats: int = 3) -> pd.DataFrame:
+    """Seconds [s] a command takes from a fresh process (:data:`STARTUP`): the median over ``repeats`` runs of each
+    contender, taken in turn.  Rows have the bench's columns; ``time_ratio`` is over numpy's start."""
+    import subprocess
+    import sys
+    import time
+
+    seconds: dict = {name: [] for name in STARTUP}
+    for _ in range(repeats):
+        for name, arguments in STARTUP.items():
+            start = time.perf_counter()
+            run = subprocess.run([sys.executable, *arguments], capture_output=True, text=True)
+            seconds[name].append(time.perf_counter() - start)
+            if run.returncode:
+                raise RuntimeError(f"{name} failed: {run.stderr.strip()[-500:]}")
+    floor = float(np.median(seconds["python -c 'import numpy'"]))
+    return pd.DataFrame([{"scene": STARTUP_SCENE, "contender": name, "repeats": repeats, "batch": 1,
+                          "error": math.nan, "nfev": 0, "time": float(np.median(times)),
+                          "time_ratio": float(np.median(times)) / floor} for name, times in seconds.items()])
+
+
 def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     """Where one impact's time goes, stage by stage, for each scene (same protocol as the bench).
 

@@ -8,7 +8,8 @@ from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
 from ..numerics.bench_sweep import run as bench_sweep
-from ..numerics.bench import bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages
+from ..numerics.bench import (bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages,
+                               startup_bench)
 from ..parsing import parse_range
 from ..numerics.stability import stability
 from ..numerics.workprecision import work_precision
@@ -52,7 +53,8 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     exact = experiment(config["validation"]).with_tangential("microslip").with_(angle=_first_oblique(section["angles"]))
     reference = (section["reference"]["elements"], section["reference"]["time_steps"])
     microslip = microslip_bench(exact, reference, bench["repeats"], bench["kernels"])
-    pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip], ignore_index=True).to_csv(
+    startup = [startup_bench(bench["repeats"])] if bench["startup"] else []
+    pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip, *startup], ignore_index=True).to_csv(
         csv_path, **CSV)
     stages(scenes, bench["repeats"]).to_csv(stages_csv, **CSV)
     oblique = max(config["cases"], key=lambda case: config["cases"][case].get("angle", 0.0))
