@@ -127,7 +127,8 @@ def test_stage_sums_are_sequential_whatever_the_batch_width(width):
     """Each lane's Runge-Kutta sums equal the plain left-to-right sum, bit for bit (pairwise or BLAS
     summation would round a lane differently in batches of different widths)."""
     stages = np.random.default_rng(width).standard_normal((12, width)) * np.exp(np.linspace(-20, 20, 12))[:, None]
-    for weights in batch._STAGE_WEIGHTS[1:] + [batch._STEP_WEIGHTS]:
+    stage_weights, step_weights = batch._tableau()
+    for weights in stage_weights[1:] + [step_weights]:
         index, column = weights
         total = column[0, 0] * stages[index[0]]
         for j in range(1, index.size):

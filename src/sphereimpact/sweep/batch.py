@@ -18,9 +18,9 @@ they separate; the arrays of the active lanes are compacted as they go.
 
 from __future__ import annotations
 
+from functools import cache
+
 import numpy as np
-from scipy.integrate import DOP853
-from scipy.special import wrightomega
 
 from ..errors import ImpactError
 from ..contact.laws import ramp_continued
@@ -32,9 +32,6 @@ from .outputs import NORMAL_OUTPUTS
 #: it has eq. 4.2's ramp.
 FORMS = {kelvin_voigt_scaled: False, modified_scaled: True}
 
-_A = DOP853.A
-_B = DOP853.B  # the right-hand side is autonomous: the stage times DOP853.C are not needed
-_STAGES = DOP853.n_stages
 
 #: Unit step h_unit = STEP_CONSTANT * target**(1/8) (see :func:`step_size` for the ramp band and the damping
 #: limit): calibrated so that the worst relative error over every output stays below the target, with a 5x
@@ -145,13 +142,14 @@ def _step(lanes: _Lanes, x, y, h):
 
     x and y travel together as one (2, lanes) array, so each stage costs one weighted sum, not two.
     """
+    stage_weights, step_weights = _tableau()
     z0 = np.stack((x, y))
-    k = np.empty((_STAGES, 2, x.size))
+    k = np.empty((len(stage_weights), 2, x.size))
     k[0, 0], k[0, 1] = lanes.rhs(x, y)
-    for s in range(1, _STAGES):
-        z = z0 + h * _combine(_STAGE_WEIGHTS[s], k)
+    for s in range(1, len(stage_weights)):
+        z = z0 + h * _combine(stage_weights[s], k)
         k[s, 0], k[s, 1] = lanes.rhs(z[0], z[1])
-    z = z0 + h * _combine(_STEP_WEIGHTS, k)
+    z = z0 + h * _combine(step_weights, k)
     return z[0], z[1]
 
 
@@ -161,9 +159,15 @@ def _nonzero(weights) -> tuple:
     return index, weights[index][:, None]
 
 
-#: Tableau rows without their zeros: stage s combines the earlier stages with _STAGE_WEIGHTS[s].
-_STAGE_WEIGHTS = [None] + [_nonzero(_A[s, :s]) for s in range(1, _STAGES)]
-_STEP_WEIGHTS = _nonzero(_B)
+@cache
+def _tableau() -> tuple[list, tuple]:
+    """scipy's DOP853 tableau rows without their zeros, read on the first step (importing scipy.integrate costs a
+    third of a second, which a sweep that never takes these lanes should not pay): stage s combines the earlier
+    stages with the first list's entry s, the step the stages with the second (the right-hand side is
+    autonomous: the stage times are not needed)."""
+    from scipy.integrate import DOP853
+
+    return ([None] + [_nonzero(DOP853.A[s, :s]) for s in range(1, DOP853.n_stages)], _nonzero(DOP853.B))
 
 
 #: Up to this many values per stage, one running sum over all terms is cheapest; beyond it, a loop of
@@ -294,6 +298,8 @@ def step_size(zeta, lam, x, y, target: float):
     inside = u < band
     ub = np.minimum(u, band)
     graded = c * np.exp(ub / 9.0)  # entering: the step starts where exp(-u) weighs most
+    from scipy.special import wrightomega  # imported on use, as the tableau
+
     graded_end = 9.0 * wrightomega(ub / 9.0 + np.log(c / 9.0)).real  # approaching: du = c exp((u - du) / 9)
     approach = np.minimum(wrightomega(ub + np.log(c)).real, graded_end)
     du = np.where(y < 0, np.where(inside, approach, u - band + c), np.where(inside, graded, np.inf))

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.polynomial.chebyshev import chebval
-from scipy.fft import dct, dctn
 
 #: Points evaluated per matrix product of a :class:`Series` or :class:`Tensor` (a fixed width: a point's value
 #: does not depend on how many are evaluated with it).
@@ -31,6 +30,8 @@ class Series:
         self.a, self.b, self.keys = a, b, tuple(values)
         self.values = np.stack([values[k] for k in self.keys], axis=1)  # (N, outputs), from u = b down to a
         self.nodes = lobatto(a, b, self.values.shape[0])
+        from scipy.fft import dct  # imported on use: a sweep without interpolants does not pay for it
+
         coef = dct(self.values, type=1, axis=0) / (self.values.shape[0] - 1)
         coef[0] /= 2.0
         coef[-1] /= 2.0
@@ -100,6 +101,8 @@ class Tensor:
 
     def __init__(self, lo: float, hi: float, values: np.ndarray, target: float):
         self.lo, self.hi = lo, hi
+        from scipy.fft import dctn  # imported on use, as dct
+
         coef = dctn(values, type=1, axes=(0, 1)) / ((values.shape[0] - 1) * (values.shape[1] - 1))
         coef[[0, -1]] /= 2.0
         coef[:, [0, -1]] /= 2.0
