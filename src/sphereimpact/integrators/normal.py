@@ -9,8 +9,8 @@ model integrates:
 It is solved in dimensionless form, tau = t / T, x = delta / (v_n T), y = delta' / v_n with T the law's
 natural contact time (1 / omega_n for a linear spring, see :class:`sphereimpact.contact.laws.ContactLaw`), so one
 absolute tolerance suits every law, ball and speed.
-Maximum compression and separation are located by :func:`scipy.integrate.solve_ivp`'s
-event root finding on the dense output (Brent's method, a few ulp).
+Maximum compression and separation are located on the dense output by Brent's method
+(:func:`sphereimpact.ode.roots.brent`, a few ulp).
 """
 
 from __future__ import annotations

@@ -10,7 +10,8 @@ not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost
 - scipy's step control: its initial step, safety 0.9, factors 0.2 to 10, exponent -1/8, no growth
   right after a rejection, minimum step 10 ulp of t;
 - solve_ivp's events: a sign change between step ends (by direction), the root by Brent's method on the
-  step's interpolant to 4 eps, terminal events ending the integration at the root.
+  step's interpolant to 4 eps (:func:`~sphereimpact.ode.roots.brent`), terminal events ending the integration at
+  the root.
 
 So it takes the same steps as solve_ivp's DOP853 up to round-off in the sums (tests/test_dop853.py
 compares step sequences, states and events), at a fraction of the cost; the dense output is a
