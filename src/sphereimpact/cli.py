@@ -872,11 +872,12 @@ def _plan(args) -> None:
     _described(args, "plan")
     if args.out is not None:
         _check_out_files(args.out, PLAN_FILES, args.force)
+    candidates = read_candidates(args.candidates)  # read once: plan takes the table
     # as fit: the approach is the candidates' or the options', never a ball file's (the speed it was calibrated at)
-    if "speed" not in read_candidates(args.candidates) and "speed" not in args.given:
+    if "speed" not in candidates and "speed" not in args.given:
         raise ValueError(f"plan: {args.candidates!r} has no speed column: give the bounces' approach speed along the "
                          "path with --speed [m/s]")
-    result = plan(args.candidates, _user_ball(args), _names(args.free), args.noise, args.size, args.criterion,
+    result = plan(candidates, _user_ball(args), _names(args.free), args.noise, args.size, args.criterion,
                   args.target, chapter_ball=args.chapter_ball)
     if _delivered(result, args, write_plan):
         return

@@ -149,22 +149,29 @@ def kernel_seconds(repeats: int = 3) -> tuple[float, float]:
     (``NUMBA_CACHE_DIR``, a temporary folder: what a fresh machine pays once), and the median over ``repeats``
     processes to load them from the cache that run filled (what every later process pays)."""
     import os
-    import subprocess
-    import sys
     import tempfile
 
     with tempfile.TemporaryDirectory() as cache:
         env = os.environ | {"NUMBA_CACHE_DIR": cache}
 
         def first_use() -> float:
-            run = subprocess.run([sys.executable, "-c", _FIRST_USE], env=env, capture_output=True, text=True)
-            if run.returncode:
-                raise RuntimeError(f"the microslip kernels failed to compile: {run.stderr.strip()[-500:]}")
-            return float(run.stdout)
+            return float(_fresh(("-c", _FIRST_USE), "the microslip kernels' compilation", env))
 
         compiled = first_use()
         loaded = float(np.median([first_use() for _ in range(repeats)]))
     return compiled, loaded
+
+
+def _fresh(arguments, what: str, env=None) -> str:
+    """The standard output of a fresh Python process (this interpreter) run with ``arguments``; RuntimeError naming
+    ``what`` when it fails."""
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, *arguments], env=env, capture_output=True, text=True)
+    if run.returncode:
+        raise RuntimeError(f"{what} failed: {run.stderr.strip()[-500:]}")
+    return run.stdout
 
 
 #: The scene of the start-up rows of the bench table: each contender a fresh Python process.
@@ -178,18 +185,14 @@ STARTUP = {"python -c 'import numpy'": ("-c", "import numpy"),
 def startup_bench(repeats: int = 3) -> pd.DataFrame:
     """Seconds [s] a command takes from a fresh process (:data:`STARTUP`): the median over ``repeats`` runs of each
     contender, taken in turn.  Rows have the bench's columns; ``time_ratio`` is over numpy's start."""
-    import subprocess
-    import sys
     import time
 
     seconds: dict = {name: [] for name in STARTUP}
     for _ in range(repeats):
         for name, arguments in STARTUP.items():
             start = time.perf_counter()
-            run = subprocess.run([sys.executable, *arguments], capture_output=True, text=True)
+            _fresh(arguments, name)
             seconds[name].append(time.perf_counter() - start)
-            if run.returncode:
-                raise RuntimeError(f"{name} failed: {run.stderr.strip()[-500:]}")
     floor = float(np.median(seconds["python -c 'import numpy'"]))
     return pd.DataFrame([{"scene": STARTUP_SCENE, "contender": name, "repeats": repeats, "batch": 1,
                           "error": math.nan, "nfev": 0, "time": float(np.median(times)),

@@ -80,6 +80,7 @@ def brent(f, a: float, b: float, xtol: float, rtol: float, maxiter: int = BRENT_
         raise RuntimeError(f"brent: no convergence in {maxiter} iterations (bracket [{b!r}, {c!r}])")
     return b
 
+
 #: Most Newton iterations per search (bisection steps where Newton leaves the bracket included).
 ROOT_ITERATIONS = 60
 #: A lane's iteration stops when its update is below SETTLED x its time (far below any target).

@@ -69,15 +69,10 @@ def write_departure(folder, numbers=TESTS, section: dict | None = None) -> pd.Da
     a study config's ``validation`` section ``section``, the Kharaz ball over its incidences
     (``departure_kharaz.csv``), and its figure ``departure.png``.  Each file is written beside and renamed."""
     from ..figures.departure import departure_figure
-    from ..parsing import parse_range
 
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    kharaz = None if section is None else kharaz_table(section, parse_range(section["angles"]))
-    table = departures(chung_deviations(numbers), kharaz)
-    if kharaz is not None:
-        _write(kharaz, folder / "departure_kharaz.csv", KHARAZ_DIGITS)
-    _write(table, folder / "departure.csv", DEPARTURE_DIGITS)
+    table = _write_tables(chung_deviations(numbers), section, folder / "departure_kharaz.csv", folder / "departure.csv")
     departure_figure(folder / "departure.csv", [folder / "departure.png"])
     return table
 
@@ -118,11 +113,19 @@ def departures(chung_deviations: pd.DataFrame, kharaz: pd.DataFrame | None) -> p
 def run_departure(section: dict, deviations_csv, kharaz_csv, departure_csv) -> pd.DataFrame:
     """The pipeline's study (rule ``dem_departure``): the Kharaz ball's table over the validation's incidences
     (``section['angles']``) and every departure, written."""
+    return _write_tables(pd.read_csv(deviations_csv), section, kharaz_csv, departure_csv)
+
+
+def _write_tables(chung: pd.DataFrame, section: dict | None, kharaz_csv, departure_csv) -> pd.DataFrame:
+    """The departures of Chung & Ooi's deviations ``chung`` and, with a validation section, of the Kharaz ball over
+    its incidences, written to ``departure_csv`` (and its table to ``kharaz_csv``): the pipeline's and the command
+    line's one writer."""
     from ..parsing import parse_range
 
-    kharaz = kharaz_table(section, parse_range(section["angles"]))
-    _write(kharaz, kharaz_csv, KHARAZ_DIGITS)
-    table = departures(pd.read_csv(deviations_csv), kharaz)
+    kharaz = None if section is None else kharaz_table(section, parse_range(section["angles"]))
+    if kharaz is not None:
+        _write(kharaz, kharaz_csv, KHARAZ_DIGITS)
+    table = departures(chung, kharaz)
     _write(table, departure_csv, DEPARTURE_DIGITS)
     return table
 

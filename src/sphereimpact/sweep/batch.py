@@ -290,6 +290,8 @@ def step_size(zeta, lam, x, y, target: float):
     is constant to the target, and an approaching lane may jump to just inside it.  (A uniform limit
     du <= c took 1.6x the steps for the same accuracy: the band is ~ln(1/target) wide.)
     """
+    from scipy.special import wrightomega  # imported on use, as the tableau (_tableau)
+
     unit = min(STEP_CONSTANT * target ** 0.125, MAX_UNIT_STEP)
     c = min(RAMP_FACTOR * unit, MAX_RAMP_STEP)
     band = np.log(1.0 / target) + 3.0
@@ -298,8 +300,6 @@ def step_size(zeta, lam, x, y, target: float):
     inside = u < band
     ub = np.minimum(u, band)
     graded = c * np.exp(ub / 9.0)  # entering: the step starts where exp(-u) weighs most
-    from scipy.special import wrightomega  # imported on use, as the tableau
-
     graded_end = 9.0 * wrightomega(ub / 9.0 + np.log(c / 9.0)).real  # approaching: du = c exp((u - du) / 9)
     approach = np.minimum(wrightomega(ub + np.log(c)).real, graded_end)
     du = np.where(y < 0, np.where(inside, approach, u - band + c), np.where(inside, graded, np.inf))

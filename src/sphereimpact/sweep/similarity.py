@@ -45,6 +45,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
 from ..errors import InterpolationError
 from ..ode.roots import brent
 from ..impact.scene import Scene, SolverOptions
