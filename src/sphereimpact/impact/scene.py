@@ -603,7 +603,8 @@ class SolverOptions:
         is O(1), so atol = rtol.  The default (1e-10) meets 1e-9 on every output in the work-precision
         study with each integrator (``results/work_precision.csv``, notebook ``numerics``); the Taylor
         method bounds each step's truncation error by min(rtol, atol); DOP853-scalar takes DOP853's steps, in
-        plain floats, for laws with a scalar formula, and is scipy's DOP853 for any other law or body.
+        plain floats (compiled for a law with a kernel), for laws with a scalar formula, and is scipy's DOP853 for
+        any other law or body.
     max_step : float
         Largest step [s]; ``inf`` lets the method choose.
     settings : mapping of str to int

@@ -203,6 +203,38 @@ class _DimensionlessNormal(NormalMotion):
         return z[0] * self._d_scale, z[1] * self._v
 
 
+class _RightHandSide:
+    """x' = y, y' = -P / (m omega v) + gamma at (tau, [x, y]), under the evaluation budget (:data:`MAX_NFEV`).
+
+    A compiled stepper does not call it: it reads the scene (its law's kernel) and ``scales`` (d = v_n T [m],
+    v_n [m/s], m v_n / T [N], gamma) and integrates the same equation, and reports its evaluations to
+    :meth:`spend`."""
+
+    def __init__(self, scene: Scene, d_scale: float, v: float, p_scale: float, gamma: float, law, scalar):
+        self.scene, self.scales = scene, (d_scale, v, p_scale, gamma)
+        self._law, self._scalar = law, scalar
+        self.calls = 0
+
+    def __call__(self, tau, z):
+        self.spend(1)
+        d_scale, v, p_scale, gamma = self.scales
+        x, y = float(z[0]), float(z[1])
+        scalar = self._scalar
+        force = scalar(x * d_scale, y * v, self.scene) if scalar is not None else self._law(x * d_scale, y * v)
+        return [y, -force / p_scale + gamma]
+
+    def spend(self, calls: int) -> None:
+        """Count ``calls`` evaluations; :class:`_Budget` past :data:`MAX_NFEV`."""
+        self.calls += calls
+        if self.calls > MAX_NFEV:
+            raise _Budget
+
+    @property
+    def left(self) -> int:
+        """Evaluations left in the budget."""
+        return MAX_NFEV - self.calls
+
+
 class _Run:
     """The dimensionless normal ODE x' = y, y' = -P / (m omega v) + gamma as one integrator runs it: the
     right-hand side under the evaluation budget (:data:`MAX_NFEV`), the events, the conditioned tolerances and
@@ -223,15 +255,7 @@ class _Run:
             integrator = INTEGRATORS.named(integrator.ivp)
         self.method, self.stepper, self.multistep = integrator.name, integrator.stepper, integrator.multistep
         sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
-        calls = [0]
-
-        def rhs(tau, z):
-            calls[0] += 1
-            if calls[0] > MAX_NFEV:
-                raise _Budget
-            x, y = float(z[0]), float(z[1])
-            force = scalar(x * d_scale, y * v, scene) if scalar is not None else law(x * d_scale, y * v)
-            return [y, -force / p_scale + gamma]
+        rhs = _RightHandSide(scene, d_scale, v, p_scale, gamma, law, scalar)
 
         def force(z):  # the law, continued past separation, at a dimensionless state [N]
             x, y = float(z[0]), float(z[1])
@@ -243,8 +267,8 @@ class _Run:
         def separation(tau, z):
             return sep(z[0] * d_scale, z[1] * v)
 
-        max_compression.direction = -1
-        separation.direction = -1
+        max_compression.direction, max_compression.kind = -1, "max_compression"
+        separation.direction, separation.kind = -1, "penetration" if scene.separation.pulls else "force"
         separation.terminal = True
         self.rhs, self.force, self.max_compression, self.separation = rhs, force, max_compression, separation
         self.end = horizon(scene) * w
@@ -285,6 +309,7 @@ class _RampBand:
             return max(lam * z[0] - BAND_RESTART, z[1])
 
         band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
+        band_exit.kind, band_exit.lam, band_exit.edge = "band", lam, BAND_RESTART
         self.event = band_exit
 
     @classmethod

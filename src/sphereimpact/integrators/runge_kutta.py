@@ -1,19 +1,92 @@
 """``DOP853-scalar`` and scipy's :func:`~scipy.integrate.solve_ivp` methods: steppers that one driver runs
 (:class:`sphereimpact.integrators.normal.IntegratedNormal`: events, the ramp band, landing on t_f, the budget).
 
-``DOP853-scalar`` is DOP853's algorithm in plain floats (:mod:`sphereimpact.ode.dop853`) on a law with a scalar
-formula, scipy's DOP853 on any other.
+``DOP853-scalar`` is DOP853's algorithm in plain floats on a law with a scalar formula, scipy's DOP853 on any
+other: compiled (:mod:`.dop853_kernel`) for a law with a kernel once the process has integrated enough to repay
+loading it (:data:`COMPILE_AFTER`), else in Python (:mod:`sphereimpact.ode.dop853`), the same answer to the bit.
 """
 
 from __future__ import annotations
+
+import sys
+
+import numpy as np
 
 from ..ode import dop853
 from .normal import IntegratedNormal
 from .base import INTEGRATORS, Integrator
 
 
+#: Right-hand-side evaluations a process makes in Python floats, on laws with a kernel, before it loads the compiled
+#: integrator: about what loading it costs (numba's start and the cached machine code, ``results/bench.csv``), so a
+#: process that integrates little (one command's impact) never pays for it and one that integrates much pays at
+#: most twice the least it could have (the rent-or-buy rule).  The answer is the same bit for bit either way.
+COMPILE_AFTER = 150_000
+_spent_in_floats = 0
+
+
+def load_compiled() -> None:
+    """Load the compiled integrator now (numba and its machine code): the process integrates compiled from its next
+    motion on, as it would once it had spent :data:`COMPILE_AFTER` evaluations (a benchmark times that steady
+    state)."""
+    import importlib
+
+    importlib.import_module(_KERNEL_MODULE)
+
+
 def _plain_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
-    return dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events, first_step=first_step)
+    """DOP853 in plain floats: compiled (:func:`_compiled`) where the law has a kernel, once the process has spent
+    :data:`COMPILE_AFTER` evaluations in Python floats or loaded the compiled integrator; else in Python."""
+    global _spent_in_floats
+    law = rhs.scene.law
+    if law.kernel is not None and (_spent_in_floats >= COMPILE_AFTER or _KERNEL_MODULE in sys.modules):
+        return _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step)
+    sol = dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events, first_step=first_step)
+    if law.kernel is not None:
+        _spent_in_floats += sol.nfev
+    return sol
+
+
+_KERNEL_MODULE = "sphereimpact.integrators.dop853_kernel"
+#: The compiled integrator's event kinds by the names the driver's events carry (``event.kind``).
+_KINDS = ("max_compression", "penetration", "force", "band")
+
+
+def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
+    """The normal motion by the compiled DOP853 (:func:`~.dop853_kernel.integrate`) on the law's kernel: the
+    steps, states and events of :func:`sphereimpact.ode.dop853.solve` on ``rhs`` (to round-off), which
+    ``rhs`` is not called for; its budget is charged with the evaluations made."""
+    from . import dop853_kernel as kernel  # _KERNEL_MODULE
+
+    scene = rhs.scene
+    law_kernel = scene.law.kernel
+    band = [e for e in events if e.kind == "band"]
+    lam, edge = (band[0].lam, band[0].edge) if band else (0.0, 0.0)
+    ts, ys, coefficients, g, nfev, status = kernel.integrate(
+        law_kernel.load(), np.array(law_kernel.parameters(scene), dtype=float), np.array(rhs.scales, dtype=float),
+        float(span[0]), float(span[1]), np.array(z0, dtype=float), float(rtol), float(atol), float(max_step),
+        float(first_step) if first_step is not None else 0.0,
+        np.array([_KINDS.index(e.kind) for e in events], dtype=np.int64),
+        np.array([getattr(e, "direction", 0) for e in events], dtype=np.int64), float(lam), float(edge),
+        max(rhs.left, 0), *_tableau())
+    rhs.spend(nfev if status != kernel.BUDGET else rhs.left + 1)
+    if status == kernel.OVERFLOW:
+        raise OverflowError("the contact force left the finite numbers")
+    messages = {kernel.TERMINAL: "A termination event occurred.",
+                kernel.FINISHED: "The solver successfully reached the end of the integration interval.",
+                kernel.STEP_TOO_SMALL: "Required step size is less than spacing between numbers."}
+    return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status])
+
+
+_TABLEAU = None
+
+
+def _tableau() -> tuple:
+    """scipy's DOP853 tableau for the compiled integrator, read once."""
+    global _TABLEAU
+    if _TABLEAU is None:
+        _TABLEAU = dop853.tableau()
+    return _TABLEAU
 
 
 def _scipy(method: str):
@@ -29,7 +102,8 @@ def _scipy(method: str):
 
 
 SCALAR = INTEGRATORS.register(Integrator(
-    "DOP853-scalar", "scipy's DOP853 in plain floats (its steps, without numpy's per-call cost)",
+    "DOP853-scalar", "scipy's DOP853 in plain floats (its steps, without numpy's per-call cost; compiled for a law "
+    "with a kernel once a process has integrated enough to repay loading it)",
     IntegratedNormal, ivp="DOP853", stepper=_plain_floats, floats=True))
 
 SCIPY = tuple(INTEGRATORS.register(Integrator(

@@ -1,4 +1,6 @@
-"""scipy's DOP853, run in plain Python floats for a small system: method ``DOP853-scalar``.
+"""scipy's DOP853, run in plain Python floats for a small system: method ``DOP853-scalar`` on a law without a
+compiled kernel (or before a process loads the compiled one, :mod:`sphereimpact.integrators.dop853_kernel`), and the
+compliant tangential springs' stick phases.
 
 :func:`scipy.integrate.solve_ivp` spends most of one impact's time on numpy calls on two-element arrays,
 not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost against solve_ivp's:
@@ -11,7 +13,7 @@ not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost
   right after a rejection, minimum step 10 ulp of t;
 - solve_ivp's events: a sign change between step ends (by direction), the root by Brent's method on the
   step's interpolant to 4 eps (:func:`~sphereimpact.ode.roots.brent`), terminal events ending the integration at
-  the root.
+  the root (:func:`located`, which locates the compiled integrator's events too).
 
 So it takes the same steps as solve_ivp's DOP853 up to round-off in the sums (tests/test_dop853.py
 compares step sequences, states and events), at a fraction of the cost; the dense output is a
@@ -59,6 +61,16 @@ def _load_tableau() -> None:
     _A_EXTRA = _dense_rows(DOP853.A_EXTRA, range(_STAGES + 1, _STAGES + 1 + _EXTRA))
     _C_EXTRA = [float(c) for c in DOP853.C_EXTRA]
     _D = _dense_rows(DOP853.D, [_STAGES + 1 + _EXTRA] * len(DOP853.D))
+
+
+def tableau() -> tuple:
+    """scipy's DOP853 tableau as the compiled normal motion takes it
+    (:func:`sphereimpact.integrators.dop853_kernel.integrate`): (A, C, B, E3, E5, A_EXTRA, C_EXTRA, D) as contiguous
+    float arrays, each row zero beyond the weights it uses, and the number of stages."""
+    from scipy.integrate import DOP853  # imported on use (see _load_tableau)
+
+    arrays = (DOP853.A, DOP853.C, DOP853.B, DOP853.E3, DOP853.E5, DOP853.A_EXTRA, DOP853.C_EXTRA, DOP853.D)
+    return (*(np.ascontiguousarray(a, dtype=float) for a in arrays), int(DOP853.n_stages))
 
 
 def _rms(values) -> float:
@@ -141,9 +153,8 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
     directions = [getattr(e, "direction", 0) for e in events]
     terminal = [bool(getattr(e, "terminal", False)) for e in events]
     g = [float(e(t, y)) for e in events]
-    t_events: list[list] = [[] for _ in events]
-    y_events: list[list] = [[] for _ in events]
-    ts, ys, coefficients, starts, sizes, origins = [t], [y], [], [], [], []
+    gs = [g]
+    ts, ys, coefficients = [t], [y], []
     status, message = None, ""
     comps = range(n)
     while status is None:
@@ -198,40 +209,82 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
         rows = [delta, [h * a - d for a, d in zip(f, delta)],
                 [2 * d - h * (a + b) for d, a, b in zip(delta, f_new, f)]]
         rows += [[h * sum(map(mul, weights, k[c])) for c in comps] for weights in _D]
-        t_old, y_old = t, y
         t, y, f = t_new, y_new, f_new
         coefficients.append(rows)
-        starts.append(y_old)
-        origins.append(t_old)
-        sizes.append(h)
+        ts.append(t)
+        ys.append(y)
         if events:
             g_new = [float(e(t, y)) for e in events]
-            reversed_rows = rows[::-1]
+            gs.append(g_new)
+            if any(terminal[i] and _crossed(a, b, directions[i]) for i, (a, b) in enumerate(zip(g, g_new))):
+                status, message = 1, "A termination event occurred."
+            g = g_new
+    return located(events, np.array(ts), np.array(ys), np.array(coefficients).reshape(len(coefficients), 7, n),
+                   np.array(gs).reshape(len(gs), len(events)), nfev, status, message)
 
-            def state(time, rows=reversed_rows, t0=t_old, h=h, y0=y_old):
+
+def _crossed(before: float, after: float, direction) -> bool:
+    """An event function's sign change from ``before`` to ``after`` in its ``direction`` (solve_ivp's rule)."""
+    up, down = before <= 0 <= after, before >= 0 >= after
+    return (up and direction > 0) or (down and direction < 0) or ((up or down) and not direction)
+
+
+def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: str) -> Solution:
+    """A DOP853 run as a :class:`Solution`, its events located: what :func:`solve` and the compiled normal
+    motion (:mod:`sphereimpact.integrators.dop853_kernel`) return.
+
+    Parameters
+    ----------
+    events : sequence of callables
+        The event functions, as :func:`solve` takes them.
+    ts, ys : arrays (k + 1,), (k + 1, n)
+        Step ends and the states there.
+    coefficients : array (k, 7, n)
+        Each step's interpolation coefficients (scipy's F).
+    g : array (k + 1, len(events))
+        The events' values at the step ends; the run stopped after the first step across which a terminal
+        event fell through zero in its direction.
+    nfev, status, message
+        As :func:`solve` reports them.
+
+    Every step across which an event changes sign in its direction has its root found by Brent's method on
+    the step's interpolant to 4 eps (:func:`~sphereimpact.ode.roots.brent`), the roots of one step in order;
+    at a terminal event's root the solution ends (its last step end and state are the root's).
+    """
+    n = ys.shape[1]
+    sizes = np.diff(ts)  # each step's own size, before a terminal root cuts the last
+    ts, ys = ts.tolist(), ys.tolist()
+    t_events: list[list] = [[] for _ in events]
+    y_events: list[list] = [[] for _ in events]
+    directions = [getattr(e, "direction", 0) for e in events]
+    terminal = [bool(getattr(e, "terminal", False)) for e in events]
+    if events and len(ts) > 1:
+        before, after = g[:-1], g[1:]
+        up, down = (before <= 0) & (after >= 0), (before >= 0) & (after <= 0)
+        sense = np.array(directions)
+        crossed = (up & (sense > 0)) | (down & (sense < 0)) | ((up | down) & (sense == 0))
+        for step in np.flatnonzero(crossed.any(axis=1)).tolist():
+            rows, t0, h, y0 = coefficients[step][::-1].tolist(), ts[step], ts[step + 1] - ts[step], ys[step]
+
+            def state(time, rows=rows, t0=t0, h=h, y0=y0):
                 return horner_dop853(rows, (time - t0) / h, y0)
 
             hits = []
-            for i, (a, b) in enumerate(zip(g, g_new)):
-                up, down = a <= 0 <= b, a >= 0 >= b
-                if (up and directions[i] > 0) or (down and directions[i] < 0) or ((up or down) and not directions[i]):
-                    # to a few ulp; an event function whose round-off keeps Brent from settling there still
-                    # leaves it a bracket that narrow: its last iterate, not an error
-                    root = brent(lambda time, e=events[i]: float(e(time, state(time))), t_old, t,
-                                 xtol=4 * EPS, rtol=4 * EPS, maxiter=100, strict=False)
-                    hits.append((root, i))
+            for i in np.flatnonzero(crossed[step]).tolist():
+                # to a few ulp; an event function whose round-off keeps Brent from settling there still
+                # leaves it a bracket that narrow: its last iterate, not an error
+                root = brent(lambda time, e=events[i]: float(e(time, state(time))), t0, ts[step + 1],
+                             xtol=4 * EPS, rtol=4 * EPS, maxiter=100, strict=False)
+                hits.append((root, i))
             hits.sort()
             for root, i in hits:
                 t_events[i].append(root)
                 y_events[i].append(np.array(state(root)))
                 if terminal[i]:
-                    status, message = 1, "A termination event occurred."
-                    t, y = root, state(root)
+                    ts[step + 1], ys[step + 1] = root, state(root)
                     break
-            g = g_new
-        ts.append(t)
-        ys.append(y)
-    sol = StackedDOP853(ts, coefficients, starts, origins, sizes) if coefficients else None
+    steps = len(coefficients)
+    sol = StackedDOP853(ts, coefficients, ys[:steps], ts[:steps], sizes) if steps else None
     return Solution(t=np.array(ts), y=np.array(ys).T, sol=sol, nfev=nfev, status=status, message=message,
                     t_events=[np.array(v) for v in t_events],
-                    y_events=[np.array(v).reshape(len(v), n) for v in y_events], steps=len(sizes))
+                    y_events=[np.array(v).reshape(len(v), n) for v in y_events], steps=steps)

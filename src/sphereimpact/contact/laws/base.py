@@ -31,6 +31,38 @@ PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
 
 
 @dataclass(frozen=True)
+class Kernel:
+    """A law's force compiled by numba, for the compiled integrator of the normal motion (``DOP853-scalar``).
+
+    Attributes
+    ----------
+    function : str or callable
+        The force P(delta, delta_dot, params) [N], a function numba compiles for
+        :data:`sphereimpact.contact.laws.kernels.SIGNATURE` on first use: one of that module by name (imported,
+        with numba, then), ``"module:name"`` for a plug-in's own, or the function itself (plain, or already
+        compiled for that signature).  It must be the law's ``scalar`` formula, in its arithmetic (the
+        integrator's events and landing evaluate that one).
+    parameters : callable
+        ``parameters(p) -> tuple of float``: the ``params`` the kernel reads, from a Scene.
+    """
+
+    function: object
+    parameters: Callable
+
+    def load(self):
+        """The compiled function (compiled or loaded from numba's disk cache on the process's first call)."""
+        from . import kernels
+
+        function = self.function
+        if isinstance(function, str):
+            import importlib
+
+            module, _, name = function.rpartition(":")
+            function = getattr(importlib.import_module(module) if module else kernels, name)
+        return function if hasattr(function, "signatures") else kernels.compiled(function)
+
+
+@dataclass(frozen=True)
 class ContactLaw:
     """A normal contact force law and what it can do.
 
@@ -106,6 +138,10 @@ class ContactLaw:
         came, COR <= 1, and :class:`~sphereimpact.impact.outcome.Outcome` bounds the rebound by the approach
         (the integrators' error alone crossed it: COR 1 + 1e-10 for an undamped contact).  False (the
         default, a plug-in's unless it declares it): no bound is applied.
+    kernel : Kernel or None
+        The law's force compiled (:class:`Kernel`): method ``DOP853-scalar`` then integrates the normal motion in
+        compiled code (:mod:`sphereimpact.integrators.dop853_kernel`); without one it runs the same algorithm on
+        ``scalar`` in Python floats, or scipy's DOP853 without that either.
     per_compression : callable or None
         ``per_compression(x, y, numbers) -> Q``: P_hat / x, continued through x = 0, for a law whose force
         has a forced zero at first touch and separation (eq. 4.2): its sign is the force's inside the contact,
@@ -131,6 +167,7 @@ class ContactLaw:
     series: Callable | None = None
     per_compression: Callable | None = None
     passive: bool = False
+    kernel: Kernel | None = None
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]
@@ -140,6 +177,9 @@ class ContactLaw:
             raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
         if self.damping is not None and self.damping not in names:
             raise ValueError(f"law {self.name!r}: damping {self.damping!r} is not one of its parameters")
+        if self.kernel is not None and (not isinstance(self.kernel, Kernel) or self.scalar is None):
+            raise ValueError(f"law {self.name!r}: kernel must be a Kernel, and the law must declare the scalar formula "
+                             f"it compiles; got kernel {self.kernel!r}, scalar {self.scalar!r}")
         if self.closed_form is not None and not isinstance(self.closed_form, ClosedForm):
             raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's is "
                              f"sphereimpact.contact.laws.exact.SPRING_DAMPER) or None; got {self.closed_form!r}")

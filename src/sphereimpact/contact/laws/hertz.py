@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..parameters import Parameter
-from .base import LAWS, ContactLaw
+from .base import LAWS, ContactLaw, Kernel
 from .linear import CHI, hunt_crossley_relations
 
 K = Parameter("k", "N/m^n", "constant of the spring term k delta^n (Hertz: (4/3) E* sqrt(R))",
@@ -84,7 +84,8 @@ LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_continued, hertz_frequency,
     family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
-    scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate, passive=True))
+    scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate, passive=True,
+    kernel=Kernel("hertz", lambda p: (p.k,))))
 
 LAWS.register(ContactLaw(
     "hunt-crossley", "Hertz spring with Hunt-Crossley damping, P = k delta^n (1 + chi delta_dot), n = 3/2 by default",
@@ -92,5 +93,5 @@ LAWS.register(ContactLaw(
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,
-    scalar=hunt_crossley_scalar,
-    rate=hunt_crossley_rate, passive=True))
+    scalar=hunt_crossley_scalar, rate=hunt_crossley_rate, passive=True,
+    kernel=Kernel("hunt_crossley", lambda p: (p.k, p.exponent, p.chi))))

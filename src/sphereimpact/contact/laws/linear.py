@@ -19,7 +19,7 @@ from operator import mul
 import numpy as np
 
 from ..parameters import Parameter
-from .base import LAWS, ContactLaw
+from .base import LAWS, ContactLaw, Kernel
 from .exact import SPRING_DAMPER
 
 K = Parameter("k", "N/m", "contact stiffness", "a finite number > 0", lambda x: x > 0, 60000.0)
@@ -262,7 +262,8 @@ LAWS.register(ContactLaw(
     family=lambda p: {"zeta": damping_ratio(p)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=kelvin_voigt_scaled, closed_form=SPRING_DAMPER, scalar=kelvin_voigt_scalar,
-    rate=kelvin_voigt_rate, series=kelvin_voigt_series, passive=True))
+    rate=kelvin_voigt_rate, series=kelvin_voigt_series, passive=True,
+    kernel=Kernel("kelvin_voigt", lambda p: (p.k, p.b))))
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
@@ -270,7 +271,8 @@ LAWS.register(ContactLaw(
     family=lambda p: {"zeta": damping_ratio(p), "lam": p.ramp * p.v_normal / (natural_frequency(p) * p.radius)},
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=modified_scaled, ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
-    rate=modified_rate, series=modified_series, per_compression=modified_per_compression, passive=True))
+    rate=modified_rate, series=modified_series, per_compression=modified_per_compression, passive=True,
+    kernel=Kernel("modified", lambda p: (p.k, p.b, p.ramp, p.radius))))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
@@ -278,4 +280,5 @@ LAWS.register(ContactLaw(
     family=lambda p: {"chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     damping="chi", cor_relations=hunt_crossley_relations(), scaled=linear_hunt_crossley_scaled,
-    scalar=linear_hunt_crossley_scalar, rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series, passive=True))
+    scalar=linear_hunt_crossley_scalar, rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series, passive=True,
+    kernel=Kernel("linear_hunt_crossley", lambda p: (p.k, p.chi))))

@@ -1,0 +1,243 @@
+"""DOP853 on the normal motion, compiled: the integration loop of method ``DOP853-scalar``.
+
+The dimensionless normal motion x' = y, y' = -P(x d, y v) / p + gamma (see :mod:`.normal`) is integrated by
+:func:`integrate`, compiled by numba for one signature: the law's force enters as a compiled kernel passed by
+function pointer (:mod:`sphereimpact.contact.laws.kernels`), so one compiled integrator serves every law and is
+cached on disk once (beside this file, or in ``NUMBA_CACHE_DIR``).  It is the algorithm of
+:class:`scipy.integrate.DOP853` (Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
+1993, section II.10), with the coefficients read from scipy (:func:`sphereimpact.ode.dop853.tableau`) and scipy's
+step control (initial step, safety 0.9, factors 0.2 to 10, exponent -1/8, no growth right after a rejection,
+minimum step 10 ulp of t), every sum taken in scipy's order: the same steps as solve_ivp's DOP853 up to round-off
+(tests/test_dop853.py).
+
+The events are evaluated at each step's end, by kind (:data:`MAX_COMPRESSION`, :data:`PENETRATION`,
+:data:`FORCE`, :data:`BAND`), and the integration stops after the first step across which a terminal one falls
+through zero; their roots are found afterwards on the step's interpolant, in Python
+(:func:`sphereimpact.ode.dop853.located_events`), as solve_ivp finds them.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+from numba import types
+
+from ..contact.laws.kernels import SIGNATURE
+
+#: Event kinds, each falling through zero: y (maximum compression), delta (separation under the penetration
+#: criterion), the force inside contact and -1 outside (separation under the force criterion), and
+#: max(lam x - band, y) (eq. 4.2's ramp band in restitution).
+MAX_COMPRESSION, PENETRATION, FORCE, BAND = 0, 1, 2, 3
+#: Statuses: a terminal event fell through zero in the last step, the span's end reached, the step fell
+#: below 10 ulp of t, the right-hand side's budget spent, the force left the finite numbers.
+TERMINAL, FINISHED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 1, 0, -1, -2, -3
+SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+
+_COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
+_F = types.float64
+_ARRAY, _MATRIX = types.float64[::1], types.float64[:, ::1]
+_RESULT = types.Tuple((_ARRAY, _MATRIX, types.float64[:, :, ::1], _MATRIX, types.int64, types.int64))
+_SIGNATURE = _RESULT(types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _F, _F, _ARRAY, _F, _F, _F, _F,
+                     types.int64[::1], types.int64[::1], _F, _F, types.int64,
+                     _MATRIX, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _MATRIX, _ARRAY, _MATRIX, types.int64)
+
+
+@numba.njit(**_COMPILE)
+def _rhs(force, params, scales, t, x, y, out):
+    """(x', y') into ``out``; returns False when the force is not finite.  scales = (d, v, p, gamma)."""
+    p = force(x * scales[0], y * scales[1], params)
+    out[0] = y
+    out[1] = -p / scales[2] + scales[3]
+    return np.isfinite(p)
+
+
+@numba.njit(**_COMPILE)
+def _event(kind, force, params, scales, lam, band, x, y):
+    """The event function of ``kind`` at the dimensionless state (x, y)."""
+    if kind == MAX_COMPRESSION:
+        return y
+    if kind == PENETRATION:
+        return x * scales[0]
+    if kind == FORCE:
+        delta = x * scales[0]
+        return force(delta, y * scales[1], params) if delta > 0 else -1.0
+    return max(lam * x - band, y)
+
+
+@numba.njit(**_COMPILE)
+def _rms(a, b):
+    return np.sqrt((0.0 + a * a + b * b) / 2.0)
+
+
+@numba.njit(**_COMPILE)
+def _grow(array, size):
+    """``array`` with its first axis doubled, its first ``size`` entries kept."""
+    bigger = np.empty((2 * array.shape[0],) + array.shape[1:])
+    bigger[:size] = array[:size]
+    return bigger
+
+
+@numba.njit(_SIGNATURE, **_COMPILE)
+def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, first_step, kinds, directions, lam,
+              band, max_nfev, a, c, b, e3, e5, a_extra, c_extra, d, stages):
+    """Integrate the dimensionless normal motion from (t0, z0) towards t_bound with DOP853.
+
+    Parameters
+    ----------
+    force, params : kernel, array
+        The law's compiled force P(delta, delta_dot, params) [N] and its parameters.
+    scales : array (4,)
+        d = v_n T [m], v = v_n [m/s], p = m v_n / T [N] and the dimensionless gravity gamma.
+    t0, t_bound : float
+        Span in dimensionless time, ascending.
+    z0 : array (2,)
+        Start state (x, y).
+    rtol, atol, max_step, first_step : float
+        Tolerances, the largest step, and the first step (scipy's estimate when not > 0).
+    kinds, directions : int arrays (m,)
+        The events (kinds above; all but MAX_COMPRESSION are terminal) and their directions (-1, 0, 1).
+    lam, band : float
+        The ramp's rate in x and the band's edge, for a BAND event.
+    max_nfev : int
+        Right-hand-side evaluations allowed.
+    a, c, b, e3, e5, a_extra, c_extra, d : arrays
+        scipy's DOP853 tableau (:func:`sphereimpact.ode.dop853.tableau`, rows zero-padded).
+    stages : int
+        Its number of stages.
+
+    Returns
+    -------
+    ts, ys, coefficients, g, nfev, status
+        Step ends (k + 1,), the states there (k + 1, 2), each step's interpolation coefficients, scipy's F
+        (k, 7, 2), the events' values at the step ends (k + 1, m), the evaluations used and the status.
+    """
+    m = kinds.size
+    extra = c_extra.size
+    capacity = 64
+    ts, ys = np.empty(capacity), np.empty((capacity, 2))
+    coefficients, g = np.empty((capacity, 7, 2)), np.empty((capacity, m))
+    k = np.empty((stages + 1 + extra, 2))
+    f, f_new, stage, y_new = np.empty(2), np.empty(2), np.empty(2), np.empty(2)
+    t, y = t0, z0.copy()
+    finite = _rhs(force, params, scales, t, y[0], y[1], f)
+    nfev = 1
+    ts[0], ys[0, 0], ys[0, 1] = t, y[0], y[1]
+    for j in range(m):
+        g[0, j] = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
+    if not finite:
+        return ts[:1], ys[:1], coefficients[:0], g[:1], nfev, OVERFLOW
+    interval = abs(t_bound - t0)
+    if first_step > 0.0:
+        h_abs = first_step
+    elif interval == 0.0:
+        h_abs = 0.0
+    else:  # scipy's select_initial_step for the error estimator's order 7
+        s0, s1 = atol + abs(y[0]) * rtol, atol + abs(y[1]) * rtol
+        d0, d1 = _rms(y[0] / s0, y[1] / s1), _rms(f[0] / s0, f[1] / s1)
+        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+        h0 = min(h0, interval)
+        _rhs(force, params, scales, t + h0, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
+        nfev += 1
+        d2 = _rms((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1) / h0
+        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+        h_abs = min(100 * h0, h1, interval, max_step)
+    steps, status = 0, 2
+    while status == 2:
+        if t == t_bound:
+            status = FINISHED
+            break
+        min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+        h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
+        rejected = False
+        h = 0.0
+        while True:
+            if h_abs < min_step:
+                status = STEP_TOO_SMALL
+                break
+            if nfev + stages + extra > max_nfev:
+                status = BUDGET
+                break
+            t_new = t + h_abs
+            if t_new - t_bound > 0:
+                t_new = t_bound
+            h = t_new - t
+            h_abs = abs(h)
+            k[0, 0], k[0, 1] = f[0], f[1]
+            for s in range(1, stages):
+                for comp in range(2):
+                    total = 0.0
+                    for j in range(s):
+                        total += a[s, j] * k[j, comp]
+                    stage[comp] = y[comp] + h * total
+                finite &= _rhs(force, params, scales, t + c[s] * h, stage[0], stage[1], k[s])
+            for comp in range(2):
+                total = 0.0
+                for j in range(stages):
+                    total += b[j] * k[j, comp]
+                y_new[comp] = y[comp] + h * total
+            finite &= _rhs(force, params, scales, t + h, y_new[0], y_new[1], f_new)
+            k[stages, 0], k[stages, 1] = f_new[0], f_new[1]
+            nfev += stages
+            if not finite:
+                status = OVERFLOW
+                break
+            sum5, sum3 = 0.0, 0.0
+            for comp in range(2):
+                scale = atol + max(abs(y[comp]), abs(y_new[comp])) * rtol
+                total5, total3 = 0.0, 0.0
+                for j in range(stages + 1):
+                    total5 += e5[j] * k[j, comp]
+                for j in range(stages + 1):
+                    total3 += e3[j] * k[j, comp]
+                error5, error3 = total5 / scale, total3 / scale
+                sum5 += error5 * error5
+                sum3 += error3 * error3
+            error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / np.sqrt((sum5 + 0.01 * sum3) * 2)
+            if error < 1:
+                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** (-1.0 / 8.0))
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            h_abs *= max(MIN_FACTOR, SAFETY * error ** (-1.0 / 8.0))
+            rejected = True
+        if status != 2:
+            break
+        for i in range(extra):  # the step's dense output: three more stages, as DOP853._dense_output_impl
+            for comp in range(2):
+                total = 0.0
+                for j in range(stages + 1 + i):
+                    total += a_extra[i, j] * k[j, comp]
+                stage[comp] = y[comp] + h * total
+            finite &= _rhs(force, params, scales, t + c_extra[i] * h, stage[0], stage[1], k[stages + 1 + i])
+        nfev += extra
+        if not finite:
+            status = OVERFLOW
+            break
+        if steps + 2 > ts.size:
+            ts, ys, coefficients, g = (_grow(ts, steps + 1), _grow(ys, steps + 1), _grow(coefficients, steps),
+                                       _grow(g, steps + 1))
+        row = coefficients[steps]
+        for comp in range(2):
+            change = y_new[comp] - y[comp]
+            row[0, comp] = change
+            row[1, comp] = h * f[comp] - change
+            row[2, comp] = 2 * change - h * (f_new[comp] + f[comp])
+            for i in range(d.shape[0]):
+                total = 0.0
+                for j in range(d.shape[1]):
+                    total += d[i, j] * k[j, comp]
+                row[3 + i, comp] = h * total
+        t = t_new
+        y[0], y[1], f[0], f[1] = y_new[0], y_new[1], f_new[0], f_new[1]
+        steps += 1
+        ts[steps], ys[steps, 0], ys[steps, 1] = t, y[0], y[1]
+        for j in range(m):
+            value = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
+            g[steps, j] = value
+            before = g[steps - 1, j]
+            up, down = before <= 0 <= value, before >= 0 >= value
+            crossed = (up and directions[j] > 0) or (down and directions[j] < 0) or ((up or down) and directions[j] == 0)
+            if crossed and kinds[j] != MAX_COMPRESSION:
+                status = TERMINAL
+    return ts[:steps + 1], ys[:steps + 1], coefficients[:steps], g[:steps + 1], nfev, status

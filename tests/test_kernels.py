@@ -1,0 +1,114 @@
+"""The compiled normal motion: each law's force kernel is its scalar formula to the bit, and the compiled DOP853
+(sphereimpact.integrators.dop853_kernel) gives the Python-float DOP853's answer to the bit (that one takes scipy's
+steps: tests/test_dop853.py), on every built-in law, both separation criteria, gravity and eq. 4.2's ramp band."""
+
+import numpy as np
+import pytest
+
+from sphereimpact import ImpactError, Scene, SolverOptions, simulate
+from sphereimpact.contact.laws import LAWS
+from sphereimpact.contact.laws import kernels
+from sphereimpact.contact.laws.base import Kernel
+from sphereimpact.integrators import runge_kutta
+from sphereimpact.ode import dop853
+
+@pytest.fixture(autouse=True)
+def compiled_from_the_start(monkeypatch):
+    """The compiled integrator from the first motion (a process loads it only once it has integrated much)."""
+    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+
+
+SCENES = {
+    "kelvin-voigt": Scene(model="kelvin-voigt", incidence=60.0),
+    "modified": Scene(incidence=60.0, spin=-40.0),
+    "modified-band": Scene(b=500.0, incidence=30.0),  # zeta 2.6: restitution restarts in the ramp band
+    "linear-hunt-crossley": Scene(model="linear-hunt-crossley", chi=0.2, incidence=45.0, gravity=9.81),
+    "hertz": Scene(model="hertz", modulus=1e8, incidence=30.0),
+    "hunt-crossley": Scene(model="hunt-crossley", modulus=1e7, chi=0.1, incidence=50.0, gravity=9.81),
+    "hunt-crossley-n1.3-penetration": Scene(model="hunt-crossley", modulus=1e7, chi=0.1, exponent=1.3,
+                                             separation="penetration"),
+    "kelvin-voigt-overdamped": Scene(model="kelvin-voigt", b=200.0),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_every_built_in_law_has_a_kernel_equal_to_its_scalar_formula_to_the_bit(name):
+    law = LAWS[name]
+    scene = next(s for s in SCENES.values() if s.model == name)
+    assert law.kernel is not None
+    force, params = law.kernel.load(), np.array(law.kernel.parameters(scene), dtype=float)
+    rng = np.random.default_rng(7)
+    deltas = np.concatenate([rng.uniform(-1e-3, 1e-2, 300), [0.0, -0.0, 1e-300, -1e-300]])
+    rates = np.concatenate([rng.uniform(-5.0, 5.0, 300), [0.0, 1.0, -1.0, 3.0]])
+    for delta, rate in zip(deltas.tolist(), rates.tolist()):  # inside and past separation (the continuation)
+        assert force(delta, rate, params) == law.scalar(delta, rate, scene), (delta, rate)
+
+
+def _python_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
+    return dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events, first_step=first_step)
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-10, 1e-12])
+@pytest.mark.parametrize("name", sorted(SCENES))
+def test_the_compiled_normal_motion_is_the_python_floats_one_to_the_bit(name, rtol, monkeypatch):
+    scene, options = SCENES[name], SolverOptions(method="DOP853-scalar", rtol=rtol, atol=rtol)
+    compiled = simulate(scene, options).to_dict()
+    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+    floats = simulate(scene, options).to_dict()
+    compiled.pop("wall_time"), floats.pop("wall_time")
+    assert compiled == floats
+
+
+def test_the_compiled_run_reports_its_evaluations_and_its_steps_like_the_python_one(monkeypatch):
+    """Every event, step end and dense value of one run, not only the outcome."""
+    from sphereimpact.integrators.normal import IntegratedNormal
+
+    scene, options = SCENES["modified-band"], SolverOptions(method="DOP853-scalar")
+    compiled = IntegratedNormal(scene, options)
+    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+    floats = IntegratedNormal(scene, options)
+    assert compiled.stats == floats.stats and np.array_equal(compiled.grid, floats.grid)
+    t = np.linspace(0.0, floats.t_f, 301)
+    assert np.array_equal(np.array(compiled.state(t)), np.array(floats.state(t)))
+
+
+def test_a_force_that_leaves_the_finite_numbers_is_refused_by_name_at_once():
+    """Hunt-Crossley with chi v_n = 1e310 (inf): the force is inf or NaN from the first stage.  The compiled run
+    stops there and names it; the Python floats' run spent its 10^6 evaluations first and blamed the budget."""
+    scene = Scene(model="hunt-crossley", k=1e300, exponent=3.0, chi=1e300, speed=1e10)
+    with pytest.raises(ImpactError, match=r"the contact force overflows \(exponent = 3, chi_v = inf"):
+        simulate(scene)
+
+
+def test_a_kernel_is_named_by_its_module_or_given_itself_and_compiled_once():
+    hertz = Kernel("hertz", lambda p: (p.k,)).load()
+    assert hertz.py_func is kernels.hertz and Kernel(kernels.hertz, lambda p: ()).load() is hertz
+    named = Kernel("sphereimpact.contact.laws.kernels:hunt_crossley", lambda p: ()).load()
+    assert named.py_func is kernels.hunt_crossley and Kernel(named, lambda p: ()).load() is named
+
+
+def test_a_kernel_without_the_scalar_formula_it_compiles_is_refused():
+    with pytest.raises(ValueError, match="must declare the scalar formula it compiles"):
+        LAWS["hertz"].__class__(**{**LAWS["hertz"].__dict__, "name": "no-scalar", "scalar": None})
+
+
+def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_python_floats(monkeypatch):
+    calls = []
+
+    def spy(*args):
+        calls.append(1)
+        return _python_floats(*args)
+
+    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 10**9)
+    monkeypatch.setattr(runge_kutta, "_spent_in_floats", 0)
+    monkeypatch.setattr(runge_kutta, "_KERNEL_MODULE", "not loaded")
+    monkeypatch.setattr(runge_kutta, "_compiled", spy)
+    scene, options = SCENES["hertz"], SolverOptions(method="DOP853-scalar")
+    first = simulate(scene, options)
+    assert not calls and runge_kutta._spent_in_floats == first.nfev  # 510 evaluations in two runs
+    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 3 * first.nfev)
+    for _ in range(2):
+        simulate(scene, options)
+    assert not calls and runge_kutta._spent_in_floats == 3 * first.nfev
+    simulate(scene, options)
+    assert len(calls) == 2 and runge_kutta._spent_in_floats == 3 * first.nfev  # both runs, compiled
