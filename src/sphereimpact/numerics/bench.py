@@ -112,7 +112,9 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
     contender (the rigid contact for the impact, the impact for the march, the load for the compilation).
     """
     from ..contact.tangential.microslip import march, march_inputs
+    from ..integrators.runge_kutta import load_compiled
 
+    load_compiled()  # the steady state, as simulate_vs_handwritten times it
     rows = []
     default = SolverOptions()
     out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
