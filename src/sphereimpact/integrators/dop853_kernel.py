@@ -23,6 +23,7 @@ import numpy as np
 from numba import types
 
 from ..contact.laws.kernels import SIGNATURE
+from ..ode.dop853 import tableau
 
 #: Event kinds, each falling through zero: y (maximum compression), delta (separation under the penetration
 #: criterion), the force inside contact and -1 outside (separation under the force criterion), and
@@ -38,8 +39,9 @@ _F = types.float64
 _ARRAY, _MATRIX = types.float64[::1], types.float64[:, ::1]
 _RESULT = types.Tuple((_ARRAY, _MATRIX, types.float64[:, :, ::1], _MATRIX, types.int64, types.int64))
 _SIGNATURE = _RESULT(types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _F, _F, _ARRAY, _F, _F, _F, _F,
-                     types.int64[::1], types.int64[::1], _F, _F, types.int64,
-                     _MATRIX, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _MATRIX, _ARRAY, _MATRIX, types.int64)
+                     types.int64[::1], types.int64[::1], _F, _F, types.int64)
+#: scipy's DOP853 tableau, frozen into the compiled code as constants (:func:`sphereimpact.ode.dop853.tableau`).
+_A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 
 
 @numba.njit(**_COMPILE)
@@ -79,7 +81,7 @@ def _grow(array, size):
 
 @numba.njit(_SIGNATURE, **_COMPILE)
 def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, first_step, kinds, directions, lam,
-              band, max_nfev, a, c, b, e3, e5, a_extra, c_extra, d, stages):
+              band, max_nfev):
     """Integrate the dimensionless normal motion from (t0, z0) towards t_bound with DOP853.
 
     Parameters
@@ -100,10 +102,6 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         The ramp's rate in x and the band's edge, for a BAND event.
     max_nfev : int
         Right-hand-side evaluations allowed.
-    a, c, b, e3, e5, a_extra, c_extra, d : arrays
-        scipy's DOP853 tableau (:func:`sphereimpact.ode.dop853.tableau`, rows zero-padded).
-    stages : int
-        Its number of stages.
 
     Returns
     -------
@@ -111,6 +109,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         Step ends (k + 1,), the states there (k + 1, 2), each step's interpolation coefficients, scipy's F
         (k, 7, 2), the events' values at the step ends (k + 1, m), the evaluations used and the status.
     """
+    a, c, b, e3, e5, a_extra, c_extra, d, stages = _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES
     m = kinds.size
     extra = c_extra.size
     capacity = 64

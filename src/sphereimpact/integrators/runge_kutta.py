@@ -68,7 +68,7 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
         float(first_step) if first_step is not None else 0.0,
         np.array([_KINDS.index(e.kind) for e in events], dtype=np.int64),
         np.array([getattr(e, "direction", 0) for e in events], dtype=np.int64), float(lam), float(edge),
-        max(rhs.left, 0), *_tableau())
+        max(rhs.left, 0))
     rhs.spend(nfev if status != kernel.BUDGET else rhs.left + 1)
     if status == kernel.OVERFLOW:
         raise OverflowError("the contact force left the finite numbers")
@@ -77,16 +77,6 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
                 kernel.STEP_TOO_SMALL: "Required step size is less than spacing between numbers."}
     return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status])
 
-
-_TABLEAU = None
-
-
-def _tableau() -> tuple:
-    """scipy's DOP853 tableau for the compiled integrator, read once."""
-    global _TABLEAU
-    if _TABLEAU is None:
-        _TABLEAU = dop853.tableau()
-    return _TABLEAU
 
 
 def _scipy(method: str):

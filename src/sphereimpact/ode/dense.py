@@ -73,8 +73,8 @@ class StackedDOP853:
         self.h = np.asarray(h, dtype=float)
         self._last = len(self.h) - 1
         self._reversed = self.f[:, ::-1]  # the evaluation runs from the highest coefficient down
-        self._ts_list, self._f_list = self.ts.tolist(), self._reversed.tolist()
-        self._y0_list, self._t0_list, self._h_list = self.y_old.tolist(), self.t_old.tolist(), self.h.tolist()
+        self._ts_list = None  # the float path's step ends, made on its first call (a solution joined into another
+        self._rows: dict = {}  # never is), and the steps it visited as lists of floats
 
     @classmethod
     def from_solution(cls, solution) -> "StackedDOP853":
@@ -115,9 +115,15 @@ class StackedDOP853:
 
     def single(self, t: float) -> list:
         """The state at one instant t, as a list of floats (the cheapest call)."""
+        if self._ts_list is None:
+            self._ts_list = self.ts.tolist()
         step = min(max(bisect.bisect_left(self._ts_list, t) - 1, 0), self._last)
-        x = (t - self._t0_list[step]) / self._h_list[step]
-        return horner_dop853(self._f_list[step], x, self._y0_list[step])
+        row = self._rows.get(step)
+        if row is None:  # a contact's few queries visit a few of its steps: convert those alone
+            row = self._rows[step] = (self._reversed[step].tolist(), float(self.t_old[step]), float(self.h[step]),
+                                      self.y_old[step].tolist())
+        f, t_old, h, y_old = row
+        return horner_dop853(f, (t - t_old) / h, y_old)
 
 
 def fast_solution(solution):
