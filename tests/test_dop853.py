@@ -132,3 +132,15 @@ def test_planar_body_runs_it_as_scipys_dop853():
     out = simulate(Scene(angle=60.0), body="planar")
     assert out.method == "DOP853"
     assert out.cor == pytest.approx(simulate(Scene(angle=60.0)).cor, rel=1e-8)
+
+
+def test_the_tableau_written_out_is_scipys_to_the_bit():
+    """ode.dop853_tableau holds DOP853's coefficients so that no integrator imports scipy.integrate for them."""
+    from scipy.integrate import DOP853
+
+    from sphereimpact.ode import dop853_tableau as written
+
+    assert written.N_STAGES == DOP853.n_stages and written.ERROR_ESTIMATOR_ORDER == DOP853.error_estimator_order
+    for name in ("A", "C", "B", "E3", "E5", "A_EXTRA", "C_EXTRA", "D"):
+        ours, theirs = np.array(getattr(written, name)), getattr(DOP853, name)
+        assert ours.shape == theirs.shape and np.array_equal(ours, theirs), name

@@ -5,7 +5,7 @@ The dimensionless normal motion x' = y, y' = -P(x d, y v) / p + gamma (see :mod:
 function pointer (:mod:`sphereimpact.contact.laws.kernels`), so one compiled integrator serves every law and is
 cached on disk once (beside this file, or in ``NUMBA_CACHE_DIR``).  It is the algorithm of
 :class:`scipy.integrate.DOP853` (Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
-1993, section II.10), with the coefficients read from scipy (:func:`sphereimpact.ode.dop853.tableau`) and scipy's
+1993, section II.10), with scipy's coefficients (:mod:`sphereimpact.ode.dop853_tableau`) and scipy's
 step control (initial step, safety 0.9, factors 0.2 to 10, exponent -1/8, no growth right after a rejection,
 minimum step 10 ulp of t), every sum taken in scipy's order: the same steps as solve_ivp's DOP853 up to round-off
 (tests/test_dop853.py).
@@ -40,7 +40,7 @@ _ARRAY, _MATRIX = types.float64[::1], types.float64[:, ::1]
 _RESULT = types.Tuple((_ARRAY, _MATRIX, types.float64[:, :, ::1], _MATRIX, types.int64, types.int64))
 _SIGNATURE = _RESULT(types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _F, _F, _ARRAY, _F, _F, _F, _F,
                      types.int64[::1], types.int64[::1], _F, _F, types.int64)
-#: scipy's DOP853 tableau, frozen into the compiled code as constants (:func:`sphereimpact.ode.dop853.tableau`).
+#: DOP853's tableau, frozen into the compiled code as constants (:func:`sphereimpact.ode.dop853.tableau`).
 _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 
 

@@ -96,7 +96,7 @@ def _join(first, later):
     """One dense output: ``first`` up to ``later``'s start, then ``later`` (stacked or OdeSolution)."""
     if isinstance(first, StackedDOP853) and isinstance(later, StackedDOP853):
         return first.join(later)
-    from scipy.integrate import OdeSolution  # imported on use (see ode.dop853._load_tableau)
+    from scipy.integrate import OdeSolution  # imported on use (see integrators.runge_kutta._scipy)
 
     keep = int(np.searchsorted(first.ts, later.ts[0], side="left"))
     return OdeSolution(np.concatenate([first.ts[:keep], later.ts]), first.interpolants[:keep] + later.interpolants)

@@ -83,7 +83,7 @@ def _scipy(method: str):
     """The stepper of solve_ivp's ``method``, with its dense output."""
 
     def stepper(rhs, span, z0, rtol, atol, max_step, events, first_step):
-        from scipy.integrate import solve_ivp  # imported on use (see ode.dop853._load_tableau)
+        from scipy.integrate import solve_ivp  # imported on use: a third of a second a command need not pay
 
         return solve_ivp(rhs, span, z0, method=method, rtol=rtol, atol=atol, dense_output=True, max_step=max_step,
                          events=events, first_step=first_step)

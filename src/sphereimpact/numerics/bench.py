@@ -185,9 +185,13 @@ def _fresh(arguments, what: str, env=None) -> str:
 #: The scene of the start-up rows of the bench table: each contender a fresh Python process.
 STARTUP_SCENE = "a command's start, fresh process"
 #: The start-up contenders: Python's own start with numpy, the floor of any command, and ``simulate --json`` of the
-#: chapter's scene (its whole run: start, imports, one impact, the JSON), as arguments of the interpreter.
+#: chapter's scene and of a Hertz ball (each whole run: start, imports, one impact, the JSON), as arguments of the
+#: interpreter.
 STARTUP = {"python -c 'import numpy'": ("-c", "import numpy"),
-           "sphereimpact simulate --json": ("-m", "sphereimpact", "simulate", "--json", "--chapter-ball")}
+           "sphereimpact simulate --json": ("-m", "sphereimpact", "simulate", "--json", "--chapter-ball"),
+           "sphereimpact simulate --json, a Hertz ball (DOP853-scalar)": (
+               "-m", "sphereimpact", "simulate", "--json", "--model", "hertz", "--modulus", "1e8", "--mass", "0.145",
+               "--diameter", "0.063", "--speed", "3")}
 
 
 def startup_bench(repeats: int = 3) -> pd.DataFrame:

@@ -8,7 +8,7 @@ not on arithmetic; :func:`solve` is the same algorithm in plain floats (its cost
 
 - the tableau, error estimator, dense output and coefficients of :class:`scipy.integrate.DOP853`
   (Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Springer 1993,
-  section II.10; the coefficients are read from scipy, not copied);
+  section II.10; the coefficients, scipy's values, in :mod:`.dop853_tableau`);
 - scipy's step control: its initial step, safety 0.9, factors 0.2 to 10, exponent -1/8, no growth
   right after a rejection, minimum step 10 ulp of t;
 - solve_ivp's events: a sign change between step ends (by direction), the root by Brent's method on the
@@ -45,32 +45,31 @@ _STAGES = _EXPONENT = _A = _C = _B = _E3 = _E5 = _EXTRA = _A_EXTRA = _C_EXTRA = 
 
 
 def _load_tableau() -> None:
-    """scipy's DOP853 tableau as float rows, read on the first solve: importing scipy.integrate costs half a
-    second, which a process that never integrates (a figure, a snakemake parse) should not pay."""
+    """DOP853's tableau (:mod:`.dop853_tableau`) as float rows, on the first solve."""
     global _STAGES, _EXPONENT, _A, _C, _B, _E3, _E5, _EXTRA, _A_EXTRA, _C_EXTRA, _D
-    from scipy.integrate import DOP853
+    from . import dop853_tableau as T
 
-    _STAGES = DOP853.n_stages
-    _EXPONENT = -1.0 / (DOP853.error_estimator_order + 1)
-    _A = _dense_rows(DOP853.A, range(_STAGES))  # stage s: sum over j < s of A[s, j] K_j
-    _C = [float(c) for c in DOP853.C]
-    _B = _dense_rows(DOP853.B, [_STAGES])[0]
-    _E3 = _dense_rows(DOP853.E3, [_STAGES + 1])[0]
-    _E5 = _dense_rows(DOP853.E5, [_STAGES + 1])[0]
-    _EXTRA = len(DOP853.C_EXTRA)
-    _A_EXTRA = _dense_rows(DOP853.A_EXTRA, range(_STAGES + 1, _STAGES + 1 + _EXTRA))
-    _C_EXTRA = [float(c) for c in DOP853.C_EXTRA]
-    _D = _dense_rows(DOP853.D, [_STAGES + 1 + _EXTRA] * len(DOP853.D))
+    _STAGES = T.N_STAGES
+    _EXPONENT = -1.0 / (T.ERROR_ESTIMATOR_ORDER + 1)
+    _A = _dense_rows(T.A, range(_STAGES))  # stage s: sum over j < s of A[s, j] K_j
+    _C = [float(c) for c in T.C]
+    _B = _dense_rows(T.B, [_STAGES])[0]
+    _E3 = _dense_rows(T.E3, [_STAGES + 1])[0]
+    _E5 = _dense_rows(T.E5, [_STAGES + 1])[0]
+    _EXTRA = len(T.C_EXTRA)
+    _A_EXTRA = _dense_rows(T.A_EXTRA, range(_STAGES + 1, _STAGES + 1 + _EXTRA))
+    _C_EXTRA = [float(c) for c in T.C_EXTRA]
+    _D = _dense_rows(T.D, [_STAGES + 1 + _EXTRA] * len(T.D))
 
 
 def tableau() -> tuple:
-    """scipy's DOP853 tableau as the compiled normal motion takes it
-    (:func:`sphereimpact.integrators.dop853_kernel.integrate`): (A, C, B, E3, E5, A_EXTRA, C_EXTRA, D) as contiguous
-    float arrays, each row zero beyond the weights it uses, and the number of stages."""
-    from scipy.integrate import DOP853  # imported on use (see _load_tableau)
+    """DOP853's tableau as the compiled normal motion takes it (:mod:`sphereimpact.integrators.dop853_kernel`):
+    (A, C, B, E3, E5, A_EXTRA, C_EXTRA, D) as contiguous float arrays, each row zero beyond the weights it uses, and
+    the number of stages."""
+    from . import dop853_tableau as T
 
-    arrays = (DOP853.A, DOP853.C, DOP853.B, DOP853.E3, DOP853.E5, DOP853.A_EXTRA, DOP853.C_EXTRA, DOP853.D)
-    return (*(np.ascontiguousarray(a, dtype=float) for a in arrays), int(DOP853.n_stages))
+    arrays = (T.A, T.C, T.B, T.E3, T.E5, T.A_EXTRA, T.C_EXTRA, T.D)
+    return (*(np.ascontiguousarray(a, dtype=float) for a in arrays), int(T.N_STAGES))
 
 
 def _rms(values) -> float:

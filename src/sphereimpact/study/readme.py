@@ -98,8 +98,9 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     startup = single[started]
     start = ([
         f"A command's start (`results/bench.csv`): each contender a fresh Python process, the median of "
-        f"{int(startup['repeats'].iloc[0])} runs taken in turn; `simulate --json` runs the chapter's scene whole "
-        "(imports, one impact, the JSON). Time ratio: over Python's start with numpy, the floor of any command.",
+        f"{int(startup['repeats'].iloc[0])} runs taken in turn; `simulate --json` runs the chapter's scene, or a "
+        "Hertz ball's, whole (imports, one impact, the JSON). Time ratio: over Python's start with numpy, the floor "
+        "of any command.",
         text_table(("command", "time [ms]", "time ratio"),
                    [(f"`{r.contender}`", f"{r.time * 1e3:.3g}", f"{r.time_ratio:.2f}") for r in startup.itertuples()])]
              if len(startup) else [])

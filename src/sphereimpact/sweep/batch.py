@@ -161,13 +161,13 @@ def _nonzero(weights) -> tuple:
 
 @cache
 def _tableau() -> tuple[list, tuple]:
-    """scipy's DOP853 tableau rows without their zeros, read on the first step (importing scipy.integrate costs a
-    third of a second, which a sweep that never takes these lanes should not pay): stage s combines the earlier
-    stages with the first list's entry s, the step the stages with the second (the right-hand side is
-    autonomous: the stage times are not needed)."""
-    from scipy.integrate import DOP853
+    """DOP853's tableau rows (:mod:`sphereimpact.ode.dop853_tableau`) without their zeros, made on the first step:
+    stage s combines the earlier stages with the first list's entry s, the step the stages with the second (the
+    right-hand side is autonomous: the stage times are not needed)."""
+    from ..ode import dop853_tableau as T
 
-    return ([None] + [_nonzero(DOP853.A[s, :s]) for s in range(1, DOP853.n_stages)], _nonzero(DOP853.B))
+    a, b = np.array(T.A), np.array(T.B)
+    return ([None] + [_nonzero(a[s, :s]) for s in range(1, T.N_STAGES)], _nonzero(b))
 
 
 #: Up to this many values per stage, one running sum over all terms is cheapest; beyond it, a loop of
@@ -290,7 +290,7 @@ def step_size(zeta, lam, x, y, target: float):
     is constant to the target, and an approaching lane may jump to just inside it.  (A uniform limit
     du <= c took 1.6x the steps for the same accuracy: the band is ~ln(1/target) wide.)
     """
-    from scipy.special import wrightomega  # imported on use, as the tableau (_tableau)
+    from scipy.special import wrightomega  # imported on use: a sweep that never takes these lanes does not pay
 
     unit = min(STEP_CONSTANT * target ** 0.125, MAX_UNIT_STEP)
     c = min(RAMP_FACTOR * unit, MAX_RAMP_STEP)
