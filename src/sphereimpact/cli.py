@@ -756,13 +756,14 @@ def _simulate(args) -> None:
 def _described(args, command: str) -> None:
     """Refuse a ball that ``command``'s options do not describe (ValueError naming what is missing): only
     simulate takes the chapter's ball unasked; --ball FILE and --chapter-ball describe it too."""
-    missing = [] if args.ball is not None or args.chapter_ball else undescribed(args.given, args.model)
-    if command == "sweep" and "speed" not in args.given and not args.chapter_ball:
-        # the approach is the user's too (fit reads it from the bounces, plan from its candidates)
-        if not missing:
-            raise ValueError("sweep: give --speed, the approach speed [m/s], a value or a range (or --chapter-ball "
-                             "for the chapter's 3 m/s); only simulate takes the chapter's scene unasked")
-        missing = [*missing, "speed"]
+    if args.chapter_ball:
+        return
+    missing = undescribed(args.given, args.model, approach=command == "sweep")
+    if args.ball is not None:  # the file describes the ball, not a sweep's approach
+        missing = [part for part in missing if part == "speed"]
+    if missing == ["speed"]:
+        raise ValueError("sweep: give --speed, the approach speed [m/s], a value or a range (or --chapter-ball "
+                         "for the chapter's 3 m/s); only simulate takes the chapter's scene unasked")
     if missing:
         whose = {"fit": "the ball you measured", "plan": "the ball you will measure"}.get(
             command, "your ball and its speed" if "speed" in missing else "your ball")

@@ -137,11 +137,12 @@ class Ball:
 STIFFNESS_GIVEN = ("k", "modulus", "contact_time", "ball_material")
 
 
-def undescribed(given, model: str) -> list[str]:
+def undescribed(given, model: str, approach: bool = False) -> list[str]:
     """The parts of a ball's description that ``given`` lacks, where the package's default is the chapter's ball:
     its mass and diameter (145 g, 63 mm), the stiffness and the damping of a law whose defaults are the chapter's
-    (k = 60000 N/m, b = 10.5 N s/m).  A door that takes the user's own ball (``fit``, ``sweep``, a study) refuses
-    it without them; ``simulate`` alone runs the chapter's ball and says so.
+    (k = 60000 N/m, b = 10.5 N s/m), and with ``approach`` its approach speed (3 m/s).  A door that takes the
+    user's own ball (``fit``, ``sweep``, a study) refuses it without them, a sweep its speed too (a fit reads the
+    approach from its bounces, a plan from its candidates); ``simulate`` alone runs the chapter's scene and says so.
 
     Parameters
     ----------
@@ -149,12 +150,14 @@ def undescribed(given, model: str) -> list[str]:
         The names the user gave: Scene fields, ``cor``, ``contact_time``, ``ball_material``.
     model : str
         The normal force law's name.
+    approach : bool
+        Whether the approach speed is part of what must be given.
 
     Returns
     -------
     list of str
         Each missing part as the option that gives it (``mass``, ``diameter``, ``k or modulus or contact_time``,
-        ``b or cor``); empty when the ball is described.
+        ``b or cor``, ``speed``); empty when the ball is described.
     """
     law, given = LAWS.law(model), set(given)
     chapter, damping = chapter_law_parameters(law), law.damping
@@ -164,7 +167,7 @@ def undescribed(given, model: str) -> list[str]:
                                    or (name == "ball_material" and "modulus" in law.parameter_names)))
     if damping in chapter and not given & {damping, "cor"}:
         missing.append(f"{damping} or cor")
-    return missing
+    return missing + (["speed"] if approach and "speed" not in given else [])
 
 
 def check_described(ball, door: str, chapter_ball: bool) -> None:

@@ -124,7 +124,7 @@ def _undescribed(given: set, model: str) -> list[str]:
     """What a row with the columns ``given`` lacks: the ball's parts (as columns) and the approach speed."""
     from ..impact.ball import undescribed
 
-    return _as_columns(undescribed(given, model)) + ([] if "speed" in given else ["speed"])
+    return _as_columns(undescribed(given, model, approach=True))
 
 
 def _describing() -> set:
