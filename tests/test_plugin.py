@@ -73,6 +73,50 @@ def test_a_law_without_a_scalar_formula_runs_on_scipys_dop853(law):
     assert out.to_dict() | {"wall_time": 0.0} == ref.to_dict() | {"wall_time": 0.0}
 
 
+def _growing_scalar(delta, delta_dot, p):
+    return p.k * delta + p.b * delta_dot * delta / p.radius
+
+
+def _growing_kernel(delta, delta_dot, p):  # compiled by numba when the law is first integrated
+    return p[0] * delta + p[1] * delta_dot * delta / p[2]
+
+
+def test_a_law_that_brings_its_own_kernel_is_integrated_compiled_with_the_python_floats_answer(law, capsys,
+                                                                                          monkeypatch):
+    """The growing-damping law with its scalar formula and a kernel of its own (a plain function of this file):
+    DOP853-scalar integrates it compiled, to the bit of the Python floats' answer, in simulate, the sweep and the
+    command line."""
+    from dataclasses import replace
+
+    from sphereimpact.contact.laws.base import Kernel
+    from sphereimpact.integrators import runge_kutta
+    from sphereimpact.ode import dop853
+
+    compiled_law = LAWS.register(replace(GROWING, name="growing-compiled", scalar=_growing_scalar,
+                                         kernel=Kernel(_growing_kernel, lambda p: (p.k, p.b, p.radius))))
+    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+    calls = []
+    compiled = runge_kutta._compiled
+    monkeypatch.setattr(runge_kutta, "_compiled", lambda *args: calls.append(1) or compiled(*args))
+    try:
+        scene = Scene(model="growing-compiled", b=400.0, angle=30.0)
+        out = simulate(scene).to_dict()
+        assert out["method"] == "DOP853-scalar" and len(calls) == 2  # both runs (to separation, the landing)
+        assert out["cor"] == pytest.approx(simulate(Scene(model=NAME, b=400.0, angle=30.0)).cor, rel=1e-8)
+        monkeypatch.setattr(runge_kutta, "_compiled", lambda rhs, span, z0, rtol, atol, max_step, events, first:
+                            dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events,
+                                         first_step=first))
+        floats = simulate(scene).to_dict()
+        assert out | {"wall_time": 0.0} == floats | {"wall_time": 0.0}
+        monkeypatch.setattr(runge_kutta, "_compiled", compiled)
+        row = sweep(grid(angle=[30.0]).assign(model="growing-compiled", b=400.0), chapter_ball=True).iloc[0]
+        assert row["cor"] == pytest.approx(out["cor"], rel=1e-8)
+        assert run(["simulate", "--model", "growing-compiled", "--b", "400", "--angle", "30", "--json"]) == 0
+        assert json.loads(capsys.readouterr().out)["cor"] == out["cor"]
+    finally:
+        del LAWS[compiled_law.name]
+
+
 def test_tilted_gravity_and_calibration_reach_the_law(law):
     from sphereimpact.impact.calibrate import calibrate
 
