@@ -169,3 +169,26 @@ def test_scalar_paths_give_the_array_paths_values_to_the_bit(scene):
     assert [jp.integral(float(x)) for x in t] == jp.integral(t).tolist()
     p = tangential.phases[0]
     assert [tangential._slip(p, float(x)) for x in t] == tangential._slip(p, t).tolist()
+
+
+def test_every_built_in_model_reports_a_declared_regime_written_as_a_plain_word(tmp_path):
+    """The regimes are one enumeration (contact.tangential.Regime); a table and the JSON hold their words."""
+    import json
+
+    from sphereimpact.contact.tangential import TANGENTIALS, Regime
+    from sphereimpact.sweep.engine import sweep
+
+    hertz = {"model": "hertz", "modulus": 1e8}
+    seen = set()
+    for name, model in TANGENTIALS.items():
+        law = (hertz if model.spring == "hertz" else {}) | ({"kappa": 0.8} if name != "rigid" else {})
+        for angle, mu in ((5.0, 1.0), (20.0, 0.5), (70.0, 0.1)):
+            out = simulate(Scene(angle=angle, mu=mu, tangential=name, **law))
+            assert out.regime in tuple(Regime), (name, out.regime)
+            assert json.loads(json.dumps(out.to_dict()))["regime"] == out.regime.value
+            seen.add(out.regime)
+    assert simulate(Scene()).regime is Regime.NONE
+    assert {Regime.SLIDING, Regime.ROLLING, Regime.MICROSLIP} <= seen  # a spring lets go sliding as its cap falls
+    path = tmp_path / "table.csv"
+    sweep({"angle": [0.0, 20.0, 70.0], "mu": 0.5}, chapter_ball=True).to_csv(path, index=False)
+    assert path.read_text().count(",rolling,") + path.read_text().count(",none,") == 3

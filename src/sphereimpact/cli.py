@@ -265,7 +265,7 @@ def _parser() -> argparse.ArgumentParser:
     add("--rtol", type=_number, default=_O.rtol, help=f"relative tolerance, {RTOL_RANGE}")
     add("--atol", type=_number, default=_O.atol,
         help=f"absolute tolerance on the dimensionless state (delta scaled by v_n/omega_n, rate by v_n), {ATOL_RANGE}")
-    add("--body", choices=BODIES, default="reduced",
+    add("--body", choices=[body.value for body in BODIES], default="reduced",
         help="reduced: normal ODE plus impulse algebra (exact, cheapest); planar: full rigid-body cross-check")
     add("--strict", action="store_true",
         help="refuse a result outside the model (maximum compression beyond the radius) instead of flagging it")

@@ -67,7 +67,7 @@ OUTPUTS = (
     Output("ve_n", "m/s", N, "contact point's velocity along the normal after the impact"),
     Output("omega_f", "rad/s", N, "spin after the impact"),
     Output("cor", "-", N, "normal coefficient of restitution"),
-    Output("regime", "", T, "the tangential contact's mode at separation"),
+    Output("regime", "", T, "the tangential contact's mode at separation (contact.tangential.Regime)"),
     Output("t_roll", "s", N, "first instant the contact point stops slipping", Needs.HISTORY),
     Output("force_min", "N", N, "smallest normal force over the contact", Needs.HISTORY),
     Output("force_max", "N", N, "largest normal force over the contact", Needs.HISTORY),

@@ -26,7 +26,7 @@ from ..integrators.normal import check_rebound, horizon, no_separation_message, 
 from ..integrators import ivp_method
 from .outcome import force_extremes
 from .scene import Scene, SolverOptions
-from ..contact.tangential import MAX_PHASES, phase_index
+from ..contact.tangential import MAX_PHASES, Regime, phase_index
 from ..contact.tangential.rigid import RIGID
 
 
@@ -66,7 +66,7 @@ class SegmentedMotion:
         s = self.scene
         t0, t_end = 0.0, horizon(s)
         self._segments, self._modes, self._sigmas, t_m, nfev = [], [], [], None, 0
-        self.t_roll = 0.0 if mode == "rolling" and s.has_tangential_motion else None
+        self.t_roll = 0.0 if mode == Regime.ROLLING and s.has_tangential_motion else None
         while True:
             sol = self._segment(mode, sigma, t0, t_end, z)
             nfev += sol.nfev
@@ -82,7 +82,7 @@ class SegmentedMotion:
             if sol.status == 0 or not len(sol.t_events[2]):
                 raise ImpactError(no_separation_message(s, t_end))
             t0 = float(sol.t_events[2][0])
-            if mode == "sliding" and self.t_roll is None:
+            if mode == Regime.SLIDING and self.t_roll is None:
                 self.t_roll = t0
             mode, sigma, z = self._switched(mode, sol.y_events[2][0].copy())
             if len(self._segments) >= MAX_PHASES:
@@ -92,7 +92,7 @@ class SegmentedMotion:
         self.end = sol.y_events[1][0]
         check_rebound(s, options, float(self._contact(self.end)[1]))
         self.t_m, self.t_f = t_m, float(sol.t_events[1][0])
-        self.regime = mode if s.has_tangential_motion else "none"
+        self.regime = mode if s.has_tangential_motion else Regime.NONE
         self.switches = len(self._segments) - 1 if s.has_tangential_motion else 0
         steps = np.concatenate([seg[3] for seg in self._segments])
         grid = np.unique(substep_grid(steps))
@@ -152,14 +152,14 @@ class PlanarMotion(SegmentedMotion):
             velocity = np.array([0.0, -scene.speed])
         z = np.array([radius * self._n[0], radius * self._n[1], velocity[0], velocity[1], scene.spin])
         slip0 = scene.slip0
-        mode = "sliding" if scene.has_tangential_motion and (slip0 != 0 or self._hold > 0) else "rolling"
+        mode = Regime.SLIDING if scene.has_tangential_motion and (slip0 != 0 or self._hold > 0) else Regime.ROLLING
         self._run(options, z, mode, -1.0 if slip0 < 0 else 1.0)
 
     def _switched(self, mode: str, z):
-        if mode == "sliding":
+        if mode == Regime.SLIDING:
             z[4] = float(z[2:4] @ self._t) / self.scene.radius  # exactly on the constraint
-            return "rolling", 1.0, z
-        return "sliding", 1.0, z  # gravity along the flat outgrows friction: the contact point slips down-slope
+            return Regime.ROLLING, 1.0, z
+        return Regime.SLIDING, 1.0, z  # gravity along the flat outgrows friction: the contact point slips down-slope
 
     def _contact(self, z):
         """(delta, delta_dot, P) of state(s) z."""
@@ -175,7 +175,7 @@ class PlanarMotion(SegmentedMotion):
 
         def rhs(t, z):
             _, _, p = self._contact(z)  # smooth past separation, as in the reduced model
-            f = -mu * max(float(p), 0.0) if mode == "sliding" else -hold
+            f = -mu * max(float(p), 0.0) if mode == Regime.SLIDING else -hold
             ax, ay = (p * n_vec + f * t_vec) / s.mass
             return [z[2], z[3], ax, ay - s.gravity, -f * radius / s.inertia]
 
@@ -187,7 +187,7 @@ class PlanarMotion(SegmentedMotion):
             return sep(delta, delta_dot)
 
         def switch(t, z):
-            if mode == "sliding":  # sigma times the slip falls through zero
+            if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 return sigma * (t_vec @ z[2:4] - z[4] * radius)
             if hold > 0:
                 return s.mu * max(float(self._contact(z)[2]), 0.0) - hold
@@ -202,7 +202,7 @@ class PlanarMotion(SegmentedMotion):
         """Friction force on the ball along the flat [N] at t [s], as the segment's mode sets it."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
         which = self._which(t)
-        sliding = np.array([mode == "sliding" for mode in self._modes])[which]
+        sliding = np.array([mode == Regime.SLIDING for mode in self._modes])[which]
         sigma = np.array(self._sigmas)[which]
         if not self.scene.has_tangential_motion:
             return np.zeros_like(t)

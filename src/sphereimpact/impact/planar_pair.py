@@ -28,6 +28,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ..contact.tangential import Regime
 from ..integrators import ivp_method
 from ..integrators.normal import separation_function
 from .planar import SegmentedMotion
@@ -79,18 +80,18 @@ class PlanarPairMotion(SegmentedMotion):
         slip0 = s.slip0
         # no friction, or no tangential motion at all (the line of centres never turns): F = 0 throughout, no switch
         self._free = s.mu == 0 or not s.has_tangential_motion
-        self._run(options, z, "sliding" if slip0 != 0 or self._free else "rolling", -1.0 if slip0 < 0 else 1.0)
+        self._run(options, z, Regime.SLIDING if slip0 != 0 or self._free else Regime.ROLLING, -1.0 if slip0 < 0 else 1.0)
         end = self.end
         self.line_turn = abs(math.atan2(end[0], end[1]))
         self.work_t = float(end[5])
         self.bodies = self._bodies(end)
 
     def _switched(self, mode: str, z):
-        if mode == "sliding":
+        if mode == Regime.SLIDING:
             _, _, _, t_vec = self._geometry(z)
             z[4] = float(z[2:4] @ t_vec) / self.scene.radius  # exactly on the constraint
-            return "rolling", 1.0, z
-        return "sliding", -math.copysign(1.0, self._rolling_force(z)), z  # slips the way F_r pushed
+            return Regime.ROLLING, 1.0, z
+        return Regime.SLIDING, -math.copysign(1.0, self._rolling_force(z)), z  # slips the way F_r pushed
 
     # --- geometry and forces ----------------------------------------------------------------------------
     def _geometry(self, z):
@@ -121,7 +122,7 @@ class PlanarPairMotion(SegmentedMotion):
         def force(z, p):
             if self._free:
                 return 0.0
-            return -sigma * s.mu * max(float(p), 0.0) if mode == "sliding" else self._rolling_force(z)
+            return -sigma * s.mu * max(float(p), 0.0) if mode == Regime.SLIDING else self._rolling_force(z)
 
         def rhs(t, z):
             _, _, n_vec, t_vec = self._geometry(z)
@@ -141,7 +142,7 @@ class PlanarPairMotion(SegmentedMotion):
         def switch(t, z):
             if self._free:
                 return 1.0
-            if mode == "sliding":  # sigma times the slip falls through zero
+            if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 _, _, _, t_vec = self._geometry(z)
                 return sigma * (float(t_vec @ z[2:4]) - z[4] * r_star)
             return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(self._rolling_force(z))
@@ -173,7 +174,7 @@ class PlanarPairMotion(SegmentedMotion):
         if self._free:
             return np.zeros_like(p)
         rolling = np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])])
-        sliding = np.array([mode == "sliding" for mode in self._modes])[which]
+        sliding = np.array([mode == Regime.SLIDING for mode in self._modes])[which]
         return np.where(sliding, -np.array(self._sigmas)[which] * self.scene.mu * p, rolling)
 
     def kinematics(self, t) -> dict:

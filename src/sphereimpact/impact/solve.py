@@ -17,6 +17,7 @@ import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import replace
+from enum import StrEnum
 
 import numpy as np
 
@@ -27,10 +28,17 @@ from ..integrators.normal import describe_family
 from .outcome import Outcome, force_extremes, gains_energy
 from .pair import pair_velocities
 from .scene import Scene, SolverOptions
-from ..contact.tangential import TANGENTIALS
+from ..contact.tangential import TANGENTIALS, Regime
 
-#: The rigid-body descriptions: ``reduced`` (normal ODE plus impulse algebra) and ``planar`` (full).
-BODIES = ("reduced", "planar")
+class Body(StrEnum):
+    """The rigid-body descriptions :func:`simulate` solves (``body=``, ``--body``)."""
+
+    REDUCED = "reduced"  # the normal ODE, the tangential motion from the normal impulse: exact on the flat
+    PLANAR = "planar"  # centre position, velocity and spin integrated together: the cross-check
+
+
+#: The bodies, as a tuple of their names.
+BODIES = tuple(Body)
 
 
 #: The normal motions shared inside :func:`reusing_normal_motions`, by normal problem and options (None outside).
@@ -79,7 +87,7 @@ class ReducedMotion:
         self.normal, self.scene = normal, normal.scene
         self.t_m, self.t_f, self.grid, self.stats = normal.t_m, normal.t_f, normal.grid, normal.stats
         if not self.scene.has_tangential_motion:
-            self.tangential, self.t_roll, self.regime, self.switches = None, None, "none", 0
+            self.tangential, self.t_roll, self.regime, self.switches = None, None, Regime.NONE, 0
             return
         self.tangential = TANGENTIALS[self.scene.tangential].motion(normal, options)
         self.t_roll, self.regime = self.tangential.t_roll, self.tangential.regime
@@ -145,7 +153,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
-    if scene.has_partner and body != "planar":  # one sphere on the flat, then each body's velocities from the impulses
+    if scene.has_partner and body != Body.PLANAR:  # one sphere on the flat, then each body's velocities from the impulses
         return pair_outcome(simulate(scene.reduced, options, body, strict), scene)
     options = SolverOptions() if options is None else options
     if not isinstance(options, SolverOptions):
@@ -153,7 +161,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                         f"got {type(options).__name__}")
     if body not in BODIES:
         raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
-    if body == "planar":
+    if body == Body.PLANAR:
         from .planar import CONTACTS, planar_motion
 
         motion_of = planar_motion(TANGENTIALS[scene.tangential])
@@ -168,7 +176,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                              "not depend on friction)")
     start = time.perf_counter()
     with _beyond_double(scene):
-        if body == "reduced":
+        if body == Body.REDUCED:
             motion = ReducedMotion(shared_normal_motion(scene, options), options)
         else:
             motion = motion_of(scene, options)

@@ -15,14 +15,13 @@ import pandas as pd
 from ..errors import ImpactError
 from ..integrators import INTEGRATORS
 from ..impact.scene import Scene, SolverOptions
-from ..impact.solve import simulate
+from ..impact.solve import BODIES, simulate
 from .reference import reference, worst_error
 from .timing import median_time
 
 log = logging.getLogger(__name__)
 
 METHODS = ("taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
-BODIES = ("reduced", "planar")
 TOLERANCES = tuple(10.0 ** -e for e in range(3, 13))
 #: Accuracy every output must meet with the package's default method and tolerance.
 TARGET = 1e-9

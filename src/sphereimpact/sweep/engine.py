@@ -24,7 +24,7 @@ from ..impact.declarations import HISTORY_OUTPUTS
 from ..impact.inputs import check_flag, density_problem
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS, EndState, gains_energy, outputs
 from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take ranges as text)
-from ..contact.tangential import TANGENTIALS
+from ..contact.tangential import TANGENTIALS, Regime
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Work, single_options
@@ -124,7 +124,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if slip:  # once for the table (a row's Scene does not repeat it)
         warnings.warn(slip, UnitWarning, stacklevel=2)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key in NUMERIC_OUTPUTS}
-    regime, path = _objects(n, "none"), _objects(n, "")
+    regime, path = _objects(n, Regime.NONE), _objects(n, "")
     options = single_options(target, settings)
     d = numbers(frame)
     needs = needs_of(frame, d, wanted)
@@ -214,7 +214,7 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
     rows = tangential_rows(part, v_n)
     impulse, instants = m * v_n * dim["j_p"], dim["tau_g"] / w
     tangential = {"vc_t": np.zeros(n), "omega_f": np.zeros(n), "t_roll": np.full(n, np.nan),
-                  "switches": np.zeros(n, np.int64), "regime": _objects(n, "none")}
+                  "switches": np.zeros(n, np.int64), "regime": _objects(n, Regime.NONE)}
     moving = (rows.v_tangent != 0) | (rows.spin != 0)  # tangential motion at all: a normal impact has none
     names = part["tangential"].to_numpy()
     for name in dict.fromkeys(names[moving].tolist()):
@@ -285,6 +285,6 @@ def outputs_wanted(outputs) -> set:
     names = [outputs] if isinstance(outputs, str) else list(outputs)
     unknown = [name for name in names if name not in SWEEP_OUTPUTS]
     if unknown or not names:
-        got = unknown[0] if unknown else "none"
+        got = unknown[0] if unknown else Regime.NONE
         raise ValueError(f"outputs must be some of {', '.join(SWEEP_OUTPUTS)}; got {got!r}")
     return set(names)

@@ -16,7 +16,7 @@ microslip  exact elastic microslip of a Hertz contact (MDR; Hertz laws)      :mo
 Adding a model is one :class:`TangentialModel` passed to ``TANGENTIALS.register`` (see :mod:`.base`).
 """
 
-from .base import (KAPPA, KAPPA_FROM, POISSON, SHEAR_MODULUS, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS,
+from .base import (KAPPA, KAPPA_FROM, POISSON, SHEAR_MODULUS, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, Regime,
                    SweptTangential, TangentialModel, kappa_from_poisson, kappa_from_shear_modulus)
 from .rigid import (MAX_PHASES, Phase, PositiveImpulse, TangentialMotion, by_phase, from_impulse, impulse_outcome, kick,
                     phase_index)
@@ -24,6 +24,6 @@ from .springs import CompliantTangential
 from .microslip import MicroslipTangential
 
 __all__ = ["CompliantTangential", "KAPPA", "KAPPA_FROM", "MAX_PHASES", "MicroslipTangential", "POISSON", "Phase",
-           "PositiveImpulse", "SHEAR_MODULUS", "STIFFNESS", "SweptTangential", "TANGENTIALS", "TANGENTIAL_PARAMETERS",
+           "PositiveImpulse", "Regime", "SHEAR_MODULUS", "STIFFNESS", "SweptTangential", "TANGENTIALS", "TANGENTIAL_PARAMETERS",
            "TangentialModel", "TangentialMotion", "by_phase", "from_impulse", "impulse_outcome", "kick",
            "kappa_from_poisson", "kappa_from_shear_modulus", "phase_index"]

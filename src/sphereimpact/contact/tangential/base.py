@@ -14,11 +14,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import StrEnum
 from typing import Callable
 
 from ..laws.base import spring_exponent
 from ..parameters import Parameter, Setting
 from ...registry import Registry as BaseRegistry
+
+class Regime(StrEnum):
+    """The tangential contact's mode at separation, as an impact's ``regime`` output reports it (a plain string
+    wherever one is written: a table's cell, a JSON value).  A plug-in model may report a mode of its own."""
+
+    NONE = "none"  # a normal impact: no tangential motion
+    SLIDING = "sliding"  # the contact point slips (for microslip: the whole contact slid throughout)
+    ROLLING = "rolling"  # the contact point grips (a rigid contact)
+    STICKING = "sticking"  # the tangential spring holds (a compliant contact)
+    MICROSLIP = "microslip"  # part of the contact stuck at some time (the exact microslip contact)
+
 
 #: The tangential stiffness, three ways: kappa directly, Poisson's ratio of like materials, or (for a Hertz
 #: spring) the effective shear modulus.  One table for the Scene's checks, the sweep's and the help texts.

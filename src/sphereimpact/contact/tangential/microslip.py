@@ -44,7 +44,7 @@ import numpy as np
 
 from ..laws.base import hertz_modulus
 from ..parameters import Setting
-from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
+from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, Regime, TangentialModel, slip_per_impulse
 from .rigid import PositiveImpulse
 
 #: Default resolution: cells of the element row and time steps per contact (the convergence study's choice).
@@ -67,7 +67,7 @@ MAX_CELL_STEPS = 10**10
 #: threshold the discrete row flickers between the two with deficits of 1e-7 to 1e-4).
 STICK_TOLERANCE = 1e-3
 #: Regimes of a microslip contact: it slid throughout, or part of it stuck at some time.
-SLIDING, MICROSLIP = "sliding", "microslip"
+SLIDING, MICROSLIP = Regime.SLIDING, Regime.MICROSLIP
 
 
 def hertz_moduli(scene) -> tuple[float, float]:

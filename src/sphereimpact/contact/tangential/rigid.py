@@ -30,7 +30,7 @@ from ...errors import ImpactError
 from ...ode.events import first_root, roots
 from ...ode.roots import falling_root
 from ..motion import NormalMotion
-from .base import TANGENTIALS, SweptTangential, TangentialModel, slip_per_impulse
+from .base import TANGENTIALS, Regime, SweptTangential, TangentialModel, slip_per_impulse
 
 #: More mode switches than this in one contact means something is wrong.
 MAX_PHASES = 50
@@ -265,13 +265,13 @@ class TangentialMotion:
         self._hold = m * scene.g_tangent * alpha / (1.0 + alpha)  # friction needed to keep rolling [N]
         slip0 = scene.slip0
         if slip0 != 0 or self._hold > 0:  # no normal force yet to hold the ball against gravity: it slips down
-            phase = Phase("sliding", 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0, -1.0 if slip0 < 0 else 1.0)
+            phase = Phase(Regime.SLIDING, 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0, -1.0 if slip0 < 0 else 1.0)
         else:  # the incoming spin rolls the ball from the start
-            phase = Phase("rolling", 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0)
-        self.phases, self.t_roll = [], None if phase.mode == "sliding" else 0.0
+            phase = Phase(Regime.ROLLING, 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0)
+        self.phases, self.t_roll = [], None if phase.mode == Regime.SLIDING else 0.0
         while True:
             grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
-            if phase.mode == "sliding":  # sigma s falls through zero when the contact point stops slipping
+            if phase.mode == Regime.SLIDING:  # sigma s falls through zero when the contact point stops slipping
                 t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): p.sigma * self._slip(p, t, j0),
                                       grid, direction=-1)
             elif self._hold > 0:
@@ -284,11 +284,11 @@ class TangentialMotion:
                 break
             self.phases.append(replace(phase, t1=t_switch))
             v, omega, x = (float(q) for q in self._evaluate(self.phases[-1], t_switch))
-            if phase.mode == "sliding":
+            if phase.mode == Regime.SLIDING:
                 self.t_roll = t_switch if self.t_roll is None else self.t_roll
-                phase = Phase("rolling", t_switch, normal.t_f, v, v / scene.radius, x)
+                phase = Phase(Regime.ROLLING, t_switch, normal.t_f, v, v / scene.radius, x)
             else:  # gravity along the flat outgrows friction: the contact point slips down-slope
-                phase = Phase("sliding", t_switch, normal.t_f, v, omega, x, 1.0)
+                phase = Phase(Regime.SLIDING, t_switch, normal.t_f, v, omega, x, 1.0)
             if len(self.phases) >= MAX_PHASES:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         self.regime = self.phases[-1].mode
@@ -299,7 +299,7 @@ class TangentialMotion:
         s = self.scene
         t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
         dt = t - p.t0
-        if p.mode == "rolling":
+        if p.mode == Regime.ROLLING:
             accel = s.g_tangent / (1.0 + s.inertia_factor)
             v = p.v0 + accel * dt
             return v, v / s.radius, p.x0 + p.v0 * dt + 0.5 * accel * dt * dt

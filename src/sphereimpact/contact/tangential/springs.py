@@ -73,10 +73,10 @@ from ...ode.events import first_root
 from ..laws import force_rate, spring_exponent, spring_stiffness
 from ..motion import NormalMotion
 from .dashpot import DASHPOT_COR, dashpot_ratio
-from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, TangentialModel, slip_per_impulse
+from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, Regime, TangentialModel, slip_per_impulse
 from .rigid import MAX_PHASES, Phase, PositiveImpulse, by_phase, from_impulse
 
-STICKING, SLIDING = "sticking", "sliding"
+STICKING, SLIDING = Regime.STICKING, Regime.SLIDING
 #: History rules of the spring's force while its stiffness changes: ``never`` (k_t constant: a linear
 #: spring), ``unloading`` (scaled with k_t while the contact shrinks) or ``always`` (F = -k_t xi on the total
 #: displacement xi: scaled with k_t both ways).
