@@ -205,3 +205,24 @@ def test_sweep_solves_microslip_scenes_as_simulate_does():
         for key in ("vc_t", "omega_f", "ve_t", "cor"):
             assert row[key] == pytest.approx(getattr(one, key), rel=1e-8, abs=1e-12), key
         assert row["regime"] == one.regime
+
+
+@pytest.mark.parametrize("separation", ["force", "penetration"])
+def test_the_march_samples_read_once_are_the_motions_own_values_to_the_bit(separation):
+    """The march's inputs evaluate the normal motion once and read the force and J+ off that state: the values of
+    normal.force(t) and PositiveImpulse(normal)(t) to the bit, under both criteria (the penetration criterion's
+    force pulls before delta returns to 0: J+ stops growing there)."""
+    from sphereimpact.contact.tangential.microslip import _samples
+    from sphereimpact.contact.tangential.rigid import PositiveImpulse
+    from sphereimpact.integrators import normal_motion
+
+    scene = Scene(model="hunt-crossley", modulus=1e8, chi=2.0, angle=30.0, tangential="microslip", kappa=0.8,
+                  separation=separation)
+    normal = normal_motion(scene, SolverOptions())
+    t, xi_a, load, step_impulse, delta_m = _samples(normal, 384)
+    force = np.maximum(normal.force(t), 0.0)
+    force[0] = force[-1] = 0.0
+    positive = PositiveImpulse(normal)
+    assert np.array_equal(load, force) and np.array_equal(step_impulse, np.diff(positive(t)))
+    if separation == "penetration":
+        assert len(positive.intervals) == 1 and positive.intervals[0][1] < normal.t_f  # a gap: J+ held

@@ -133,12 +133,15 @@ def _samples(normal, time_steps: int):
     """What the march reads of the normal motion alone, on ``time_steps`` equal steps: the step ends t [s], the
     contact radius over a_max [-], P+ [N] (zero at the ends: no area, no load), the impulse of P+ over each
     step [N s], and a_max^2 / R = delta_m [m]."""
+    s = normal.scene
     t = np.linspace(0.0, normal.t_f, time_steps + 1)
-    delta = np.maximum(normal.state(t)[0], 0.0)
+    compression, rate = normal.state(t)  # once: the force and the impulse are read off it
+    delta = np.maximum(compression, 0.0)
     delta_m = max(normal.delta_m, float(delta.max()))
-    load = np.maximum(normal.force(t), 0.0)
+    load = np.maximum(s.stage_force(compression, rate), 0.0)  # normal.force(t)
     load[0] = load[-1] = 0.0
-    return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal)(t)), delta_m
+    impulse = s.mass * (s.v_normal - rate + s.g_normal * t)  # normal.impulse(t)
+    return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal).from_impulse(t, impulse)), delta_m
 
 
 def march_inputs(normal, time_steps: int):

@@ -180,6 +180,17 @@ class PositiveImpulse:
         i, j, c = self._locate(t)
         return np.where(i < 0, 0.0, self._before[j] + self._n.impulse(c) - self._ja[j])
 
+    def from_impulse(self, t, impulse) -> np.ndarray:
+        """J+ [N s] at the instants of the array t, given the normal impulse J [N s] there (:meth:`NormalMotion.impulse
+        <sphereimpact.contact.motion.NormalMotion.impulse>`, read off a state the caller has already evaluated):
+        the values of :meth:`__call__` to the bit, without evaluating the motion again (J at an instant inside a
+        pushing interval is J(t); past one, its end's, which is kept)."""
+        t = np.asarray(t, dtype=float)
+        if not self._a.size:
+            return np.zeros_like(t)
+        i, j, c = self._locate(t)
+        return np.where(i < 0, 0.0, self._before[j] + np.where(c == t, impulse, self._jb[j]) - self._ja[j])
+
     def instants(self, impulses) -> np.ndarray:
         """The first instants [s] at which J+ reaches each of ``impulses`` [N s] (0 for 0; t_f for an impulse
         J+ never reaches): bracketed on the solver's grid (J+ never decreases), then Newton's method on
