@@ -259,4 +259,11 @@ def test_the_departure_study_refuses_what_it_cannot_run(tmp_path, capsys):
     assert run(["benchmark", "departure", "--config", str(config), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "lacks validation.sphere.diameter, validation.anvil.modulus" in err
+    # a value the schema refuses is named as the user wrote it (it was reported as E* = -5.28 Pa, a number of ours)
+    config.write_text("validation:\n  sphere: {modulus: -5.0, poisson: 0.23, density: 4000.0, diameter: 0.005}\n"
+                      "  anvil: {modulus: 7.0e+10, poisson: 0.25}\n  speed: 3.9\n  mu: 0.09\n  cor: 0.98\n"
+                      "  model: hunt-crossley\n  angles: '10:20:10'\n")
+    assert run(["benchmark", "departure", "--config", str(config), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "config key validation.sphere.modulus: -5.0 is less than or equal to the minimum" in err
     assert not out.exists()

@@ -968,6 +968,12 @@ def _departure(args, numbers) -> None:
         except (OSError, yaml.YAMLError) as err:
             raise ValueError(f"config: cannot read {args.config!r}: {str(err).splitlines()[0]}") from None
         section = config.get("validation") if isinstance(config, dict) else None
+        if isinstance(section, dict):  # its values as the pipeline checks them, against the project's schema
+            from .study.config_check import SCHEMA, config_errors
+
+            errors = config_errors({"validation": section}, SCHEMA)
+            if errors:
+                raise ValueError(f"config: {args.config!r}: {'; '.join(errors)}")
         missing = ["validation"] if not isinstance(section, dict) else [
             f"validation.{key}" + (f".{part}" if part else "") for key, parts in KHARAZ_KEYS.items()
             for part in (parts or ("",)) if key not in section

@@ -5,6 +5,7 @@ config key (:func:`check_config`, called by the Snakefile)."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -14,6 +15,9 @@ from .config import with_defaults
 from .own import CHAPTER
 
 
+#: The configuration's schema, shipped with the package: a link to the project's ``config/schema.yaml`` (one file;
+#: a built wheel holds its content), for the command line's doors that read a study config themselves.
+SCHEMA = str(Path(__file__).with_name("schema.yaml"))
 #: Sections only a study of one's own ball reads.
 OWN_SECTIONS = ("ball_file", "ball", "surface", "contact", "bounces", "ranges", "fit", "plan")
 
