@@ -211,9 +211,9 @@ def references(table: pd.DataFrame) -> pd.DataFrame:
     with warnings.catch_warnings():  # compressions beyond the radius, energy made: flagged in both, not warned
         warnings.simplefilter("ignore", BeyondRadiusWarning)
         warnings.simplefilter("ignore", EnergyGainWarning)
-        for i in range(len(frame)):
+        for row in frame.to_dict("records"):  # not frame.iloc[i]: 40 us a row
             try:
-                outcome = simulate(scene_of(frame.iloc[i].to_dict()), REFERENCE)
+                outcome = simulate(scene_of(row), REFERENCE)
             except ImpactError as err:
                 rows.append({"refused": str(err)})
                 continue

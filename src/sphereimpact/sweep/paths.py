@@ -251,7 +251,7 @@ class SinglePath(SweepPath):
         out: dict = {}
         for start in range(0, len(rows), SINGLES_CHUNK):
             chunk = rows[order[start:start + SINGLES_CHUNK]]
-            scenes = [scene_of(frame.iloc[i].to_dict()) for i in chunk]
+            scenes = [scene_of(row) for row in frame.iloc[chunk].to_dict("records")]  # not iloc[i]: 40 us a row
             with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
