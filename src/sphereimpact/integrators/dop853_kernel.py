@@ -8,12 +8,13 @@ cached on disk once (beside this file, or in ``NUMBA_CACHE_DIR``).  It is the al
 1993, section II.10), with scipy's coefficients (:mod:`sphereimpact.ode.dop853_tableau`) and scipy's
 step control (initial step, safety 0.9, factors 0.2 to 10, exponent -1/8, no growth right after a rejection,
 minimum step 10 ulp of t), every sum taken in scipy's order: the same steps as solve_ivp's DOP853 up to round-off
-(tests/test_dop853.py).
+(tests/test_dop853.py), and the Python-float DOP853's answer (:mod:`sphereimpact.ode.dop853`) to the bit
+(tests/test_kernels.py).
 
 The events are evaluated at each step's end, by kind (:data:`MAX_COMPRESSION`, :data:`PENETRATION`,
 :data:`FORCE`, :data:`BAND`), and the integration stops after the first step across which a terminal one falls
 through zero; their roots are found afterwards on the step's interpolant, in Python
-(:func:`sphereimpact.ode.dop853.located_events`), as solve_ivp finds them.
+(:func:`sphereimpact.ode.dop853.located`), as solve_ivp finds them.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 
 
 @numba.njit(**_COMPILE)
-def _rhs(force, params, scales, t, x, y, out):
+def _rhs(force, params, scales, x, y, out):
     """(x', y') into ``out``; returns False when the force is not finite.  scales = (d, v, p, gamma)."""
     p = force(x * scales[0], y * scales[1], params)
     out[0] = y
@@ -109,16 +110,16 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         Step ends (k + 1,), the states there (k + 1, 2), each step's interpolation coefficients, scipy's F
         (k, 7, 2), the events' values at the step ends (k + 1, m), the evaluations used and the status.
     """
-    a, c, b, e3, e5, a_extra, c_extra, d, stages = _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES
+    # the right-hand side is autonomous: the stages' times (C, C_EXTRA) are not needed
+    a, b, e3, e5, a_extra, d, stages, extra = _A, _B, _E3, _E5, _A_EXTRA, _D, _STAGES, _C_EXTRA.size
     m = kinds.size
-    extra = c_extra.size
     capacity = 64
     ts, ys = np.empty(capacity), np.empty((capacity, 2))
     coefficients, g = np.empty((capacity, 7, 2)), np.empty((capacity, m))
     k = np.empty((stages + 1 + extra, 2))
     f, f_new, stage, y_new = np.empty(2), np.empty(2), np.empty(2), np.empty(2)
     t, y = t0, z0.copy()
-    finite = _rhs(force, params, scales, t, y[0], y[1], f)
+    finite = _rhs(force, params, scales, y[0], y[1], f)
     nfev = 1
     ts[0], ys[0, 0], ys[0, 1] = t, y[0], y[1]
     for j in range(m):
@@ -135,7 +136,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         d0, d1 = _rms(y[0] / s0, y[1] / s1), _rms(f[0] / s0, f[1] / s1)
         h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
         h0 = min(h0, interval)
-        _rhs(force, params, scales, t + h0, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
+        _rhs(force, params, scales, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
         nfev += 1
         d2 = _rms((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1) / h0
         h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
@@ -168,13 +169,13 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
                     for j in range(s):
                         total += a[s, j] * k[j, comp]
                     stage[comp] = y[comp] + h * total
-                finite &= _rhs(force, params, scales, t + c[s] * h, stage[0], stage[1], k[s])
+                finite &= _rhs(force, params, scales, stage[0], stage[1], k[s])
             for comp in range(2):
                 total = 0.0
                 for j in range(stages):
                     total += b[j] * k[j, comp]
                 y_new[comp] = y[comp] + h * total
-            finite &= _rhs(force, params, scales, t + h, y_new[0], y_new[1], f_new)
+            finite &= _rhs(force, params, scales, y_new[0], y_new[1], f_new)
             k[stages, 0], k[stages, 1] = f_new[0], f_new[1]
             nfev += stages
             if not finite:
@@ -208,7 +209,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
                 for j in range(stages + 1 + i):
                     total += a_extra[i, j] * k[j, comp]
                 stage[comp] = y[comp] + h * total
-            finite &= _rhs(force, params, scales, t + c_extra[i] * h, stage[0], stage[1], k[stages + 1 + i])
+            finite &= _rhs(force, params, scales, stage[0], stage[1], k[stages + 1 + i])
         nfev += extra
         if not finite:
             status = OVERFLOW

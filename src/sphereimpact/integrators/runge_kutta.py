@@ -48,16 +48,17 @@ def _plain_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
 
 
 _KERNEL_MODULE = "sphereimpact.integrators.dop853_kernel"
-#: The compiled integrator's event kinds by the names the driver's events carry (``event.kind``).
-_KINDS = ("max_compression", "penetration", "force", "band")
 
 
 def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     """The normal motion by the compiled DOP853 (:func:`~.dop853_kernel.integrate`) on the law's kernel: the
-    steps, states and events of :func:`sphereimpact.ode.dop853.solve` on ``rhs`` (to round-off), which
-    ``rhs`` is not called for; its budget is charged with the evaluations made."""
+    steps, states and events of :func:`sphereimpact.ode.dop853.solve` on ``rhs`` to the bit (tests/test_kernels.py),
+    which ``rhs`` is not called for; its budget is charged with the evaluations made.  The driver's events say
+    which they are (``event.kind``)."""
     from . import dop853_kernel as kernel  # _KERNEL_MODULE
 
+    kinds = {"max_compression": kernel.MAX_COMPRESSION, "penetration": kernel.PENETRATION, "force": kernel.FORCE,
+             "band": kernel.BAND}
     scene = rhs.scene
     law_kernel = scene.law.kernel
     band = [e for e in events if e.kind == "band"]
@@ -66,7 +67,7 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
         law_kernel.load(), np.array(law_kernel.parameters(scene), dtype=float), np.array(rhs.scales, dtype=float),
         float(span[0]), float(span[1]), np.array(z0, dtype=float), float(rtol), float(atol), float(max_step),
         float(first_step) if first_step is not None else 0.0,
-        np.array([_KINDS.index(e.kind) for e in events], dtype=np.int64),
+        np.array([kinds[e.kind] for e in events], dtype=np.int64),
         np.array([getattr(e, "direction", 0) for e in events], dtype=np.int64), float(lam), float(edge),
         max(rhs.left, 0))
     rhs.spend(nfev if status != kernel.BUDGET else rhs.left + 1)
@@ -76,7 +77,6 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
                 kernel.FINISHED: "The solver successfully reached the end of the integration interval.",
                 kernel.STEP_TOO_SMALL: "Required step size is less than spacing between numbers."}
     return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status])
-
 
 
 def _scipy(method: str):
