@@ -38,7 +38,7 @@ def test_no_force_and_no_overflow_outside_contact(name):
 
 
 def test_registry_declares_the_closed_form_only_where_it_exists():
-    from sphereimpact.contact.laws.exact import SPRING_DAMPER
+    from sphereimpact.contact.laws.spring_damper import SPRING_DAMPER
 
     assert LAWS["kelvin-voigt"].closed_form is SPRING_DAMPER
     assert all(law.closed_form is None for name, law in LAWS.items() if name != "kelvin-voigt")

@@ -360,7 +360,8 @@ def test_a_closed_form_declared_from_outside_serves_simulate_and_the_sweep():
     grip instant take another exact path (the Runge-Kutta lanes here), and agree."""
     from dataclasses import replace
 
-    from sphereimpact.contact.laws.exact import ClosedForm, SpringDamperMotion, events, jet
+    from sphereimpact.contact.laws.closed_form import ClosedForm
+    from sphereimpact.contact.laws.spring_damper import SpringDamperMotion, events, jet
     from sphereimpact.numerics.reference import reference
     from sphereimpact.numerics.workprecision import work_precision
     from sphereimpact.sweep.engine import FAST_OUTPUTS

@@ -1,5 +1,5 @@
 """The normal motion of a law with a closed form: its exact solution (``ContactLaw.closed_form``, e.g.
-eq. 4.1's in :mod:`sphereimpact.contact.laws.exact`) with its events.
+eq. 4.1's in :mod:`sphereimpact.contact.laws.spring_damper`) with its events.
 
 Without gravity the law's solution gives the events as formulas.  With gravity they are the roots of its
 exact functions, bracketed on a dense grid (uniform plus geometric, for the fast and slow time scales)
@@ -56,25 +56,25 @@ class ClosedFormNormal(NormalMotion):
             closed = ", ".join(name for name, law in LAWS.items() if law.closed_form is not None)
             raise ValueError(f"method 'closed' needs a law with a closed form ({closed}); got model {scene.model!r}")
         self.scene = scene
-        self.exact = exact = scene.law.closed_form.motion(scene)
+        self.solution = solution = scene.law.closed_form.motion(scene)
         self.stats = {"method": "closed", "rtol": 0.0, "atol": 0.0, "nfev": 0}
-        if exact.weightless:  # the events are in closed form too
-            self.t_m, self.t_f = exact.events()
+        if solution.weightless:  # the events are in closed form too
+            self.t_m, self.t_f = solution.events()
             if self.t_f is None:
                 raise ImpactError(no_separation_message(scene, math.inf))
             self.grid = np.unique(np.concatenate([np.linspace(0.0, self.t_f, EVENT_FREE_GRID),
                                                   np.geomspace(self.t_f * 1e-9, self.t_f, EVENT_FREE_GRID // 4)]))
             return
-        scan = _scan_grid(exact.scan_end)
+        scan = _scan_grid(solution.scan_end)
         t_m = first_root(lambda t: self.state(t)[1], scan, direction=-1)
         sep = separation_function(scene)
         t_f = first_root(lambda t: sep(*self.state(t)), scan, direction=-1)
         if t_f is None:
-            raise ImpactError(no_separation_message(scene, exact.scan_end))
+            raise ImpactError(no_separation_message(scene, solution.scan_end))
         if t_m is None or t_m > t_f:
             raise ImpactError("no maximum compression before separation")
         self.t_m, self.t_f = t_m, t_f
         self.grid = np.append(scan[scan < t_f], t_f)
 
     def state(self, t):
-        return self.exact.state(t)
+        return self.solution.state(t)

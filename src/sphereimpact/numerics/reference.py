@@ -1,6 +1,6 @@
 """Reference solutions and the error measure of the accuracy studies.
 
-``kelvin-voigt``: the law's closed form (:mod:`sphereimpact.contact.laws.exact`), exact to round-off.  Other
+``kelvin-voigt``: the law's closed form (:mod:`sphereimpact.contact.laws.spring_damper`), exact to round-off.  Other
 laws (Hertz, Hunt-Crossley): scipy's DOP853 at rtol 1e-13, for the benchmarks (their accuracy is tested in
 tests/test_laws.py against closed forms and calibration).
 ``modified``: the normal problem in dimensionless form integrated with

@@ -494,7 +494,7 @@ class _ByCriterion(SweepPath):
 
 class ClosedPath(_ByCriterion):
     """A law with a closed form, without gravity: its weightless events, vectorised (``ClosedForm.events``;
-    eq. 4.1's in :mod:`sphereimpact.contact.laws.exact`)."""
+    eq. 4.1's in :mod:`sphereimpact.contact.laws.spring_damper`)."""
 
     name = "closed"
     summary = "the law's closed-form events"
@@ -504,10 +504,10 @@ class ClosedPath(_ByCriterion):
         form that declares its ``jet`` (from which the extremes and grip instants follow)."""
         jets = np.array([form.jet is not None for form in CLOSED_FORMS] + [False])  # code -1: no closed form
         extras = needs.extremes | np.isfinite(needs.levels)
-        return d.closed & (d.gamma == 0) & (jets[d.exact] | ~extras) & ~_beyond_lanes(d, _series_lanes(d))
+        return d.closed & (d.gamma == 0) & (jets[d.closed_form] | ~extras) & ~_beyond_lanes(d, _series_lanes(d))
 
     def solve(self, d, rows, separation, target, needs):
-        codes = d.exact[rows]
+        codes = d.closed_form[rows]
         out = None
         for code in np.unique(codes):
             mine = np.flatnonzero(codes == code)

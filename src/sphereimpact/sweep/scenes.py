@@ -268,7 +268,7 @@ class Numbers:
     and ``lam`` where the batched lanes or a closed form read them (0 elsewhere), masks of eq. 4.2's form
     (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
     (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
-    as an index into :data:`CLOSED_FORMS` (``exact``, -1 without), the similarity ``family`` as a hashable key
+    as an index into :data:`CLOSED_FORMS` (``closed_form``, -1 without), the similarity ``family`` as a hashable key
     (laws the lanes do not take; None otherwise)."""
 
     w: np.ndarray
@@ -280,7 +280,7 @@ class Numbers:
     closed: np.ndarray
     batched: np.ndarray
     force: np.ndarray
-    exact: np.ndarray
+    closed_form: np.ndarray
     family: np.ndarray
 
     def __getitem__(self, rows) -> "Numbers":
@@ -299,7 +299,7 @@ class Numbers:
         return Separation.FORCE if self.force[i] else Separation.PENETRATION
 
 
-#: The laws' closed forms met by :func:`numbers`, in order: :attr:`Numbers.exact` indexes it, so a path groups
+#: The laws' closed forms met by :func:`numbers`, in order: :attr:`Numbers.closed_form` indexes it, so a path groups
 #: rows by closed form with integer arithmetic, not by comparing objects row by row.
 CLOSED_FORMS: list = []
 
@@ -323,7 +323,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
     v_n = frame["speed"].to_numpy() * np.cos(beta)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
-    exact, family = np.full(n, -1), _objects(n, None)
+    closed_form, family = np.full(n, -1), _objects(n, None)
     modified, batched = np.zeros(n, bool), np.zeros(n, bool)
     models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
     for model in dict.fromkeys(models.tolist()):
@@ -341,7 +341,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
         problem = scale_problem(view.mass, v_n[rows], w[rows], law, rows)
         if problem:
             raise ValueError(problem)
-        exact[rows] = _closed_form_code(law.closed_form)
+        closed_form[rows] = _closed_form_code(law.closed_form)
         batched[rows], modified[rows] = lanes, lanes and batch.FORMS[law.scaled]
         if lanes or law.closed_form is not None:  # the lanes and the closed forms read zeta and lam
             zeta[rows] = values.get("zeta", 0.0)
@@ -351,8 +351,9 @@ def numbers(frame: pd.DataFrame) -> Numbers:
             family[rows] = [(model, *key) for key in keys]
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
     gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
-    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=exact >= 0,
-                   batched=batched, force=separation == Separation.FORCE, exact=exact, family=family)
+    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=closed_form >= 0,
+                   batched=batched, force=separation == Separation.FORCE, closed_form=closed_form,
+                   family=family)
 
 
 def with_constants(table: pd.DataFrame, constants: dict) -> pd.DataFrame:

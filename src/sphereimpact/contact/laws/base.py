@@ -23,7 +23,7 @@ import numpy as np
 from ...ode.dense import is_instant
 from ...registry import Registry as BaseRegistry
 from ..parameters import Parameter
-from .exact import ClosedForm
+from .closed_form import ClosedForm
 
 #: The law parameters that are Scene fields, in the order Scene declares them.  A law uses a subset, and may
 #: declare parameters of its own besides (carried in ``Scene.parameters``).
@@ -111,7 +111,7 @@ class ContactLaw:
         which is exact for every law, or interpolated in the family's last number where many scenes differ
         only in it (:mod:`sphereimpact.sweep.paths`).
     closed_form : ClosedForm or None
-        The law's exact solution (:class:`sphereimpact.contact.laws.exact.ClosedForm`: one scene's motion in SI
+        The law's exact solution (:class:`sphereimpact.contact.laws.closed_form.ClosedForm`: one scene's motion in SI
         units for the ``closed`` integrator, the weightless events vectorised for sweeps), or None.
     ramp_rate : callable or None
         ``ramp_rate(p) -> c / R`` [1/m] for a law whose damping is switched on by a ramp in
@@ -182,7 +182,7 @@ class ContactLaw:
                              f"it compiles; got kernel {self.kernel!r}, scalar {self.scalar!r}")
         if self.closed_form is not None and not isinstance(self.closed_form, ClosedForm):
             raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's is "
-                             f"sphereimpact.contact.laws.exact.SPRING_DAMPER) or None; got {self.closed_form!r}")
+                             f"sphereimpact.contact.laws.spring_damper.SPRING_DAMPER) or None; got {self.closed_form!r}")
 
     def force(self, delta, delta_dot, p):
         """P [N] of the law: ``continued`` inside contact (delta > 0) and 0 outside, where nothing is evaluated

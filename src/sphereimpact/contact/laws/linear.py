@@ -20,7 +20,7 @@ import numpy as np
 
 from ..parameters import Parameter
 from .base import LAWS, ContactLaw, Kernel
-from .exact import SPRING_DAMPER
+from .spring_damper import SPRING_DAMPER
 
 K = Parameter("k", "N/m", "contact stiffness", "a finite number > 0", lambda x: x > 0, 60000.0)
 B = Parameter("b", "N s/m", "contact damping", "a finite number >= 0", lambda x: x >= 0, 10.5)

@@ -15,7 +15,7 @@ s the contact point's slip velocity, k_t the tangential stiffness at this instan
   polynomial of degree 10 in e (:data:`THORNTON_FIT`), e taken at 0.001 below that and gamma = 0 above e = 0.999,
   as Kratos does (the fit itself gives 0.0045 at e = 1);
 - a linear spring: the exact relation of the linear spring-dashpot whose force ends at P = 0 (Kratos solves it by
-  bisection), here :func:`sphereimpact.contact.laws.exact.events` inverted by Brent's method.
+  bisection), here :func:`sphereimpact.contact.laws.spring_damper.events` inverted by Brent's method.
 
 The tangential springs ``linear`` and ``mindlin`` (:mod:`.springs`) take the COR as their own parameter
 ``dashpot_cor`` (:data:`DASHPOT_COR`; 1: no dashpot, the elastic spring).  ``mindlin-displacement`` does not (its
@@ -56,7 +56,7 @@ def linear_ratio(cor: float) -> float:
     """gamma = zeta of the linear spring-dashpot whose COR (force criterion) is ``cor``: the exact relation."""
     if cor >= 1.0:
         return 0.0
-    from ..laws.exact import events
+    from ..laws.spring_damper import events
     from ..separation import Separation
 
     def excess(zeta):
