@@ -88,7 +88,7 @@ def test_a_law_that_brings_its_own_kernel_is_integrated_compiled_with_the_python
     command line."""
     from dataclasses import replace
 
-    from sphereimpact.contact.laws.base import Kernel
+    from sphereimpact import Kernel
     from sphereimpact.integrators import runge_kutta
     from sphereimpact.ode import dop853
 

@@ -8,7 +8,7 @@ Quick use::
 """
 
 from .errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
-from .contact.laws import LAWS, ContactLaw
+from .contact.laws import LAWS, ContactLaw, Kernel
 from .contact.materials import effective_moduli
 from .contact.parameters import Parameter, Setting
 from .contact.separation import Separation
@@ -17,7 +17,7 @@ from .impact.outcome import HISTORY_COLUMNS, OUTPUT_KEYS, Outcome
 from .impact.scene import Scene, SolverOptions
 from .impact.solve import simulate
 
-__all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "EnergyGainWarning", "HISTORY_COLUMNS", "ImpactError",
+__all__ = ["Ball", "BeyondRadiusWarning", "ContactLaw", "EnergyGainWarning", "HISTORY_COLUMNS", "ImpactError", "Kernel",
            "LAWS", "Measurement", "OUTPUT_KEYS", "Outcome", "Parameter", "Scene", "Separation", "Setting",
            "SolverOptions", "ball_scene", "calibrated_ball", "effective_moduli", "load_ball", "save_ball",
            "simulate"]
