@@ -2,9 +2,9 @@
 
 A kernel is the law's ``scalar`` formula compiled for one signature, :data:`SIGNATURE` (delta [m], delta_dot
 [m/s] and the parameters the law's :class:`~.base.Kernel` packs, a float64 array), so the compiled integrator of
-the normal motion (:mod:`sphereimpact.ode.dop853_kernel`) calls it through a function pointer: one compiled
+the normal motion (:mod:`sphereimpact.integrators.dop853_kernel`) calls it through a function pointer: one compiled
 integrator serves every law, and numba caches it on disk once for all of them.  Each kernel is the scalar formula's
-arithmetic in its order, so the two agree bit for bit (tests/test_kernels.py); only the integrator calls kernels.
+arithmetic in its order, so the two agree bit for bit (tests/test_kernels.py).
 
 numba is imported when this module is (on the first compiled integration), never by a command that does not
 integrate a law this way.  A kernel is written here as a plain function and compiled for :data:`SIGNATURE` when a
