@@ -117,6 +117,41 @@ def test_a_law_that_brings_its_own_kernel_is_integrated_compiled_with_the_python
         del LAWS[compiled_law.name]
 
 
+def _uncompilable_kernel(delta, delta_dot, p):
+    return p.k * delta + p.b * delta_dot * delta / p.radius  # the scalar formula's p: an array has no .k
+
+
+def _doubled_kernel(delta, delta_dot, p):
+    return 2.0 * (p[0] * delta + p[1] * delta_dot * delta / p[2])
+
+
+@pytest.mark.parametrize("kernel, message", [
+    (_uncompilable_kernel, r"law 'growing-bad': its kernel does not compile \(TypingError: Unknown attribute 'k'"),
+    (_doubled_kernel,
+     r"law 'growing-bad': its kernel gives P = .* N where its scalar formula gives .* a kernel must be the scalar"),
+])
+def test_a_kernel_that_does_not_compile_or_is_not_the_scalar_formula_is_refused_by_name(kernel, message, capsys,
+                                                                                        monkeypatch):
+    """A plug-in's kernel is compiled and checked against its scalar formula on its first use: refused in one line
+    (API and command line), never integrated in the formula's place."""
+    from dataclasses import replace
+
+    from sphereimpact import Kernel
+    from sphereimpact.integrators import runge_kutta
+
+    bad = LAWS.register(replace(GROWING, name="growing-bad", scalar=_growing_scalar,
+                                kernel=Kernel(kernel, lambda p: (p.k, p.b, p.radius))))
+    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+    try:
+        with pytest.raises(ValueError, match=message):
+            simulate(Scene(model="growing-bad", b=400.0, angle=30.0))
+        assert run(["simulate", "--model", "growing-bad", "--b", "400", "--angle", "30", "--json"]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "law 'growing-bad': its kernel" in err
+    finally:
+        del LAWS[bad.name]
+
+
 def test_tilted_gravity_and_calibration_reach_the_law(law):
     from sphereimpact.impact.calibrate import calibrate
 

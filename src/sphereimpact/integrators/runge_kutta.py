@@ -48,6 +48,38 @@ def _plain_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
 
 
 _KERNEL_MODULE = "sphereimpact.integrators.dop853_kernel"
+#: The laws whose kernels this process has compiled and checked against their scalar formulas.
+_CHECKED: dict = {}
+#: Relative difference from the scalar formula a kernel may show at the check's states (the built-in kernels show
+#: none: tests/test_kernels.py).
+KERNEL_AGREEMENT = 1e-12
+
+
+def _checked_kernel(scene, scales):
+    """The compiled kernel of ``scene``'s law, checked on its first use in the process against the law's scalar
+    formula at states across the scene's contact (compression and rate of either sign, scaled by ``scales``): a
+    kernel that numba cannot compile, or that is not the scalar formula, is refused by name (ValueError), never
+    integrated in its place."""
+    law = scene.law
+    key = (law.name, law.kernel)
+    if key not in _CHECKED:
+        try:
+            compiled = law.kernel.load()
+        except Exception as err:  # numba's typing and lowering errors, an unknown module or name
+            lines = [line.strip() for line in str(err).splitlines() if line.strip()]
+            reason = lines[1] if len(lines) > 1 and lines[0].startswith("Failed in") else "".join(lines[:1])
+            raise ValueError(f"law {law.name!r}: its kernel does not compile ({type(err).__name__}: {reason}); fix "
+                             "it, or declare no kernel (the law then integrates in Python floats)") from None
+        params = np.array(law.kernel.parameters(scene), dtype=float)
+        d_scale, v = scales[0], scales[1]
+        for x, y in ((0.5, 1.0), (1.0, 0.3), (0.2, -0.8), (-0.01, -1.0), (0.0, 0.5)):
+            mine, theirs = compiled(x * d_scale, y * v, params), law.scalar(x * d_scale, y * v, scene)
+            if not abs(mine - theirs) <= KERNEL_AGREEMENT * max(abs(theirs), 1e-300):
+                raise ValueError(f"law {law.name!r}: its kernel gives P = {mine!r} N where its scalar formula gives "
+                                 f"{theirs!r} N (delta {x * d_scale:.3g} m, delta_dot {y * v:.3g} m/s): a kernel must "
+                                 "be the scalar formula compiled")
+        _CHECKED[key] = compiled
+    return _CHECKED[key]
 
 
 def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
@@ -64,7 +96,8 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     band = [e for e in events if e.kind == "band"]
     lam, edge = (band[0].lam, band[0].edge) if band else (0.0, 0.0)
     ts, ys, coefficients, g, nfev, status = kernel.integrate(
-        law_kernel.load(), np.array(law_kernel.parameters(scene), dtype=float), np.array(rhs.scales, dtype=float),
+        _checked_kernel(scene, rhs.scales), np.array(law_kernel.parameters(scene), dtype=float),
+        np.array(rhs.scales, dtype=float),
         float(span[0]), float(span[1]), np.array(z0, dtype=float), float(rtol), float(atol), float(max_step),
         float(first_step) if first_step is not None else 0.0,
         np.array([kinds[e.kind] for e in events], dtype=np.int64),

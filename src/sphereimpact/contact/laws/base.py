@@ -41,7 +41,9 @@ class Kernel:
         :data:`sphereimpact.contact.laws.kernels.SIGNATURE` on first use: one of that module by name (imported,
         with numba, then), ``"module:name"`` for a plug-in's own, or the function itself (plain, or already
         compiled for that signature).  It must be the law's ``scalar`` formula, in its arithmetic (the
-        integrator's events and landing evaluate that one).
+        integrator's events and landing evaluate that one): on its first use in a process it is compiled and held
+        to that formula at a few states of the scene (``integrators.runge_kutta._checked_kernel``), and refused by
+        name where it does not compile or differs.
     parameters : callable
         ``parameters(p) -> tuple of float``: the ``params`` the kernel reads, from a Scene.
     """
