@@ -20,7 +20,7 @@ from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
 from .handwritten import handwritten
 from .reference import reference, worst_error
-from .timing import interleaved_seconds
+from .timing import interleaved_seconds, steady_state
 from .workprecision import TARGET
 
 log = logging.getLogger(__name__)
@@ -71,9 +71,7 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     on the ladder met simulate's error; timed at the tightest), ``time`` [s per impact], ``nfev``,
     ``time_ratio`` (time / the hand-written script's time), ``repeats`` and ``batch`` (the protocol).
     """
-    from ..integrators.runge_kutta import load_compiled
-
-    load_compiled()  # the steady state of a process that integrates many impacts (the same answers, bit for bit)
+    steady_state()
     rows = []
     default = SolverOptions()
     for name, scene in scenes.items():
@@ -112,9 +110,8 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
     contender (the rigid contact for the impact, the impact for the march, the load for the compilation).
     """
     from ..contact.tangential.microslip import march, march_inputs
-    from ..integrators.runge_kutta import load_compiled
 
-    load_compiled()  # the steady state, as simulate_vs_handwritten times it
+    steady_state()
     rows = []
     default = SolverOptions()
     out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)

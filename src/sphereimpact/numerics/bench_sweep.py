@@ -34,7 +34,7 @@ import pandas as pd
 from .bench import LAW_SCENES, TOLERANCES
 from .handwritten import handwritten
 from .reference import relative_errors
-from .timing import interleaved_seconds
+from .timing import interleaved_seconds, steady_state
 from ..fit import fit, read_measured, with_values
 from ..impact.ball import Ball
 from ..impact.scene import Scene, SolverOptions
@@ -200,6 +200,7 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         Also time a fit (:func:`measure_fit`): the ball whose curve is fitted, the free parameters' start values,
         the incidences [deg].
     """
+    steady_state()
     rng = np.random.default_rng(1)
     varied = pd.DataFrame({"angle": rng.uniform(0, 89, lanes), "speed": rng.uniform(0.5, 30, lanes),
                            "k": rng.uniform(2e4, 2e5, lanes), "b": rng.uniform(2, 30, lanes),

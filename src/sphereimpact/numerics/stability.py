@@ -35,7 +35,7 @@ from ..impact.scene import Scene, SolverOptions
 from ..integrators import ivp_method
 from ..impact.solve import simulate
 from .reference import reference, worst_error
-from .timing import median_time
+from .timing import median_time, steady_state
 from .workprecision import METHODS
 
 log = logging.getLogger(__name__)
@@ -247,7 +247,9 @@ STUDIES = {"stiffness": stiffness, "onset": onset, "grip": grip, "separation": s
 
 def stability(base: Scene, studies=tuple(STUDIES), methods=METHODS) -> pd.DataFrame:
     """The ``studies`` on the chapter's scene ``base`` (angle and model set per study), for ``methods``
-    (the grip study keeps to the explicit and implicit methods among them that it contrasts)."""
+    (the grip study keeps to the explicit and implicit methods among them that it contrasts), timed in the steady
+    state (:func:`~.timing.steady_state`)."""
+    steady_state()
     rows = []
     with warnings.catch_warnings():  # the stiffness study reaches k = 1e3 N/m, where delta_m exceeds R
         warnings.simplefilter("ignore", BeyondRadiusWarning)

@@ -24,7 +24,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from .timing import interleaved_seconds
+from .timing import interleaved_seconds, steady_state
 from ..contact.separation import Separation
 from ..impact.scene import Scene, SolverOptions
 from ..sweep import batch, plane, series_lanes
@@ -110,6 +110,7 @@ def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, rep
     sample : int
         Scenes per sweep on which each contender's error is measured against the reference.
     """
+    steady_state()
     rows = []
     for comparison in ("one ball", "many balls"):
         for scenes in sizes:

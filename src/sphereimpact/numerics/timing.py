@@ -7,6 +7,16 @@ import statistics
 import time
 
 
+def steady_state() -> None:
+    """Load the compiled integrator before timing (:func:`sphereimpact.integrators.runge_kutta.load_compiled`): a
+    process integrates in Python floats until it has integrated enough to repay loading the compiled loop, so
+    without this a benchmark's first points would time the one and its later points the other (the same answers).
+    Every speed benchmark times the steady state of a process that integrates much."""
+    from ..integrators.runge_kutta import load_compiled
+
+    load_compiled()
+
+
 #: Seconds a work-precision or stability point is repeated for (at least 3 runs unless one run exceeds it).
 BUDGET = 0.05
 

@@ -17,7 +17,7 @@ from ..integrators import INTEGRATORS
 from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import BODIES, simulate
 from .reference import reference, worst_error
-from .timing import median_time
+from .timing import median_time, steady_state
 
 log = logging.getLogger(__name__)
 
@@ -40,7 +40,9 @@ def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "redu
 
 
 def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHODS) -> pd.DataFrame:
-    """Every method x body x tolerance for each case, plus the closed form where it exists."""
+    """Every method x body x tolerance for each case, plus the closed form where it exists (timed in the steady
+    state, :func:`~.timing.steady_state`)."""
+    steady_state()
     rows = []
     for case, scene in cases.items():
         log.info("work-precision: case %s", case)
