@@ -51,9 +51,13 @@ class NormalMotion:
 
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""
-        s = self.scene
         t = float(t) if is_instant(t) else np.asarray(t, dtype=float)
-        return s.mass * (s.v_normal - self.state(t)[1] + s.g_normal * t)
+        return self.impulse_from(t, self.state(t)[1])
+
+    def impulse_from(self, t, delta_dot):
+        """J(t) [N s] given delta_dot [m/s] at t [s], already evaluated: m (v_n - delta_dot + g_n t)."""
+        s = self.scene
+        return s.mass * (s.v_normal - delta_dot + s.g_normal * t)
 
     def impulse_integral(self, t):
         """K(t) = integral of J from 0 to t [N s^2], exact from delta(t)."""

@@ -24,7 +24,8 @@ import numpy as np
 from numba import types
 
 from ..contact.laws.kernels import SIGNATURE
-from ..ode.dop853 import tableau
+from ..ode.dop853 import MAX_FACTOR, MIN_FACTOR, SAFETY, tableau
+from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 
 #: Event kinds, each falling through zero: y (maximum compression), delta (separation under the penetration
 #: criterion), the force inside contact and -1 outside (separation under the force criterion), and
@@ -33,7 +34,8 @@ MAX_COMPRESSION, PENETRATION, FORCE, BAND = 0, 1, 2, 3
 #: Statuses: a terminal event fell through zero in the last step, the span's end reached, the step fell
 #: below 10 ulp of t, the right-hand side's budget spent, the force left the finite numbers.
 TERMINAL, FINISHED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 1, 0, -1, -2, -3
-SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+#: The step-size exponent, -1 / (the error estimator's order + 1), as the Python DOP853's.
+_EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F = types.float64
@@ -139,7 +141,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         _rhs(force, params, scales, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
         nfev += 1
         d2 = _rms((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1) / h0
-        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -_EXPONENT
         h_abs = min(100 * h0, h1, interval, max_step)
     steps, status = 0, 2
     while status == 2:
@@ -194,12 +196,12 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
                 sum3 += error3 * error3
             error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / np.sqrt((sum5 + 0.01 * sum3) * 2)
             if error < 1:
-                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** (-1.0 / 8.0))
+                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** _EXPONENT)
                 if rejected:
                     factor = min(1.0, factor)
                 h_abs *= factor
                 break
-            h_abs *= max(MIN_FACTOR, SAFETY * error ** (-1.0 / 8.0))
+            h_abs *= max(MIN_FACTOR, SAFETY * error ** _EXPONENT)
             rejected = True
         if status != 2:
             break

@@ -220,9 +220,7 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     from ..integrators import normal_motion, resolve_method
     from ..impact.solve import ReducedMotion
 
-    from ..integrators.runge_kutta import load_compiled
-
-    load_compiled()  # the steady state of a process that integrates many impacts (the same answers, bit for bit)
+    steady_state()
     rows = []
     default = SolverOptions()
     for name, scene in scenes.items():

@@ -222,10 +222,11 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
                    np.array(gs).reshape(len(gs), len(events)), nfev, status, message)
 
 
-def _crossed(before: float, after: float, direction) -> bool:
-    """An event function's sign change from ``before`` to ``after`` in its ``direction`` (solve_ivp's rule)."""
-    up, down = before <= 0 <= after, before >= 0 >= after
-    return (up and direction > 0) or (down and direction < 0) or ((up or down) and not direction)
+def _crossed(before, after, direction):
+    """An event function's sign change from ``before`` to ``after`` in its ``direction`` (solve_ivp's rule): floats,
+    or arrays that broadcast (one bool each)."""
+    up, down = (before <= 0) & (after >= 0), (before >= 0) & (after <= 0)
+    return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
 
 
 def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: str) -> Solution:
@@ -258,10 +259,7 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
     directions = [getattr(e, "direction", 0) for e in events]
     terminal = [bool(getattr(e, "terminal", False)) for e in events]
     if events and len(ts) > 1:
-        before, after = g[:-1], g[1:]
-        up, down = (before <= 0) & (after >= 0), (before >= 0) & (after <= 0)
-        sense = np.array(directions)
-        crossed = (up & (sense > 0)) | (down & (sense < 0)) | ((up | down) & (sense == 0))
+        crossed = _crossed(g[:-1], g[1:], np.array(directions))
         for step in np.flatnonzero(crossed.any(axis=1)).tolist():
             rows, t0, h, y0 = coefficients[step][::-1].tolist(), ts[step], ts[step + 1] - ts[step], ys[step]
 

@@ -101,5 +101,3 @@ def _distinct(numbers: dict, tau_f):
     stacked = np.column_stack([np.asarray(v, dtype=float) for v in numbers.values()] + [np.asarray(tau_f, float)])
     unique, inverse = np.unique(stacked, axis=0, return_inverse=True)
     return unique, inverse.ravel(), {k: unique[:, i] for i, k in enumerate(numbers)}, unique[:, -1]
-
-

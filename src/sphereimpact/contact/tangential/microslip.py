@@ -140,7 +140,7 @@ def _samples(normal, time_steps: int):
     delta_m = max(normal.delta_m, float(delta.max()))
     load = np.maximum(s.stage_force(compression, rate), 0.0)  # normal.force(t)
     load[0] = load[-1] = 0.0
-    impulse = s.mass * (s.v_normal - rate + s.g_normal * t)  # normal.impulse(t)
+    impulse = normal.impulse_from(t, rate)  # normal.impulse(t)
     return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal).from_impulse(t, impulse)), delta_m
 
 
