@@ -243,3 +243,27 @@ def test_the_lanes_event_functions_are_the_laws_force_per_compression():
     limit = batch._Lanes(zeta, lam, np.zeros(n), ramped).ratio(np.zeros(n), y)
     assert np.allclose(limit[ramped], at_touch[ramped], rtol=1e-14, atol=1e-14) and np.all(limit[~ramped] == -np.inf)
     assert LAWS["modified"].per_compression is series_lanes.modified_per_compression
+
+
+def test_a_laws_spring_and_cor_relations_are_declared_choices():
+    """A law's spring and its COR relations are enumerations (contact.laws.Spring, Relation, issue 42 item 3): a word
+    is read into its member, anything else refused naming the field and the words allowed; ``exact`` is the
+    calibration's root find, not a relation a law can declare."""
+    from dataclasses import replace
+
+    from sphereimpact.contact.laws import Relation, Spring
+    from sphereimpact.impact.ball import Measurement
+
+    hertz = LAWS["hunt-crossley"]
+    assert hertz.spring is Spring.HERTZ and LAWS["modified"].spring is Spring.LINEAR
+    assert set(hertz.cor_relations) == set(Relation) - {Relation.EXACT}
+    assert replace(hertz, spring="linear").spring is Spring.LINEAR
+    with pytest.raises(ValueError, match=r"law 'hunt-crossley': spring must be one of linear, hertz; got 'cubic'"):
+        replace(hertz, spring="cubic")
+    with pytest.raises(ValueError, match=r"a cor_relations key must be one of exact, hunt-crossley, .*got 'guess'"):
+        replace(hertz, cor_relations={"guess": lambda e, p: 1.0})
+    with pytest.raises(ValueError, match="'exact' is the calibration's root find"):
+        replace(hertz, cor_relations={"exact": lambda e, p: 1.0})
+    assert Measurement(0.8, 3.0, relation="flores").relation is Relation.FLORES
+    with pytest.raises(ValueError, match="cor_relation must be one of exact, hunt-crossley"):
+        Measurement(0.8, 3.0, relation="Flores")

@@ -20,10 +20,9 @@ import numpy as np
 from . import __version__, plugins
 from .impact.ball import (APPROACH, Ball, Measurement, ball_columns, ball_scene, calibrated_ball, chapter_parts,
                           check_described, load_ball, save_ball, undescribed)
-from .impact.calibrate import RELATIONS
 from .errors import BeyondRadiusWarning, ImpactError, SphereImpactWarning
 from .integrators import method_names
-from .contact.laws import LAWS, PARAMETER_NAMES
+from .contact.laws import LAWS, PARAMETER_NAMES, Relation
 from .impact.outcome import OUTPUT_KEYS, OUTPUT_UNITS
 from .impact.pair import PARTNER_FIELDS, PARTNER_UNITS
 from .parsing import parse_number, range_count
@@ -208,7 +207,7 @@ def _scene_options(parser: argparse.ArgumentParser) -> None:
         add("--" + name, type=_number, default=None, help=text + ". A parameter the law does not use is refused")
     add("--cor", type=_number, default=None, metavar="E",
         help="set the law's damping so that the normal COR is E, in (0, 1) (replaces its damping parameter)")
-    add("--cor-relation", default="exact", metavar="|".join(RELATIONS),
+    add("--cor-relation", default=Relation.EXACT.value, metavar="|".join(Relation),
         help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     add("--cor-speed", type=_number, default=None, metavar="M_S",
         help="normal impact speed at which --cor (and --contact-time) was measured [m/s] (default: this scene's "
@@ -322,7 +321,7 @@ def _parser() -> argparse.ArgumentParser:
     swp.add_argument("--cor-speed", type=_number, default=None, metavar="M_S",
                      help="normal impact speed at which --cor (and --contact-time) was measured [m/s] (default: the "
                           "scenes' normal speed, as simulate's, when they share one)")
-    swp.add_argument("--cor-relation", default="exact", metavar="|".join(RELATIONS),
+    swp.add_argument("--cor-relation", default=Relation.EXACT.value, metavar="|".join(Relation),
                      help="how --cor sets the damping: exact (root find, to 1e-9) or a published relation of the law")
     swp.add_argument("--contact-time", type=_number, default=None, metavar="S",
                      help="with --cor: fit the stiffness k too, so that the contact time is S [s] (k and --modulus "

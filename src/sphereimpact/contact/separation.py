@@ -8,10 +8,10 @@ reads its name.
 
 from __future__ import annotations
 
-from enum import StrEnum
+from ..choice import Choice
 
 
-class Separation(StrEnum):
+class Separation(Choice):
     """The separation criterion of a contact; its value is the name the inputs and tables use."""
 
     FORCE = "force"
@@ -20,10 +20,7 @@ class Separation(StrEnum):
     @classmethod
     def parse(cls, value, name: str = "separation") -> Separation:
         """The criterion named ``value`` (a member or its name); ValueError naming ``name`` and the choices."""
-        try:
-            return cls(value)
-        except ValueError:
-            raise ValueError(f"{name} must be one of {', '.join(cls)}; got {value!r}") from None
+        return super().parse(value, name)
 
     @property
     def on_force(self) -> bool:

@@ -26,8 +26,8 @@ import numpy as np
 from .. import plugins as plugin_modules
 from ..errors import ExtrapolationWarning
 from ..files import write_text
-from ..contact.laws import LAWS
-from .calibrate import RELATIONS, Calibration, calibrate, check_measurement
+from ..contact.laws import LAWS, Relation, Spring
+from .calibrate import Calibration, calibrate, check_measurement
 from .inputs import as_number, check_flag
 from .scene import CHAPTER_BALL, ChapterValue, Scene, SolverOptions, chapter_law_parameters
 
@@ -56,14 +56,15 @@ class Measurement:
         The normal impact speed of the measurement [m/s], > 0.
     contact_time : float or None
         The contact time measured at that speed [s], > 0: then k is fitted too.
-    relation : str
-        ``exact`` (root find) or a published COR relation of the law (:data:`~.calibrate.RELATIONS`).
+    relation : Relation or str
+        ``exact`` (root find) or a published COR relation of the law: a :class:`~sphereimpact.contact.laws.Relation`
+        or its word.
     """
 
     cor: float
     speed: float
     contact_time: float | None = None
-    relation: str = "exact"
+    relation: Relation = Relation.EXACT
 
     def __post_init__(self):
         object.__setattr__(self, "cor", as_number("cor", self.cor))
@@ -77,8 +78,7 @@ class Measurement:
             if not (math.isfinite(t) and t > 0):
                 raise ValueError(f"contact_time must be a finite number > 0 s; got {self.contact_time!r}")
             object.__setattr__(self, "contact_time", t)
-        if self.relation not in RELATIONS:
-            raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {self.relation!r}")
+        object.__setattr__(self, "relation", Relation.parse(self.relation, "cor_relation"))
 
     def extrapolates(self, v_normal):
         """Whether a normal speed [m/s] (a number or an array of them) lies more than :data:`FAR` times from the
@@ -197,7 +197,7 @@ def chapter_parts(scene) -> list[str]:
 def starting_stiffness(model: str, mass: float, contact_time: float, speed: float) -> float:
     """A stiffness k whose contact lasts about ``contact_time`` [s] at ``speed`` [m/s], to start a fit from:
     t = pi sqrt(m / k) for a linear spring, t = 2.94 (5 m / (4 k))^(2/5) v^(-1/5) for a Hertz one."""
-    if LAWS.law(model).spring == "linear":
+    if LAWS.law(model).spring is Spring.LINEAR:
         return mass * (math.pi / contact_time) ** 2
     return 1.25 * mass / (contact_time * speed ** 0.2 / 2.94) ** 2.5
 
@@ -329,7 +329,7 @@ def load_ball(path, plugins=()) -> Ball:
         measured = record.get("measurement")
         measurement = None if measured is None else Measurement(measured["cor"], measured["cor_speed"],
                                                                 measured.get("contact_time"),
-                                                                measured.get("relation", "exact"))
+                                                                measured.get("relation", Relation.EXACT))
         options = SolverOptions(settings=record.get("settings", {}))
     except (KeyError, TypeError, ValueError) as err:
         raise ValueError(f"ball: {str(path)!r}: {err}") from None

@@ -18,14 +18,13 @@ import math
 from dataclasses import dataclass, field, replace
 
 
+from ..contact.laws import Relation
 from ..errors import ImpactError
 from ..integrators.normal import IntegratedNormal
 from ..ode.roots import brent
 from .inputs import as_number
 from .scene import Scene, SolverOptions
 
-#: ``exact`` (root find) and the published relations a law may declare.
-RELATIONS = ("exact", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier")
 #: Calibrated COR and contact time are met to this relative accuracy.
 ACCURACY = 1e-9
 #: The impacts solved inside the root finds: tight, so the calibrated outputs hold ACCURACY.
@@ -48,10 +47,10 @@ class Calibration:
         Its value, in the law's units.
     cor : float
         The normal COR the calibrated scene gives (solved at rtol 1e-12).
-    relation : str
+    relation : Relation
         ``exact`` or the published relation used.
     relations : dict
-        Every published relation the law declares -> the damping value it gives for this COR.
+        Every published relation the law declares (:class:`Relation`) -> the damping value it gives for this COR.
     contact_time : float or None
         The contact time t_f [s] of the calibrated scene when the stiffness was fitted too.
     """
@@ -60,7 +59,7 @@ class Calibration:
     parameter: str
     value: float
     cor: float
-    relation: str
+    relation: Relation
     relations: dict = field(default_factory=dict)
     contact_time: float | None = None
 
@@ -84,9 +83,10 @@ def contact_time(scene: Scene, options: SolverOptions = TIGHT) -> float:
     return IntegratedNormal(scene.reduced, options).t_f
 
 
-def check_measurement(law, cor, relation: str = "exact", contact_time=None) -> float:
-    """The measured ``cor`` as a number, once checked against ``law`` without solving anything (what
-    :func:`calibrate` and a study's config check refuse alike).
+def check_measurement(law, cor, relation: Relation | str = Relation.EXACT, contact_time=None) -> tuple[float, Relation]:
+    """The measured ``cor`` as a number and its ``relation`` as a :class:`Relation` (its word accepted), once
+    checked against ``law`` without solving anything (what :func:`calibrate` and a study's config check refuse
+    alike).
 
     Raises
     ------
@@ -94,26 +94,24 @@ def check_measurement(law, cor, relation: str = "exact", contact_time=None) -> f
         A relation that is not known or not the law's, a COR outside (0, 1) for a damped law, or an elastic law
         given anything but COR 1 with a contact time.
     """
-    cor = as_number("cor", cor)
-    if relation not in RELATIONS:
-        raise ValueError(f"cor_relation must be one of {', '.join(RELATIONS)}; got {relation!r}")
+    cor, relation = as_number("cor", cor), Relation.parse(relation, "cor_relation")
     if law.damping is None:
         if contact_time is not None and cor == 1.0:
-            return cor
+            return cor, relation
         raise ValueError(f"cor: model {law.name!r} has no damping parameter to calibrate (it is elastic, "
                          "COR 1); choose a damped law" + (", or give cor 1 with contact_time" if contact_time
                                                           is None else ""))
     if not (math.isfinite(cor) and 0.0 < cor < 1.0):
         raise ValueError(f"cor must be a finite number in (0, 1) for the damped model {law.name!r} "
                          f"(1 is the elastic limit, damping 0); got {cor!r}")
-    if relation != "exact" and relation not in law.cor_relations:
-        available = ", ".join(["exact", *law.cor_relations])
-        raise ValueError(f"cor_relation {relation!r} is not available for model {law.name!r} "
+    if relation is not Relation.EXACT and relation not in law.cor_relations:
+        available = ", ".join([Relation.EXACT, *law.cor_relations])
+        raise ValueError(f"cor_relation {relation.value!r} is not available for model {law.name!r} "
                          f"(its relations: {available})")
-    return cor
+    return cor, relation
 
 
-def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> Calibration:
+def calibrate(scene: Scene, cor, relation: Relation | str = Relation.EXACT, contact_time=None) -> Calibration:
     """Set ``scene``'s damping so that its normal COR is ``cor`` (and, with ``contact_time``, its k too).
 
     Parameters
@@ -123,8 +121,9 @@ def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> 
     cor : float
         The normal COR to reach, in (0, 1) for a law with damping; 1 for an elastic law with
         ``contact_time``.
-    relation : str
-        ``exact`` (root find, to 1e-9) or one of the law's ``cor_relations`` (the published formula as is).
+    relation : Relation or str
+        ``exact`` (root find, to 1e-9) or one of the law's ``cor_relations`` (the published formula as is), a
+        :class:`Relation` or its word.
     contact_time : float, optional
         The contact time t_f [s] to reach as well, by fitting the stiffness k.
 
@@ -138,7 +137,7 @@ def calibrate(scene: Scene, cor, relation: str = "exact", contact_time=None) -> 
         A COR outside (0, 1), a law without damping, a relation the law lacks, or a COR or contact time
         that the law cannot reach at this speed, naming the parameter.
     """
-    cor = check_measurement(scene.law, cor, relation, contact_time)
+    cor, relation = check_measurement(scene.law, cor, relation, contact_time)
     if scene.law.damping is None:
         return _fit_stiffness(scene, None, relation, as_number("contact_time", contact_time))
     if contact_time is not None:
@@ -150,12 +149,12 @@ def _relations(scene: Scene, cor: float) -> dict:
     return {name: float(relation(cor, scene.reduced)) for name, relation in scene.law.cor_relations.items()}
 
 
-def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
+def _calibrate_damping(scene: Scene, cor: float, relation: Relation) -> Calibration:
     law = scene.law
     name = law.damping
     relations = _relations(scene, cor)
     options = options_for(cor)
-    if relation != "exact":
+    if relation is not Relation.EXACT:
         calibrated = scene.with_(**{name: relations[relation]})
         return Calibration(calibrated, name, relations[relation], normal_cor(calibrated, options), relation,
                            relations)
@@ -163,7 +162,7 @@ def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
     def excess(log_value: float) -> float:  # COR(damping) - cor, decreasing in the damping
         return normal_cor(scene.with_(**{name: math.exp(log_value)}), options) - cor
 
-    start = relations.get("hunt-crossley") or getattr(scene, name) or 1.0
+    start = relations.get(Relation.HUNT_CROSSLEY) or getattr(scene, name) or 1.0
     low, high = _bracket(excess, math.log(start), f"cor {cor!r} with model {scene.model!r} at v_n = "
                                                   f"{scene.v_normal:.6g} m/s (damping parameter {name})", cor)
     value = math.exp(brent(excess, low, high, xtol=1e-15, rtol=4 * 2.0**-52))
@@ -171,7 +170,7 @@ def _calibrate_damping(scene: Scene, cor: float, relation: str) -> Calibration:
     reached = normal_cor(calibrated, options)
     if abs(reached - cor) > ACCURACY * cor:
         raise ImpactError(f"cor: calibration reached {reached!r}, not {cor!r} to {ACCURACY:g} (model {scene.model!r})")
-    return Calibration(calibrated, name, value, reached, "exact", relations)
+    return Calibration(calibrated, name, value, reached, Relation.EXACT, relations)
 
 
 def _bracket(excess, start: float, what: str, target: float) -> tuple[float, float]:
@@ -229,7 +228,7 @@ def _safe(excess, log_value: float):
         return None
 
 
-def _fit_stiffness(scene: Scene, cor: float | None, relation: str, target_time: float) -> Calibration:
+def _fit_stiffness(scene: Scene, cor: float | None, relation: Relation, target_time: float) -> Calibration:
     """k (and the damping, for a COR) such that t_f = ``target_time`` and the COR holds."""
     if not (math.isfinite(target_time) and target_time > 0):
         raise ValueError(f"contact_time must be a finite number > 0 s; got {target_time!r}")

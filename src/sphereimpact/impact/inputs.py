@@ -9,7 +9,7 @@ import numbers
 
 import numpy as np
 
-from ..contact.laws import LAWS, PARAMETER_NAMES, hertz_constant
+from ..contact.laws import LAWS, PARAMETER_NAMES, Spring, hertz_constant
 from ..contact.laws.base import MODULUS
 from ..contact.declared import own_parameters
 from ..contact.separation import Separation
@@ -215,7 +215,7 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
             if len(extra):
                 raise ValueError(f"{name} is not a parameter of model {model!r} (its parameters: {', '.join(uses)})"
                                  f"{where(extra[0])}")
-    if law.spring == "hertz" and present["modulus"].any():
+    if law.spring is Spring.HERTZ and present["modulus"].any():
         by_modulus = present["modulus"]
         _check_array(MODULUS, np.where(by_modulus, values["modulus"], 1.0), where)
         from_modulus = hertz_constant(values["modulus"], radius)
@@ -232,7 +232,7 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
         missing = ~present[name]
         if missing.any():
             if parameter.default is None:
-                alternative = " (or modulus, the effective modulus E* [Pa])" if law.spring == "hertz" and name == "k" else ""
+                alternative = " (or modulus, the effective modulus E* [Pa])" if law.spring is Spring.HERTZ and name == "k" else ""
                 first = int(np.flatnonzero(missing.ravel())[0])
                 raise ValueError(f"{name} is required by model {model!r}: {parameter.doc} [{parameter.unit}]"
                                  f"{alternative}{where(first)}")

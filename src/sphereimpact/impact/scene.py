@@ -18,7 +18,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.laws import LAWS, PARAMETER_NAMES, Spring
 from ..errors import UnitWarning
 from ..contact.declared import settings as declared_settings
 from ..contact.separation import Separation
@@ -478,7 +478,7 @@ class Scene:
         return self.b / (2.0 * math.sqrt(self.k * self.reduced.mass))
 
     def _linear_spring(self, what: str) -> None:
-        if self.law.spring != "linear":
+        if self.law.spring is not Spring.LINEAR:
             raise ValueError(f"{what} is defined for a linear spring; model {self.model!r} has a Hertz spring "
                              "(use frequency)")
 

@@ -17,10 +17,10 @@ import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import replace
-from enum import StrEnum
 
 import numpy as np
 
+from ..choice import Choice
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
@@ -30,7 +30,7 @@ from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS, Regime
 
-class Body(StrEnum):
+class Body(Choice):
     """The rigid-body descriptions :func:`simulate` solves (``body=``, ``--body``)."""
 
     REDUCED = "reduced"  # the normal ODE, the tangential motion from the normal impulse: exact on the flat
@@ -159,8 +159,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     if not isinstance(options, SolverOptions):
         raise TypeError("options must be a sphereimpact.SolverOptions, e.g. SolverOptions(rtol=1e-10), or None; "
                         f"got {type(options).__name__}")
-    if body not in BODIES:
-        raise ValueError(f"body must be one of {', '.join(BODIES)}; got {body!r}")
+    body = Body.parse(body, "body")
     if body == Body.PLANAR:
         from .planar import CONTACTS, planar_motion
 

@@ -22,7 +22,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..contact.laws import LAWS
+from ..contact.laws import LAWS, Spring
 from ..contact.separation import Separation
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS
@@ -47,7 +47,7 @@ COMPLIANT_SHARE = 0.05
 STIFF_SHARE = 0.1
 STIFF_KAPPA = (20.0, 200.0)
 #: Tangential models by the spring they need: a compliant scene draws one that serves its law.
-COMPLIANT = {"linear": ("linear",), "hertz": ("mindlin", "mindlin-displacement", "microslip")}
+COMPLIANT = {Spring.LINEAR: ("linear",), Spring.HERTZ: ("mindlin", "mindlin-displacement", "microslip")}
 
 
 def _loguniform(rng, low: float, high: float, n: int) -> np.ndarray:
@@ -71,8 +71,8 @@ def _balls(rng, n: int) -> pd.DataFrame:
     table = pd.DataFrame({
         "mass": mass, "diameter": diameter, "inertia_factor": rng.uniform(0.2, 2 / 3, n),
         "mu": np.where(rng.uniform(size=n) < 0.1, 0.0, rng.uniform(0.0, 0.8, n)), "model": model,
-        "k": np.where(spring == "linear", k_linear, np.where(by_modulus, np.nan, k_hertz)),
-        "modulus": np.where((spring == "hertz") & by_modulus, modulus, np.nan),
+        "k": np.where(spring == Spring.LINEAR, k_linear, np.where(by_modulus, np.nan, k_hertz)),
+        "modulus": np.where((spring == Spring.HERTZ) & by_modulus, modulus, np.nan),
         "b": np.where(np.isin(model, ["kelvin-voigt", "modified"]), 2.0 * zeta * np.sqrt(k_linear * mass), np.nan),
         "ramp": np.where(model == "modified", _loguniform(rng, 20.0, 500.0, n), np.nan),
         "chi": np.where(np.isin(model, ["hunt-crossley", "linear-hunt-crossley"]), _loguniform(rng, 1e-3, 0.3, n),
@@ -80,10 +80,10 @@ def _balls(rng, n: int) -> pd.DataFrame:
         "exponent": np.where((model == "hunt-crossley") & (rng.uniform(size=n) < 0.3), rng.uniform(1.2, 2.0, n),
                              np.nan),
         "separation": separation})
-    hertzian = (spring == "hertz") & np.isnan(table["exponent"].to_numpy())  # exponent 3/2: the Hertz models
+    hertzian = (spring == Spring.HERTZ) & np.isnan(table["exponent"].to_numpy())  # exponent 3/2: the Hertz models
     compliant = rng.uniform(size=n) < COMPLIANT_SHARE
     tangential = np.full(n, "rigid", dtype=object)
-    for i in np.flatnonzero(compliant & ((spring == "linear") | hertzian)):
+    for i in np.flatnonzero(compliant & ((spring == Spring.LINEAR) | hertzian)):
         tangential[i] = rng.choice(COMPLIANT[spring[i]])
     table["tangential"] = tangential
     stiff = rng.uniform(size=n) < STIFF_SHARE
@@ -126,7 +126,7 @@ def _group_balls(kind: str, rng, n: int) -> pd.DataFrame:
                                   b=np.nan, ramp=np.nan, chi=np.nan, exponent=np.nan)
     if kind == "compliant map":
         return balls.assign(modulus=_loguniform(rng, 1e6, 1e10, n), kappa=rng.uniform(0.5, 1.2, n),
-                            tangential=rng.choice(COMPLIANT["hertz"], n))
+                            tangential=rng.choice(COMPLIANT[Spring.HERTZ], n))
     if kind == "many modified balls":
         balls = balls.assign(mass=rng.uniform(0.05, 0.5, n), diameter=rng.uniform(0.04, 0.08, n), ramp=100.0,
                              k=rng.uniform(2e4, 2e5, n))

@@ -15,6 +15,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..contact.laws import Spring
 from ..contact.separation import Separation
 from ..impact.calibrate import calibrate, contact_time
 from ..parsing import parse_range
@@ -50,7 +51,7 @@ def fitted_laws(config: dict) -> dict:
 def _scene_of_law(base: Scene, name: str) -> Scene:
     """``base`` under law ``name``, with a starting stiffness of the right units for the fit."""
     scene = base.with_(model=name, k=base.k)
-    if scene.law.spring == "hertz":  # start from the Hertz k with the same peak force as the linear spring
+    if scene.law.spring is Spring.HERTZ:  # start from the Hertz k with the same peak force as the linear spring
         scene = scene.with_(k=base.k * (base.v_normal / base.omega_n) ** -0.5)
     return scene
 
@@ -114,7 +115,7 @@ def relations_table(config: dict) -> pd.DataFrame:
         scene = _scene_of_law(base, name)
         for cor in config["laws"]["relation_cors"]:
             exact = calibrate(scene, cor)
-            rows.append({"law": name, "relation": "exact", "cor_asked": cor, "chi": exact.value,
+            rows.append({"law": name, "relation": exact.relation, "cor_asked": cor, "chi": exact.value,
                          "cor_obtained": exact.cor, "error": exact.cor - cor})
             for relation in scene.law.cor_relations:
                 got = calibrate(scene, cor, relation=relation)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from .. import plugins
 from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated, undescribed
-from ..contact.laws import LAWS, PARAMETER_NAMES
+from ..contact.laws import LAWS, PARAMETER_NAMES, Relation
 from ..memory import check_size
 from ..parsing import parse_range, range_count
 from ..impact.inputs import PATH_RULES
@@ -142,7 +142,7 @@ def own_errors(config: dict) -> list[str]:
                 " or ".join(keys.get(part, f"contact.{part}") for part in name.split(" or ")) for name in missing)
                 + " (or a ball_file); no ball is assumed")
             return errors
-        if ("contact_time" in contact or "cor_relation" in contact and contact["cor_relation"] != "exact"
+        if ("contact_time" in contact or "cor_relation" in contact and contact["cor_relation"] != Relation.EXACT
                 or "cor_speed" in contact) and "cor" not in contact:
             errors.append("config key contact: contact_time, cor_speed and cor_relation need cor")
         try:  # the ball and every bounce as Scene checks them, without the (slower) calibration

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..contact.laws import hertz_modulus, spring_exponent
+from ..contact.laws import Spring, hertz_modulus, spring_exponent
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import FAR, ball_columns, load_ball, save_ball
 from ..impact.outcome import OUTPUT_UNITS, SCALAR_OUTPUTS
@@ -94,7 +94,7 @@ def ball_parameters(ball) -> list[tuple[str, str]]:
         unit = "" if parameter.unit == "-" else f" {parameter.unit.replace('^n', exponent)}"
         rows.append((parameter.name, f"{getattr(scene, parameter.name):.6g}{unit}"
                                      + (" (fitted)" if parameter.name in ball.fitted else "")))
-    if law.spring == "hertz":
+    if law.spring is Spring.HERTZ:
         rows.append(("E* (effective modulus)", f"{hertz_modulus(scene):.6g} Pa"
                                                + (" (given)" if scene.modulus is not None else " (from k)")))
     model = TANGENTIALS.model(scene.tangential)

@@ -18,6 +18,7 @@ they separate; the arrays of the active lanes are compacted as they go.
 
 from __future__ import annotations
 
+from enum import Enum
 from functools import cache
 
 import numpy as np
@@ -51,12 +52,28 @@ NEWTON_ITERATIONS = 12
 HORIZON = 100.0 * np.pi
 
 
+class Forms(Enum):
+    """Which of :data:`FORMS` a batch's lanes hold: all eq. 4.2's, all eq. 4.1's, or some of each."""
+
+    MODIFIED = "modified"
+    LINEAR = "linear"
+    MIXED = "mixed"
+
+
+class Event(Enum):
+    """An event a lane's step is searched for (:func:`_event_value`)."""
+
+    MAX = "max"  # maximum compression: y = 0
+    DELTA = "delta"  # delta returns to 0: x = 0
+    RATIO = "ratio"  # the force falls to 0: Q = 0 (:meth:`_Lanes.ratio`)
+
+
 class _Lanes:
     """Per-lane parameters of one batch (arrays of equal length)."""
 
     def __init__(self, zeta, lam, gamma, modified):
         self.zeta, self.lam, self.gamma, self.modified = zeta, lam, gamma, modified
-        self.kind = "modified" if modified.all() else "linear" if not modified.any() else "mixed"
+        self.forms = Forms.MODIFIED if modified.all() else Forms.LINEAR if not modified.any() else Forms.MIXED
         self.ramp_lam = np.where(modified, lam, 0.0)  # lam where a ramp limits the step, 0 where none
         self.two_zeta = 2.0 * zeta
         self.numbers = {"zeta": zeta, "lam": lam}
@@ -66,15 +83,15 @@ class _Lanes:
         return _Lanes(self.zeta[index], self.lam[index], self.gamma[index], self.modified[index])
 
     def ramp(self, x):
-        if self.kind == "linear":
+        if self.forms is Forms.LINEAR:
             return 1.0
         ramp = ramp_continued(self.lam * x)
-        return ramp if self.kind == "modified" else np.where(self.modified, ramp, 1.0)
+        return ramp if self.forms is Forms.MODIFIED else np.where(self.modified, ramp, 1.0)
 
     def force(self, x, y):
         """P_hat(x, y): the laws' own dimensionless forces, lane by lane."""
-        if self.kind != "mixed":
-            return (modified_scaled if self.kind == "modified" else kelvin_voigt_scaled)(x, y, self.numbers)
+        if self.forms is not Forms.MIXED:
+            return (modified_scaled if self.forms is Forms.MODIFIED else kelvin_voigt_scaled)(x, y, self.numbers)
         return np.where(self.modified, modified_scaled(x, y, self.numbers), kelvin_voigt_scaled(x, y, self.numbers))
 
     def _ratio_terms(self, x):
@@ -94,7 +111,7 @@ class _Lanes:
         """
         positive, safe, ramp = self._ratio_terms(x) if terms is None else terms
         modified = modified_per_compression(x, y, self.numbers)  # eq. 4.2's own, continued through x = 0
-        if self.kind == "modified":
+        if self.forms is Forms.MODIFIED:
             return modified
         return np.where(self.modified, modified, np.where(positive, 1.0 + self.two_zeta * y / safe, -np.inf))
 
@@ -114,7 +131,7 @@ class _Lanes:
         slope = np.exp(-self.lam * safe)
         inside = self.two_zeta * (dy * ramp / safe + (y / safe) * y * (self.lam * slope - ramp / safe))
         rate = np.where(positive, inside, self.two_zeta * self.lam * dy)
-        if self.kind == "modified":
+        if self.forms is Forms.MODIFIED:
             return self.ratio(x, y, terms), rate
         force, force_rate = x + self.two_zeta * y, y + self.two_zeta * dy  # eq. 4.1
         return (np.where(self.modified, self.ratio(x, y, terms), force),
@@ -194,15 +211,15 @@ def _combine(weights: tuple, stages):
     return total
 
 
-def _event_value(kind, lanes: _Lanes, x, y, s):
-    """Event function and its tau-derivative at s into a step: kind 'max' (y), 'delta' (x), 'ratio' (Q, see
-    :meth:`_Lanes.ratio`), or a callable ``kind(lanes, x, y, s) -> (g, dg)``."""
-    if callable(kind):
-        return kind(lanes, x, y, s)
+def _event_value(event, lanes: _Lanes, x, y, s):
+    """Event function and its tau-derivative at s into a step: an :class:`Event` (y, x or Q, see
+    :meth:`_Lanes.ratio`), or a callable ``event(lanes, x, y, s) -> (g, dg)``."""
+    if callable(event):
+        return event(lanes, x, y, s)
     dx, dy = lanes.rhs(x, y)
-    if kind == "ratio":
+    if event is Event.RATIO:
         return lanes.ratio_and_rate(x, y, dy)
-    return (y, dy) if kind == "max" else (x, dx)
+    return (y, dy) if event is Event.MAX else (x, dx)
 
 
 def _level_event(level, tau0):
@@ -234,7 +251,7 @@ def _start_state(lanes: _Lanes, x0, y0, s):
     return x, y
 
 
-def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_lo, at_hi):
+def _locate(event, lanes: _Lanes, x0, y0, tau0, lo, hi, at_lo, at_hi):
     """Root in s of the event on the one-step map from (x0, y0) at time tau0, bracketed by g(lo) > 0 >= g(hi).
 
     ``at_lo`` and ``at_hi`` are the states at lo and hi (see :func:`_start_state`; the march knows the
@@ -242,13 +259,13 @@ def _locate(kind: str, lanes: _Lanes, x0, y0, tau0, lo, hi, at_lo, at_hi):
     at the last point it evaluated once its Newton step is below 2 ulp of the event time tau0 + s
     (below that the update is round-off in g, and would never settle).  Returns (s, state at s).
     """
-    g_lo = _event_value(kind, lanes, *at_lo, lo)[0]
-    g_hi = _event_value(kind, lanes, *at_hi, hi)[0]
+    g_lo = _event_value(event, lanes, *at_lo, lo)[0]
+    g_hi = _event_value(event, lanes, *at_hi, hi)[0]
     s = np.where(g_lo - g_hi > 0, lo + (hi - lo) * g_lo / np.where(g_lo - g_hi > 0, g_lo - g_hi, 1.0), hi)
     frozen = np.zeros(s.size, bool)  # frozen lanes stay put: a lane's root never depends on its batch
     for iteration in range(NEWTON_ITERATIONS):
         xs, ys = _step(lanes, x0, y0, s)
-        g, dg = _event_value(kind, lanes, xs, ys, s)
+        g, dg = _event_value(event, lanes, xs, ys, s)
         lo = np.where(g > 0, s, lo)
         hi = np.where(g < 0, s, hi)
         newton = s - g / np.where(dg != 0, dg, -1.0)
@@ -272,7 +289,7 @@ def _first_ratio_root(lanes: _Lanes, x0, y0, tau0, lo, hi, at_hi):
     s, y = hi.copy(), at_hi[1].copy()
     if found.any():
         i = np.flatnonzero(found)
-        s[i], (_, y[i]) = _locate("ratio", lanes.take(i), x0[i], y0[i], tau0[i], lo[i], hi[i],
+        s[i], (_, y[i]) = _locate(Event.RATIO, lanes.take(i), x0[i], y0[i], tau0[i], lo[i], hi[i],
                                   (at_lo[0][i], at_lo[1][i]), (at_hi[0][i], at_hi[1][i]))
     return s, y, found
 
@@ -433,7 +450,7 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool,
     step_of_max = np.full(n, np.nan)
     s_of_max = np.zeros(n)
     m = _join(records["max"])
-    s, (xm, _) = _locate("max", params.take(m["lane"]), m["x"], m["y"], m["tau"], np.zeros(m["lane"].size),
+    s, (xm, _) = _locate(Event.MAX, params.take(m["lane"]), m["x"], m["y"], m["tau"], np.zeros(m["lane"].size),
                            m["h"], (m["x"], m["y"]), (m["x1"], m["y1"]))
     out["tau_m"][m["lane"]], out["x_m"][m["lane"]] = m["tau"] + s, xm
     step_of_max[m["lane"]], s_of_max[m["lane"]] = m["tau"], s
@@ -453,7 +470,7 @@ def _locate_events(params: _Lanes, records: dict, n: int, force_criterion: bool,
     if e["x_end"].any():
         i = np.flatnonzero(e["x_end"])
         at_start = _start_state(lanes.take(i), e["x"][i], e["y"][i], start[i])
-        s_x[i], (x_x[i], y_x[i]) = _locate("delta", lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i],
+        s_x[i], (x_x[i], y_x[i]) = _locate(Event.DELTA, lanes.take(i), e["x"][i], e["y"][i], e["tau"][i], start[i],
                                            e["h"][i], at_start, (e["x1"][i], e["y1"][i]))
     search = ~e["tension_seen"] | force_criterion  # P_hat = 0 with delta > 0, not found before this step
     s_p, y_e, found = np.full(e["lane"].size, np.inf), np.full(e["lane"].size, np.nan), np.zeros(e["lane"].size, bool)

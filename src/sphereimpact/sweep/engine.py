@@ -27,7 +27,7 @@ from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take range
 from ..contact.tangential import TANGENTIALS, Regime
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
-from .paths import ORDER, PATHS, Work, single_options
+from .paths import ORDER, PATHS, Gives, Work, single_options
 from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, given_table, grid, incidence, numbers, rows,
                      scene_of, scene_table, undescribed_row)
 
@@ -141,10 +141,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         taken = way.take(work, todo, span_todo)
         for task in taken.tasks:
             for key, values in task.solve().items():
-                (regime if key == "regime" else result[key] if way.gives == "all" else normal[key])[task.rows] = values
+                (regime if key == "regime" else result[key] if way.gives is Gives.ALL else normal[key])[task.rows] = values
             path[task.rows] = way.name
             todo[task.rows] = False
-            rest[task.rows] = way.gives == "normal"  # completed below: tangential models, then outputs()
+            rest[task.rows] = way.gives is Gives.NORMAL  # completed below: tangential models, then outputs()
         span_todo &= ~taken.span
     if todo.any() and paths is None:  # every row has a path: the last takes every batched kernel, earlier the others
         raise ImpactError(f"sweep: no path takes row {int(np.flatnonzero(todo)[0])}")

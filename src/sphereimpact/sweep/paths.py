@@ -3,7 +3,7 @@
 One contract (:class:`SweepPath`): ``take(work, todo, span_todo)`` says which of the rows still to do the
 path takes and how it solves them (:class:`Take`).  A task's ``solve()`` returns, for its rows, the
 dimensionless normal outputs :data:`NORMAL_OUTPUTS`, from which the engine's impulse algebra gives every
-tangential output; only the single-impact path (``gives = "all"``) returns every output itself.  A path that
+tangential output; only the single-impact path (``gives = Gives.ALL``) returns every output itself.  A path that
 builds on the whole sweep (an interpolant over its range) reads the sweep's scenes that no earlier path
 took (``span_todo``), so a shard takes the paths the whole sweep would.  Which path solved each row is the
 sweep table's ``path`` column; ``results/sweep_paths.csv`` measures the paths against each other where two
@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from enum import Enum
 from typing import Callable
 
 import numpy as np
@@ -106,16 +107,25 @@ class Take:
     span: np.ndarray
 
 
+class Gives(Enum):
+    """What a path's tasks return for their rows."""
+
+    #: :data:`NORMAL_OUTPUTS`, with ``p_max`` and ``p_min`` where the rows' :class:`~.outputs.Needs` ask for the
+    #: force's extremes and ``tau_g`` where they ask for the instant of a level of the impulse: the engine's
+    #: impulse algebra and the rows' tangential models give the rest
+    NORMAL = "normal"
+    #: every output of ``simulate``
+    ALL = "all"
+
+
 class SweepPath:
     """One way to solve some scenes of a sweep.  ``name`` is the value of the sweep's ``path`` column,
-    ``summary`` one line for its help; ``gives`` is ``"normal"`` (:data:`NORMAL_OUTPUTS`, with ``p_max`` and
-    ``p_min`` where the rows' :class:`~.outputs.Needs` ask for the force's extremes and ``tau_g`` where they
-    ask for the instant of a level of the impulse) or ``"all"`` (every output of ``simulate``).  A path takes
-    only rows it can give all of that."""
+    ``summary`` one line for its help; ``gives`` what its tasks return (:class:`Gives`).  A path takes only rows
+    it can give all of that."""
 
     name = ""
     summary = ""
-    gives = "normal"
+    gives = Gives.NORMAL
 
     def take(self, work: Work, todo: np.ndarray, span_todo: np.ndarray) -> Take:
         """The rows of ``todo`` (a mask of ``work.frame``) this path takes, and its rows of the span's
@@ -219,7 +229,7 @@ class SinglePath(SweepPath):
 
     name = "single"
     summary = "simulate, one impact at a time (gravity on a slope, compliant contact, outside the paths below)"
-    gives = "all"
+    gives = Gives.ALL
 
     def take(self, work, todo, span_todo):
         alone_span, limits = solved_alone(work.span_frame, work.span, work.target)
@@ -315,7 +325,7 @@ class SimilarPath(SweepPath):
 
     name = "similar"
     summary = "simulate once per dimensionless problem, scaled to the scenes that share it (compliant contact)"
-    gives = "all"
+    gives = Gives.ALL
 
     def take(self, work, todo, span_todo):
         def eligible(frame, d, mask):

@@ -15,9 +15,9 @@ declares); every layer then serves it or says it cannot.
 """
 
 from . import hertz, linear  # noqa: F401  (registers the laws)
-from .base import (LAWS, PARAMETER_NAMES, ContactLaw, Kernel, force_rate, hertz_constant, hertz_modulus, spring_exponent,
-                   spring_stiffness)
+from .base import (LAWS, PARAMETER_NAMES, ContactLaw, Kernel, Relation, Spring, force_rate, hertz_constant,
+                   hertz_modulus, spring_exponent, spring_stiffness)
 from .linear import ramp_continued
 
-__all__ = ["LAWS", "PARAMETER_NAMES", "ContactLaw", "Kernel", "force_rate", "hertz_constant", "hertz_modulus", "ramp_continued",
-           "spring_exponent", "spring_stiffness"]
+__all__ = ["LAWS", "PARAMETER_NAMES", "ContactLaw", "Kernel", "Relation", "Spring", "force_rate", "hertz_constant",
+           "hertz_modulus", "ramp_continued", "spring_exponent", "spring_stiffness"]

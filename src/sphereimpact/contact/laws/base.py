@@ -20,6 +20,7 @@ from typing import Callable, Mapping
 
 import numpy as np
 
+from ...choice import Choice
 from ...ode.dense import is_instant
 from ...registry import Registry as BaseRegistry
 from ..parameters import Parameter
@@ -28,6 +29,26 @@ from .closed_form import ClosedForm
 #: The law parameters that are Scene fields, in the order Scene declares them.  A law uses a subset, and may
 #: declare parameters of its own besides (carried in ``Scene.parameters``).
 PARAMETER_NAMES = ("k", "b", "ramp", "chi", "exponent", "modulus")
+
+
+class Spring(Choice):
+    """The elastic term of a law's force, which fixes what its stiffness means and which tangential models it serves
+    (written as its word wherever a law's description is)."""
+
+    LINEAR = "linear"  # P ~ k delta: k in N/m; omega_n and zeta defined
+    HERTZ = "hertz"  # P ~ k delta^n (3/2 unless the law declares an exponent); k may be given as E*, k = (4/3) E* sqrt(R)
+
+
+class Relation(Choice):
+    """How a measured COR sets a law's damping: the root find on the law itself, or a published relation the law
+    declares (``ContactLaw.cor_relations``, keyed by these).  The calibration (:mod:`sphereimpact.impact.calibrate`)
+    takes any of them by its word (``--cor-relation``)."""
+
+    EXACT = "exact"  # the root find, to 1e-9: no formula
+    HUNT_CROSSLEY = "hunt-crossley"  # Hunt & Crossley (1975)
+    LANKARANI_NIKRAVESH = "lankarani-nikravesh"  # Lankarani & Nikravesh (1990)
+    FLORES = "flores"  # Flores, Machado, Silva & Martins (2011)
+    GONTHIER = "gonthier"  # Gonthier, McPhee, Lange & Piedboeuf (2004)
 
 
 @dataclass(frozen=True)
@@ -96,13 +117,14 @@ class ContactLaw:
     horizon : callable
         ``horizon(p)``: the longest dimensionless contact (in tau) searched for a separation before
         giving up; far beyond any contact that ends.
-    spring : str
-        ``linear`` (P ~ k delta; k in N/m, omega_n and zeta defined) or ``hertz`` (P ~ k delta^n; k may be
-        given as an effective modulus E*, k = (4/3) E* sqrt(R)).
+    spring : Spring or str
+        :class:`Spring` (or its word): ``linear`` (P ~ k delta; k in N/m, omega_n and zeta defined) or ``hertz``
+        (P ~ k delta^n; k may be given as an effective modulus E*, k = (4/3) E* sqrt(R)).
     damping : str or None
         The parameter that ``cor`` calibration sets (None: the law is elastic and cannot be calibrated).
-    cor_relations : mapping of str -> callable
-        Published approximate COR-to-damping relations: name -> ``relation(e, p) -> damping value``.
+    cor_relations : mapping of Relation -> callable
+        Published approximate COR-to-damping relations: :class:`Relation` (or its word; not ``exact``) ->
+        ``relation(e, p) -> damping value``.
     scaled : callable or None
         ``scaled(x, y, numbers) -> P_hat``: the law's force in the dimensionless variables of ``frequency``,
         P_hat = P / (m v_n / T) at delta = x v_n T, delta_dot = y v_n, with ``numbers`` the law's ``family``
@@ -158,9 +180,9 @@ class ContactLaw:
     frequency: Callable
     family: Callable
     horizon: Callable
-    spring: str = "linear"
+    spring: Spring = Spring.LINEAR
     damping: str | None = None
-    cor_relations: Mapping[str, Callable] = field(default_factory=dict)
+    cor_relations: Mapping[Relation, Callable] = field(default_factory=dict)
     scaled: Callable | None = None
     closed_form: ClosedForm | None = None
     ramp_rate: Callable | None = None
@@ -175,8 +197,12 @@ class ContactLaw:
         names = [p.name for p in self.parameters]
         if any(not isinstance(p, Parameter) for p in self.parameters) or len(set(names)) != len(names):
             raise ValueError(f"law {self.name!r}: parameters must be distinct Parameter objects; got {names}")
-        if self.spring not in ("linear", "hertz"):
-            raise ValueError(f"law {self.name!r}: spring must be 'linear' or 'hertz'; got {self.spring!r}")
+        object.__setattr__(self, "spring", Spring.parse(self.spring, f"law {self.name!r}: spring"))
+        relations = {Relation.parse(name, f"law {self.name!r}: a cor_relations key"): relation
+                     for name, relation in self.cor_relations.items()}
+        if Relation.EXACT in relations:
+            raise ValueError(f"law {self.name!r}: 'exact' is the calibration's root find, not a published relation")
+        object.__setattr__(self, "cor_relations", relations)
         if self.damping is not None and self.damping not in names:
             raise ValueError(f"law {self.name!r}: damping {self.damping!r} is not one of its parameters")
         if self.kernel is not None and (not isinstance(self.kernel, Kernel) or self.scalar is None):
@@ -196,7 +222,7 @@ class ContactLaw:
     def parameter_names(self) -> tuple:
         """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
         names = tuple(p.name for p in self.parameters)
-        return (*names, "modulus") if self.spring == "hertz" else names
+        return (*names, "modulus") if self.spring is Spring.HERTZ else names
 
     @property
     def own_parameters(self) -> tuple:
@@ -213,7 +239,7 @@ class ContactLaw:
 
 def spring_exponent(law: ContactLaw, p):
     """n of the law's spring term k delta^n: 1 for a linear spring, the law's ``exponent`` or 3/2 for Hertz."""
-    if law.spring == "linear":
+    if law.spring is Spring.LINEAR:
         return 1.0
     return p.exponent if "exponent" in law.parameter_names else 1.5
 

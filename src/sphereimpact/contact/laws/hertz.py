@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..parameters import Parameter
-from .base import LAWS, ContactLaw, Kernel
+from .base import LAWS, ContactLaw, Kernel, Spring
 from .linear import CHI, hunt_crossley_relations
 
 K = Parameter("k", "N/m^n", "constant of the spring term k delta^n (Hertz: (4/3) E* sqrt(R))",
@@ -83,7 +83,7 @@ def hunt_crossley_rate(delta, delta_dot, delta_ddot, p):
 LAWS.register(ContactLaw(
     "hertz", "elastic Hertz contact, P = k delta^(3/2), k = (4/3) E* sqrt(R)",
     (K,), hertz_continued, hertz_frequency,
-    family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring="hertz",
+    family=lambda p: {}, horizon=lambda p: np.full(np.shape(p.mass), 100.0 * np.pi), spring=Spring.HERTZ,
     scaled=hunt_crossley_scaled, scalar=hertz_scalar, rate=hertz_rate, passive=True,
     kernel=Kernel("hertz", lambda p: (p.k,))))
 
@@ -92,6 +92,6 @@ LAWS.register(ContactLaw(
     (K, CHI, EXPONENT), hunt_crossley_continued, lambda p: hertz_frequency(p, p.exponent),
     family=lambda p: {"exponent": p.exponent, "chi_v": p.chi * p.v_normal},
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
-    spring="hertz", damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,
+    spring=Spring.HERTZ, damping="chi", cor_relations=hunt_crossley_relations(), scaled=hunt_crossley_scaled,
     scalar=hunt_crossley_scalar, rate=hunt_crossley_rate, passive=True,
     kernel=Kernel("hunt_crossley", lambda p: (p.k, p.exponent, p.chi))))

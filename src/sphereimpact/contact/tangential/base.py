@@ -14,14 +14,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import StrEnum
 from typing import Callable
 
-from ..laws.base import spring_exponent
+from ..laws.base import Spring, spring_exponent
 from ..parameters import Parameter, Setting
+from ...choice import Choice
 from ...registry import Registry as BaseRegistry
 
-class Regime(StrEnum):
+class Regime(Choice):
     """The tangential contact's mode at separation, as an impact's ``regime`` output reports it (a plain string
     wherever one is written: a table's cell, a JSON value).  A plug-in model may report a mode of its own."""
 
@@ -105,8 +105,9 @@ class TangentialModel:
         The ways of giving kappa it accepts (some of :data:`STIFFNESS`; kappa itself is then required, given
         directly or through one of the others; none: the model has no tangential stiffness), and the model's
         own parameters (:attr:`own_parameters`, read as ``scene.name`` or ``rows.name``).
-    spring : str or None
-        The normal law's spring it needs: ``linear`` (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
+    spring : Spring or str or None
+        The normal law's spring it needs (:class:`~sphereimpact.contact.laws.Spring`, or its word): ``linear``
+        (k delta), ``hertz`` (k delta^(3/2)) or None (any law).
     motion : callable
         ``motion(normal, options)``: the tangential motion over the solved normal motion ``normal``
         (:class:`sphereimpact.contact.motion.NormalMotion`) with solver options ``options``, an object with
@@ -129,7 +130,7 @@ class TangentialModel:
     doc: str
     stiffness: str
     parameters: tuple
-    spring: str | None
+    spring: Spring | None
     motion: Callable
     swept: "SweptTangential | None" = None
     settings: tuple = ()
@@ -144,9 +145,9 @@ class TangentialModel:
             raise ValueError(f"tangential model {self.name!r}: settings must be Setting objects")
         if self.stiffness_parameters and "kappa" not in self.parameter_names:
             raise ValueError(f"tangential model {self.name!r}: a model with a stiffness takes kappa")
-        if self.spring not in (None, "linear", "hertz"):
-            raise ValueError(f"tangential model {self.name!r}: spring must be 'linear', 'hertz' or None; "
-                             f"got {self.spring!r}")
+        if self.spring is not None:
+            object.__setattr__(self, "spring", Spring.parse(self.spring, f"tangential model {self.name!r}: spring "
+                                                                         "(or None)"))
 
     @property
     def parameter_names(self) -> tuple:
@@ -168,19 +169,19 @@ class TangentialModel:
             return None
         from ..laws import LAWS
 
-        if self.spring == "linear" and law.spring != "linear":
-            hertzian = _names(TANGENTIALS, "hertz")
+        if self.spring is Spring.LINEAR and law.spring is not Spring.LINEAR:
+            hertzian = _names(TANGENTIALS, Spring.HERTZ)
             return (f"tangential {self.name!r} ({self.stiffness}) needs a linear-spring law "
-                    f"({_names(LAWS, 'linear')}); model {law.name!r} has a Hertz spring: use tangential {hertzian}")
-        if self.spring == "hertz" and (law.spring != "hertz" or spring_exponent(law, p) != 1.5):
-            found = (f"a linear spring: use tangential {_names(TANGENTIALS, 'linear')}" if law.spring == "linear"
+                    f"({_names(LAWS, Spring.LINEAR)}); model {law.name!r} has a Hertz spring: use tangential {hertzian}")
+        if self.spring is Spring.HERTZ and (law.spring is not Spring.HERTZ or spring_exponent(law, p) != 1.5):
+            found = (f"a linear spring: use tangential {_names(TANGENTIALS, Spring.LINEAR)}" if law.spring is Spring.LINEAR
                      else f"exponent {spring_exponent(law, p):g}")
             return (f"tangential {self.name!r} ({self.stiffness}) needs a Hertz spring k delta^(3/2) "
-                    f"({_names(LAWS, 'hertz')}, exponent 1.5); model {law.name!r} has {found}")
+                    f"({_names(LAWS, Spring.HERTZ)}, exponent 1.5); model {law.name!r} has {found}")
         return None
 
 
-def _names(registry, spring: str) -> str:
+def _names(registry, spring: Spring) -> str:
     """The names in ``registry`` whose ``spring`` is ``spring``, listed (tangential models quoted, as a
     command-line value; laws plain)."""
     names = [name for name, item in registry.items() if item.spring == spring]

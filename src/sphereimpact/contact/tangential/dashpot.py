@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 
 from ...ode.roots import brent
+from ..laws.base import Spring
 from ..parameters import Parameter
 
 #: a(e) of Thornton's fit, coefficients of e^1 .. e^10 as Kratos codes them.
@@ -68,7 +69,7 @@ def linear_ratio(cor: float) -> float:
     return brent(excess, 0.0, high, xtol=1e-15, rtol=4 * 2.0 ** -52)
 
 
-def dashpot_ratio(cor: float, spring: str) -> float:
+def dashpot_ratio(cor: float, spring: Spring) -> float:
     """gamma of the tangential dashpot for the normal COR ``cor`` and the law's ``spring`` (``hertz`` or
     ``linear``), as Kratos sets it (module docstring)."""
-    return hertz_ratio(cor) if spring == "hertz" else linear_ratio(cor)
+    return hertz_ratio(cor) if spring is Spring.HERTZ else linear_ratio(cor)

@@ -42,7 +42,7 @@ import math
 
 import numpy as np
 
-from ..laws.base import hertz_modulus
+from ..laws.base import Spring, hertz_modulus
 from ..parameters import Setting
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, Regime, TangentialModel, slip_per_impulse
 from .rigid import PositiveImpulse
@@ -240,6 +240,6 @@ class MicroslipTangential:
 MICROSLIP_MODEL = TANGENTIALS.register(TangentialModel(
     "microslip", doc="exact elastic microslip of a Hertz contact (method of dimensionality reduction), Hertz laws",
     stiffness="k_t = 2 G* a, resolved across the contact", parameters=(KAPPA, POISSON, SHEAR_MODULUS),
-    spring="hertz", motion=MicroslipTangential,
+    spring=Spring.HERTZ, motion=MicroslipTangential,
     settings=(ELEMENTS_SETTING, TIME_STEPS_SETTING), scale_free=True))
 

@@ -70,7 +70,7 @@ from ...ode import dop853
 from ...ode.dense import is_instant
 from ...errors import ImpactError
 from ...ode.events import first_root
-from ..laws import force_rate, spring_exponent, spring_stiffness
+from ..laws import Spring, force_rate, spring_exponent, spring_stiffness
 from ..motion import NormalMotion
 from .dashpot import DASHPOT_COR, dashpot_ratio
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, Regime, TangentialModel, slip_per_impulse
@@ -349,16 +349,16 @@ class CompliantTangential:
 
 LINEAR = TANGENTIALS.register(TangentialModel(
     "linear", doc="spring k_t = kappa k capped by mu P, linear-spring laws", stiffness="k_t = kappa k, constant",
-    parameters=(KAPPA, POISSON, DASHPOT_COR), spring="linear",
+    parameters=(KAPPA, POISSON, DASHPOT_COR), spring=Spring.LINEAR,
     motion=lambda normal, options: CompliantTangential(normal, options, rescale="never", dashpot=True),
     scale_free=True))
 MINDLIN = TANGENTIALS.register(TangentialModel(
     "mindlin", doc="k_t = 8 G* a on force increments, rescaled while unloading, capped by mu P, Hertz laws",
     stiffness="k_t = 8 G* a",
-    parameters=(KAPPA, POISSON, SHEAR_MODULUS, DASHPOT_COR), spring="hertz",
+    parameters=(KAPPA, POISSON, SHEAR_MODULUS, DASHPOT_COR), spring=Spring.HERTZ,
     motion=lambda normal, options: CompliantTangential(normal, options, rescale="unloading", dashpot=True),
     scale_free=True))
 MINDLIN_DISPLACEMENT = TANGENTIALS.register(TangentialModel(
     "mindlin-displacement", doc="k_t = 8 G* a on the total displacement, capped by mu P, Hertz laws",
-    stiffness="F = -8 G* a xi", parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring="hertz",
+    stiffness="F = -8 G* a xi", parameters=(KAPPA, POISSON, SHEAR_MODULUS), spring=Spring.HERTZ,
     motion=lambda normal, options: CompliantTangential(normal, options, rescale="always"), scale_free=True))
