@@ -6,7 +6,7 @@ import json
 import pandas as pd
 import pytest
 
-from sphereimpact import (Measurement, SolverOptions, ball_scene, calibrated_ball, load_ball, save_ball,
+from sphereimpact import (Measurement, Scene, SolverOptions, ball_scene, calibrated_ball, load_ball, save_ball,
                           simulate)
 from sphereimpact.cli import run
 from sphereimpact.impact.calibrate import TIGHT
@@ -53,13 +53,42 @@ def test_a_saved_ball_is_the_same_ball(golf, tmp_path):
     save_ball(golf, path)
     again = load_ball(path)
     assert again.scene == golf.scene and again.measurement == golf.measurement and again.fitted == golf.fitted
+    record = json.loads(path.read_text())
     for bad, message in (("{", "is not JSON"), (json.dumps({"scene": {}}), "is not a ball file"),
-                         (json.dumps({"format": "sphereimpact-ball/1", "scene": {"mass": -1}}), "mass must be")):
+                         (json.dumps(record | {"format": "sphereimpact-ball/1"}), "its format is 'sphereimpact-ball/1'"),
+                         (json.dumps(record | {"ball": {"mass": -1}}), "mass must be"),
+                         (json.dumps(record | {"contact": record["contact"] | {"speed": 40.0}}),
+                          "section 'contact': 'speed' is part of the approach, which each bounce gives"),
+                         (json.dumps(record | {"surface": {"mass": 1.0}}), "section 'surface': it holds gravity, "),
+                         (json.dumps(record | {"ball": [1]}), "section 'ball': it holds mass, diameter")):
         (tmp_path / "bad.json").write_text(bad)
         with pytest.raises(ValueError, match=message):
             load_ball(tmp_path / "bad.json")
     with pytest.raises(ValueError, match="cannot read"):
         load_ball(tmp_path / "missing.json")
+
+
+def test_a_ball_file_holds_the_ball_its_contact_and_surface_never_an_approach(golf, tmp_path):
+    """A ball file (issue 42 item 3) holds the ball, its contact and its surface: no approach, which each bounce gives,
+    every other Scene field in one section.  Read back, the ball stands in a normal impact at its measurement's speed;
+    without a measurement, at the Scene's default approach, whose speed it says was not given."""
+    from dataclasses import fields
+
+    from sphereimpact.impact.ball import APPROACH, SECTIONS
+
+    path = tmp_path / "golf.json"
+    save_ball(golf.__class__(golf.scene.with_(speed=25.0, angle_to_surface=30.0, spin=50.0), golf.measurement,
+                             golf.fitted, golf.relations), path)
+    record = json.loads(path.read_text())
+    held = [name for section in SECTIONS for name in record[section]]
+    assert not set(held) & set(APPROACH) and "scene" not in record
+    assert sorted(name for names in SECTIONS.values() for name in names) == sorted(
+        f.name for f in fields(Scene) if f.name not in APPROACH)
+    assert record["ball"] == {"mass": 0.0459, "diameter": 0.0427, "inertia_factor": 0.4}
+    assert load_ball(path).scene == golf.scene  # at the measurement's 40 m/s, normal
+    save_ball(golf.__class__(golf.scene.with_(speed=25.0)), path)  # no measurement
+    again = load_ball(path).scene
+    assert again.speed == 3.0 and again.chapter_approach == ("speed",) and again.chapter_ball == ()
 
 
 def test_the_command_line_calibrates_saves_and_reuses_the_ball(golf, tmp_path, capsys):

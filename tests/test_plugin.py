@@ -552,7 +552,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     assert done.returncode == 0, done.stderr[-3000:]
     ball = json.loads((work / folder / "ball.json").read_text())
     assert ball["plugins"] == ["plugin_model"] and ball["settings"] == {"trapezoid_steps": 16}
-    assert ball["scene"]["parameters"] == {"slide_share": 0.5}
+    assert ball["contact"]["parameters"] == {"slide_share": 0.5}
     options = SolverOptions(settings={"trapezoid_steps": 16})
     scene = Scene(model="kelvin-voigt", b=10.5, tangential="share-slide",  # gravity 0, the one default
                   parameters={"slide_share": 0.5})

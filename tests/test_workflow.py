@@ -283,21 +283,21 @@ def test_an_own_study_writes_only_its_own_files(overlapping):
 
     import pandas as pd
 
-    from sphereimpact import Scene, simulate
+    from sphereimpact import load_ball, simulate
 
     from sphereimpact.study.own_outputs import read_history
 
-    ball = json.loads((study / "ball.json").read_text())["scene"]
+    ball = load_ball(study / "ball.json").scene
     outcomes = read_history(study / "outcomes.csv").set_index("bounce")  # units in its header
     assert pd.read_csv(study / "outcomes.csv").columns[1] == "speed [m/s]"
     fitted = json.loads((study / "fit/fit.json").read_text())["parameters"]["mu"]  # the config's fit section
     assert abs(fitted["value"] - TENNIS_MU) < 3 * fitted["stderr"] and fitted["identifiable"]
-    assert ball["mu"] == pytest.approx(fitted["value"], rel=1e-12)  # the study uses the fitted ball
+    assert ball.mu == pytest.approx(fitted["value"], rel=1e-12)  # the study uses the fitted ball
     assert "Fitted to measured bounces" in (study / "index.md").read_text()
     drop = outcomes.loc["drop-test"]
     assert drop["cor"] == pytest.approx(0.745, abs=1e-8)  # the measured COR, recovered
     assert drop["t_f"] == pytest.approx(4.5e-3, rel=1e-8)  # and the contact time
-    serve = simulate(Scene(**ball).with_(speed=30.0, angle_to_surface=12.0, spin=150.0))  # the fitted mu
+    serve = simulate(ball.with_(speed=30.0, angle_to_surface=12.0, spin=150.0))  # the fitted mu
     assert outcomes.loc["flat-serve", "omega_f"] == pytest.approx(serve.omega_f, rel=1e-9)
 
 

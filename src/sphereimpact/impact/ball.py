@@ -6,7 +6,8 @@ from a :class:`Measurement` in a normal impact at the measurement's speed, the s
 described: ``simulate`` and ``sweep`` on the command line (``--cor``, ``--cor-speed``, ``--contact-time``), the
 study config's ``contact`` section and this API.  A :class:`Ball` is the calibrated scene (its approach is the
 measurement's) with what was fitted; :func:`save_ball` writes it as JSON and :func:`load_ball` reads it back
-for every door (``--ball FILE``, the config's ``ball_file``), so a ball is calibrated once.
+for every door (``--ball FILE``, the config's ``ball_file``), so a ball is calibrated once.  The file holds the
+ball, its contact and its surface, never an approach: each bounce gives its own (:data:`SECTIONS`).
 
 A law calibrated at one speed extrapolates at others: :meth:`Ball.far_from_measurement` says so, with the
 factor, where a scene's normal speed differs from the measurement's by more than :data:`FAR`.
@@ -18,7 +19,7 @@ import json
 import math
 import sys
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
@@ -29,18 +30,24 @@ from ..files import write_text
 from ..contact.laws import LAWS, Relation, Spring
 from .calibrate import Calibration, calibrate, check_measurement
 from .inputs import as_number, check_flag
+from .pair import PARTNER_FIELDS
 from .scene import CHAPTER_BALL, ChapterValue, Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
 #: extrapolation of the calibrated law, and is said to be.
 FAR = 2.0
 #: The ball file's format, written into every file and checked on reading.
-FORMAT = "sphereimpact-ball/1"
-#: The Scene fields that can be the chapter's (:class:`ChapterValue`): a ball file's ``chapter`` names some of them.
-CHAPTER_PARTS = (*CHAPTER_BALL, "speed")
+FORMAT = "sphereimpact-ball/2"
 #: Scene fields that describe the approach (not the ball, its contact or the surface); a measured bounce's
 #: approach columns, in this order (:mod:`sphereimpact.fit.measured`).
 APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
+#: A ball file's sections, each the Scene fields it holds: the ball's body, its contact (the law and its
+#: parameters, friction, the separation criterion, the tangential model) and what it strikes (the flat's gravity,
+#: or a partner sphere).  Together every Scene field but the :data:`APPROACH`, which each bounce gives.
+_BODY, _STRUCK = ("mass", "diameter", "inertia_factor"), ("gravity", *PARTNER_FIELDS)
+SECTIONS = {"ball": _BODY,
+            "contact": tuple(f.name for f in fields(Scene) if f.name not in (*APPROACH, *_BODY, *_STRUCK)),
+            "surface": _STRUCK}
 
 
 @dataclass(frozen=True)
@@ -94,8 +101,8 @@ class Ball:
     Attributes
     ----------
     scene : Scene
-        The ball in a normal impact at the measurement's speed (any scene of the ball without a measurement):
-        ``ball.scene.with_(angle_to_surface=..., speed=..., spin=...)`` is the ball in another bounce.
+        The ball in a normal impact at the measurement's speed (without a measurement, any scene of the ball; read
+        from a file, the Scene's default approach, its speed not given): :func:`ball_scene` puts it in a bounce.
     measurement : Measurement or None
         What its damping (and k) were calibrated to; None when the law's parameters were given.
     fitted : dict
@@ -271,16 +278,18 @@ def ball_columns(ball: Ball, exclude=()) -> dict:
 
 
 def save_ball(ball: Ball, path) -> None:
-    """Write ``ball`` as JSON (format :data:`FORMAT`): its scene, measurement, what was fitted, its settings,
-    plug-ins and source.  The parts its scene took from the chapter's ball and approach (:class:`ChapterValue`) are
-    listed under ``chapter``, so that the ball read back is as undescribed as it was: a number alone cannot say it."""
+    """Write ``ball`` as JSON (format :data:`FORMAT`): its scene without the approach, in :data:`SECTIONS` (each
+    bounce gives its own approach; the measurement states the speed it was calibrated at), its measurement, what
+    was fitted, its settings, plug-ins and source.  The parts of its ball taken from the chapter's
+    (:class:`ChapterValue`) are listed under ``chapter``, so that the ball read back is as undescribed as it was: a
+    number alone cannot say it."""
     scene = {k: v for k, v in ball.scene.as_dict().items() if k != "modulus" or ball.scene.modulus is not None}
-    chapter = [*ball.scene.chapter_ball, *ball.scene.chapter_approach]
     record = {"format": FORMAT, "source": ball.source,
-              **({"chapter": chapter} if chapter else {}),
+              **({"chapter": list(ball.scene.chapter_ball)} if ball.scene.chapter_ball else {}),
               **({"plugins": list(ball.plugins)} if ball.plugins else {}),
               **({"settings": dict(ball.options.settings)} if ball.options.settings else {}),
-              "scene": scene,
+              **{section: {name: scene[name] for name in names if name in scene}
+                 for section, names in SECTIONS.items()},
               "measurement": None if ball.measurement is None else {
                   "cor": ball.measurement.cor, "cor_speed": ball.measurement.speed,
                   "contact_time": ball.measurement.contact_time, "relation": ball.measurement.relation},
@@ -308,8 +317,9 @@ def load_ball(path, plugins=()) -> Ball:
     except json.JSONDecodeError as err:
         raise ValueError(f"ball: {str(path)!r} is not JSON ({err.msg}, line {err.lineno})") from None
     if not isinstance(record, dict) or record.get("format") != FORMAT:
-        raise ValueError(f"ball: {str(path)!r} is not a ball file (format {FORMAT!r}: written by --save-ball, "
-                         "save_ball or a study's ball.json)")
+        found = f"; its format is {record['format']!r}" if isinstance(record, dict) and "format" in record else ""
+        raise ValueError(f"ball: {str(path)!r} is not a ball file of format {FORMAT!r} (written by --save-ball, "
+                         f"save_ball or a study's ball.json){found}")
     named = record.get("plugins", [])
     if not isinstance(named, list) or not all(isinstance(name, str) for name in named):
         raise ValueError(f"ball: {str(path)!r}: plugins must be a list of module names; got {named!r}")
@@ -320,16 +330,25 @@ def load_ball(path, plugins=()) -> Ball:
                          f"never imports code: load it yourself (--plugin {missing[0]}, the study config's plugins, "
                          f"or import {missing[0]}) if you trust it")
     chapter = record.get("chapter", [])
-    if not isinstance(chapter, list) or not set(chapter) <= set(CHAPTER_PARTS):
+    if not isinstance(chapter, list) or not set(chapter) <= set(CHAPTER_BALL):
         raise ValueError(f"ball: {str(path)!r}: chapter must be a list of the parts taken from the chapter's ball "
-                         f"({', '.join(CHAPTER_PARTS)}); got {chapter!r}")
+                         f"({', '.join(CHAPTER_BALL)}); got {chapter!r}")
+    given = {}
+    for section, names in SECTIONS.items():
+        values = record.get(section, {})
+        stray = [name for name in values if name not in names] if isinstance(values, dict) else None
+        if stray is None or stray:
+            where = (f"{stray[0]!r} is part of the approach, which each bounce gives, not the ball file" if stray
+                     and stray[0] in APPROACH else f"it holds {', '.join(names)}; got {values if stray is None else stray!r}")
+            raise ValueError(f"ball: {str(path)!r}: section {section!r}: {where}")
+        given |= values
     try:
-        fields = dict(record["scene"])
-        scene = Scene(**fields | {name: ChapterValue(fields[name]) for name in chapter if fields.get(name) is not None})
         measured = record.get("measurement")
         measurement = None if measured is None else Measurement(measured["cor"], measured["cor_speed"],
                                                                 measured.get("contact_time"),
                                                                 measured.get("relation", Relation.EXACT))
+        scene = Scene(**given | {name: ChapterValue(given[name]) for name in chapter if given.get(name) is not None},
+                      **({} if measurement is None else {"speed": measurement.speed}))
         options = SolverOptions(settings=record.get("settings", {}))
     except (KeyError, TypeError, ValueError) as err:
         raise ValueError(f"ball: {str(path)!r}: {err}") from None
