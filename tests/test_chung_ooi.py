@@ -143,7 +143,7 @@ def test_the_papers_curves_stand_beside_the_exact_answers():
     from sphereimpact.study.chung_ooi import published_deviations, published_points, read_curves
 
     curves = read_curves("data/chung_ooi_paper/curves.csv")
-    assert set(curves["test"]) == {4, 5, 7} and (curves["sign"].abs() == 1).all()
+    assert set(curves["test"]) == {4, 5, 6, 7, 8} and (curves["sign"].abs() == 1).all()
     seven = published_deviations(curves, {7: reference(7)})
     assert len(seven) == 2 and seven["max_abs"].max() < 1e-9
     four = solve(scenes_of_test(4).query("case == 'al-oxide'"))  # the curves' material
@@ -152,6 +152,32 @@ def test_the_papers_curves_stand_beside_the_exact_answers():
     points = published_points(curves, 4, four)
     spin = points[(points["column"] == "omega_f") & (points["case"] == "al-oxide")]
     assert (spin["y"] > 0).all()  # the paper's negative spins in this project's sense
+
+
+def test_tests_6_and_8_have_the_papers_beta_curves_on_kratos_axes():
+    """Tests 6 and 8's published curves (issue 41 item 4: Kratos' benchmark8_graph1.dat, beta against friction_ratio =
+    3.5 mu (1 + e) v_n / v_st): in gross slip (friction_ratio < 1) the paper's curve is Maw's line beta =
+    friction_ratio - 1, which the exact reference meets; each of test 8's two curves stands beside both materials of
+    its shear case, and the figures read friction_ratio as the ball's spin."""
+    from sphereimpact.study.chung_ooi import published_deviations, published_points, read_curves
+
+    curves = read_curves("data/chung_ooi_paper/curves.csv")
+    six = reference(6)
+    sliding = curves[(curves["test"] == 6) & (curves["x"] < 1.0)]
+    assert len(sliding) == 5 and np.allclose(sliding["y"], sliding["x"] - 1.0, atol=0.016)  # the digitisation
+    rows = six[six["friction_ratio"] < 0.9]  # sliding throughout (nearer 1 the contact's edge sticks at the end)
+    assert len(rows) == 8 and np.allclose(
+        rows["beta"], rows["friction_ratio"] * (1 + rows["cor"]) / (1 + rows["cor_target"]) - 1, rtol=1e-12, atol=1e-14)
+    gross = published_deviations(curves[curves["x"] < 1.0], {6: six})
+    assert set(gross["case"]) == {"al-alloy", "nylon"} and gross["max_abs"].max() < 0.016
+    eight = reference(8)
+    cases = published_deviations(curves, {8: eight}).groupby("case")["points"].sum()
+    assert dict(cases) == {"al-alloy, case A": 16, "al-alloy, case B": 16, "nylon, case A": 16, "nylon, case B": 16}
+    points = published_points(curves, 6, six)
+    at = points[points["case"] == "al-alloy"]
+    slip = np.abs(at["x"]) * 0.1  # |omega| R
+    assert np.allclose(3.5 * 0.4 * 1.5 * 0.2 / slip, curves[curves["test"] == 6]["x"], rtol=1e-12)
+    assert (np.sign(at["x"]) == np.sign(six["spin"].iloc[0])).all() and set(at["column"]) == {"beta"}
 
 
 def test_the_files_give_the_dem_codes_frames_and_normalised_quantities():

@@ -11,6 +11,8 @@ from .style import RC, save
 #: The oblique tests' panels: (column, axis label).
 PANELS = (("vc_t", "ball's v_t' [m/s]"), ("omega_f", "ball's ω_f [rad/s]"),
           ("rebound_angle_contact", "contact-point rebound [deg]"))
+#: The panel added where the paper's curve is of beta (tests 6 and 8).
+BETA_PANEL = ("beta", "β = −v′_st / v_st [-]")
 #: Line styles of the tangential rules: the exact contact solid.
 STYLES = {"microslip": "-", "mindlin": "--", "mindlin+dashpot": (0, (1, 1)), "mindlin-displacement": ":",
           "linear": (0, (5, 1, 1, 1, 1, 1)), "linear+dashpot": (0, (3, 1, 1, 1)), "rigid": "-."}
@@ -28,9 +30,10 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
     the exact contact solid and each DEM rule (``rules``) in its own style; ``data`` (columns ``quantity``,
     ``incidence_deg``, ``value``: Kharaz's e_t and |omega|) as points in the first material's column;
     ``published`` (:func:`~sphereimpact.study.chung_ooi.published_points`) the paper's own curves as open
-    diamonds in their material's column."""
+    diamonds in their material's column, in a fourth panel of beta where the paper's curve is of it."""
     cases = list(dict.fromkeys(exact["case"]))
-    size = (3.6 + 3.0 * len(cases), 7.6) if number >= 4 else (6.4, 4.0)
+    panels = PANELS + ((BETA_PANEL,) if published is not None and (published["column"] == "beta").any() else ())
+    size = (3.6 + 3.0 * len(cases), 7.6 + 2.5 * (len(panels) - len(PANELS))) if number >= 4 else (6.4, 4.0)
     with plt.rc_context(RC | {"figure.figsize": size}):
         if number < 4:
             fig, ax = plt.subplots(layout="constrained")
@@ -48,12 +51,12 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
             ax.plot([lo, hi], [lo, hi], "k-", lw=0.5, label="agreement")
             ax.legend(fontsize=7)
         else:
-            fig, grid = plt.subplots(len(PANELS), len(cases), sharex=True, squeeze=False, layout="constrained")
+            fig, grid = plt.subplots(len(panels), len(cases), sharex=True, squeeze=False, layout="constrained")
             column, label = varied
             both = pd.concat([exact, rules])
             for col, case in enumerate(cases):
                 axes = grid[:, col]
-                for ax, (quantity, ylabel) in zip(axes, PANELS):
+                for ax, (quantity, ylabel) in zip(axes, panels):
                     for rule, part in both[both["case"] == case].groupby("rule", sort=False):
                         rows = part.sort_values(column)
                         ax.plot(rows[column], rows[quantity], ls=STYLES.get(rule, "-"), color=COLOURS.get(rule, "C5"),
@@ -72,7 +75,7 @@ def test_figure(number: int, title: str, exact: pd.DataFrame, rules: pd.DataFram
                     spin = data[data["quantity"] == "omega_rad_s"]
                     axes[1].plot(spin["incidence_deg"], spin["value"], "k.", ms=4)
                 if published is not None and len(published):
-                    panel = {quantity: ax for ax, (quantity, _) in zip(axes, PANELS)}
+                    panel = {quantity: ax for ax, (quantity, _) in zip(axes, panels)}
                     for quantity, part in published[published["case"] == case].groupby("column", sort=False):
                         if quantity in panel:
                             panel[quantity].plot(part["x"], part["y"], "D", mfc="none", ms=4, color="C5",

@@ -16,11 +16,15 @@ MODEL_COLUMNS = ("model", "tangential", "rule", "dashpot_cor")
 #: symmetric``, tests 1 and 7: each at half the relative speed, as Chung & Ooi's test 1 and Kratos' benchmarks do),
 #: each body's normal velocity before in that lab frame (n from the partner towards the ball).
 FRAME_INPUTS = {"v_n": "m/s", "v_t": "m/s", "slip": "m/s", "lab_ball_v_n": "m/s", "lab_partner_v_n": "m/s"}
-#: The same frame after the impact, and the normalised quantities of Kratos' benchmarks 5 and 6 on a plane
-#: (``DEM_benchmarks_class.py``): slip_ratio = slip / (mu v_n), spin_ratio = R omega' / (mu v_n) and beta = -ve_t' /
-#: slip, the contact point's tangential velocity after over before, negated (empty where the slip is 0, and for two
-#: spheres).
-FRAME_OUTPUTS = {"slip_ratio": "-", "spin_ratio": "-", "beta": "-", "lab_ball_vc_n": "m/s", "lab_partner_vc_n": "m/s"}
+#: The same frame after the impact, and the normalised quantities of Kratos' benchmarks 5, 6 and 8
+#: (``DEM_benchmarks_class.py``): on a plane slip_ratio = slip / (mu v_n) and spin_ratio = R omega' / (mu v_n); beta =
+#: -ve_t' / slip, the contact point's tangential velocity after over before, negated (for two spheres, their contact
+#: points' relative one), against friction_ratio = 3.5 mu (1 + e) v_n / |slip| with e the test's COR (``cor_target``),
+#: the abscissa of the paper's tests 6 and 8 as Kratos computes it (3.5 = 1 + 1/alpha of a solid sphere, kept for
+#: two spheres: the digitised curves of both tests share one graph); in gross slip beta = friction_ratio - 1 at the
+#: COR reached.  Both empty where the slip is 0.
+FRAME_OUTPUTS = {"slip_ratio": "-", "spin_ratio": "-", "beta": "-", "friction_ratio": "-", "lab_ball_vc_n": "m/s",
+                 "lab_partner_vc_n": "m/s"}
 INPUTS |= FRAME_INPUTS
 OUTPUTS = OUTCOME_OUTPUTS | FRAME_OUTPUTS
 #: Hertz's closed forms of the elastic normal tests, beside the computed t_f, delta_m and force_max.

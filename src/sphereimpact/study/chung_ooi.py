@@ -159,6 +159,10 @@ def _frame(scene: Scene, lab: str | None) -> dict:
             "lab_partner_v_n": half}
 
 
+#: The 3.5 of Kratos' friction_ratio (:data:`~.benchmark_columns.FRAME_OUTPUTS`): 1 + 1/alpha, alpha = 2/5.
+FRICTION_FACTOR = 3.5
+
+
 def _frame_outputs(out: pd.DataFrame) -> pd.DataFrame:
     """:data:`FRAME_OUTPUTS` of solved rows: the lab frame after (each velocity shifted by the partner's lab velocity
     before) and, on a plane with slip, the normalised quantities."""
@@ -168,7 +172,9 @@ def _frame_outputs(out: pd.DataFrame) -> pd.DataFrame:
         return pd.DataFrame({
             "slip_ratio": np.where(plane, out["slip"] / mu_v_n, np.nan),
             "spin_ratio": np.where(plane, 0.5 * out["diameter"] * out["omega_f"] / mu_v_n, np.nan),
-            "beta": np.where(plane & slipping, -out["ve_t"] / out["slip"], np.nan),
+            "beta": np.where(slipping, -out["ve_t"] / out["slip"], np.nan),
+            "friction_ratio": np.where(slipping, FRICTION_FACTOR * mu_v_n * (1 + out["cor_target"]) / out["slip"].abs(),
+                                       np.nan),
             "lab_ball_vc_n": out["vc_n"] + out["lab_partner_v_n"],
             "lab_partner_vc_n": out["partner_vc_n"] + out["lab_partner_v_n"]}, index=out.index)
 
@@ -358,19 +364,26 @@ def read_curves(path) -> pd.DataFrame:
     return pd.read_csv(path, comment="#", keep_default_na=False, dtype={"case": str})
 
 
+def covers(curve_case: str, case: str) -> bool:
+    """Whether a published curve of ``curve_case`` (a material, test 8's ``case A`` or ``case B``, or '' for every
+    case) is one of the reference's ``case`` (a material, or ``<material>, case A``)."""
+    return curve_case in ("", case) or case.endswith(f", {curve_case}")
+
+
 def published_points(curves: pd.DataFrame, number: int, exact: pd.DataFrame) -> pd.DataFrame:
     """Test ``number``'s published curves in the figures' columns: each point's ``case`` (every case of ``exact``
     where the curve is not one material's), ``column`` (vc_t, omega_f or rebound_angle_contact), ``x`` (in the
     test's varied input, :data:`VARIED`) and ``y`` (in this project's units and sign); ``material`` the curve's
     own case ('' for one of every case) and ``quantity`` its own quantity.  The conversions: e_t v_t = vc_t;
-    R omega' / (mu v_n) and v_t / (mu v_n) at the test's v_n and radius; the paper's spin sign by ``sign``."""
+    R omega' / (mu v_n) and v_t / (mu v_n) at the test's v_n and radius; friction_ratio to the ball's spin where the
+    spin alone slips (tests 6 and 8); the paper's spin sign by ``sign``."""
     mine = curves[curves["test"] == number]
     rows = []
     for case in dict.fromkeys(exact["case"]):
         part = exact[exact["case"] == case]
-        speed, radius, mu, v_n = (float(part[c].iloc[0]) for c in ("speed", "diameter", "mu", "v_n"))
+        speed, radius, mu, v_n, cor = (float(part[c].iloc[0]) for c in ("speed", "diameter", "mu", "v_n", "cor_target"))
         radius /= 2
-        for curve in mine[(mine["case"] == case) | (mine["case"] == "")].itertuples(index=False):
+        for curve in mine[[covers(name, case) for name in mine["case"]]].itertuples(index=False):
             x, y = float(curve.x), float(curve.y) * curve.sign
             if curve.quantity == "e_t":  # at this test's speed along the path
                 column, y = "vc_t", y * speed * math.sin(math.radians(x))
@@ -380,6 +393,11 @@ def published_points(curves: pd.DataFrame, number: int, exact: pd.DataFrame) -> 
                 column = curve.quantity
             if curve.x_quantity == "slip_ratio":  # v_t = x mu v_n: the incidence at this test's v_n
                 x = math.degrees(math.atan(x * mu))
+            elif curve.x_quantity == "friction_ratio":  # the spin alone slips: |omega| R = 3.5 mu (1 + e) v_n / x
+                if (part["v_t"] != 0).any() or (part["partner_spin"].fillna(0.0) != 0).any():
+                    raise ValueError(f"test {number}: friction_ratio is read as the ball's spin only where the spin "
+                                     "alone makes the contact slip")
+                x = math.copysign(FRICTION_FACTOR * mu * (1 + cor) * v_n / (x * radius), part["spin"].iloc[0])
             rows.append({"case": case, "material": curve.case, "quantity": curve.quantity, "column": column, "x": x,
                          "y": y})
     return pd.DataFrame(rows, columns=["case", "material", "quantity", "column", "x", "y"])
@@ -395,7 +413,7 @@ def published_deviations(curves: pd.DataFrame, exact_by_test: dict) -> pd.DataFr
         mine = curves[curves["test"] == number]
         for curve_key, curve in mine.groupby(["quantity", "x_quantity", "case"], sort=False):
             quantity, x_quantity, case = curve_key
-            for name in ([case] if case else list(dict.fromkeys(exact["case"]))):
+            for name in [name for name in dict.fromkeys(exact["case"]) if covers(case, name)]:
                 part = exact[exact["case"] == name]
                 order = np.argsort(part[x_quantity].to_numpy(), kind="stable")
                 xs, ys = part[x_quantity].to_numpy(float)[order], part[quantity].to_numpy(float)[order]
@@ -424,12 +442,13 @@ def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
     rules' solutions of the oblique tests (``dem_rules.csv``), their deviations from the reference
     (``deviations.csv``) and the verdict ``benchmark compare`` gives each rule at its default tolerance
     (``verdicts.csv``), the checks of each reference against its closed forms (``checks.csv``), and with
-    ``curves_csv`` (the paper's curves, :func:`read_curves`) each curve's largest deviation from the reference
-    (``published.csv``, :func:`published_deviations`)."""
+    ``curves_csv`` (the paper's curves, :func:`read_curves`) each curve's largest deviation from the reference, and
+    from the damped Mindlin spring's where a test has that variant (``published.csv``, :func:`published_deviations`;
+    its ``reference`` column names which)."""
     folder = Path(folder)
     numbers = chosen_tests(numbers, path)
     folder.mkdir(parents=True, exist_ok=True)
-    rules, deviation, checks, verdicts, exacts = [], [], [], [], {}
+    rules, deviation, checks, verdicts, exacts, variants = [], [], [], [], {}, {}
     for number in numbers:
         exact = exacts[number] = reference(number, path)
         write_table(exact, folder / f"test{number}.csv")
@@ -437,7 +456,7 @@ def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
         if number >= 4:
             solved = dem_rules(number, path)
             if number in variant_tests([number], path):  # the same rows as the variant's reference
-                damped = solved[solved["rule"] == VARIANTS["damped-mindlin"]]
+                damped = variants[number] = solved[solved["rule"] == VARIANTS["damped-mindlin"]]
                 (folder / "damped-mindlin").mkdir(exist_ok=True)
                 write_table(damped.reset_index(drop=True), folder / "damped-mindlin" / f"test{number}.csv")
             rules.append(solved)
@@ -454,8 +473,11 @@ def run_study(folder, numbers=None, path=DEFINITION, curves_csv=None) -> None:
     pd.concat(checks, ignore_index=True).to_csv(folder / "checks.csv", index=False, float_format="%.6g",
                                                 lineterminator="\n")
     if curves_csv is not None:
-        published_deviations(read_curves(curves_csv), exacts).to_csv(folder / "published.csv", index=False,
-                                                                     float_format="%.6g", lineterminator="\n")
+        curves = read_curves(curves_csv)
+        published = pd.concat([published_deviations(curves, tables).assign(reference=variant) for variant, tables
+                               in (("exact", exacts), ("damped-mindlin", variants))], ignore_index=True)
+        published.insert(1, "reference", published.pop("reference"))
+        published.to_csv(folder / "published.csv", index=False, float_format="%.6g", lineterminator="\n")
 
 
 def _checks(number: int, exact: pd.DataFrame) -> pd.DataFrame:
@@ -515,9 +537,12 @@ def readme_block(folder) -> str:
     if published.exists():
         curves = pd.read_csv(published)
         if len(curves):
-            worst = curves.loc[curves.groupby(["test", "quantity"], sort=True)["max_rel"].idxmax()]
+            worst = curves.loc[curves.groupby(["test", "quantity", "reference"], sort=False)["max_rel"].idxmax()]
             text += ("\nThe paper's own curves (digitised by the Kratos developers, `data/chung_ooi_paper/`) against the "
-                     "exact references, each curve's largest relative deviation and where: " + "; ".join(
-                         f"test {r.test} {r.quantity} {r.max_rel:.2g} ({r.case}, at {r.x_quantity} {r.at:.3g})"
-                         for r in worst.itertuples()) + ".\n")
+                     "exact references (and, where the COR is below 1, the damped Mindlin spring's), each curve's "
+                     "largest relative deviation and where: " + "; ".join(
+                         f"test {r.test} {r.quantity} {r.max_rel:.2g}"
+                         f"{'' if r.reference == 'exact' else ' from ' + r.reference} ({r.case}, at {r.x_quantity} "
+                         f"{r.at:.3g})" for r in worst.sort_values(["test", "quantity"], kind="stable").itertuples())
+                     + ".\n")
     return text
