@@ -72,6 +72,29 @@ def test_the_compiled_run_reports_its_evaluations_and_its_steps_like_the_python_
     assert np.array_equal(np.array(compiled.state(t)), np.array(floats.state(t)))
 
 
+def test_the_compiled_loop_locates_every_event_as_the_python_run_does(monkeypatch):
+    """The compiled loop finds its events' roots itself (ode.roots.bracketed_root and the crossing rule, those very
+    functions compiled, on the interpolant's arithmetic): every run's roots, terminal or not, and the states there
+    are the Python-float run's to the bit."""
+    from sphereimpact.integrators.normal import IntegratedNormal
+
+    runs, compiled = [], runge_kutta._compiled
+
+    def both(rhs, span, z0, rtol, atol, max_step, events, first_step):
+        sol = compiled(rhs, span, z0, rtol, atol, max_step, events, first_step)
+        runs.append((sol, _python_floats(rhs, span, z0, rtol, atol, max_step, events, first_step)))
+        return sol
+
+    monkeypatch.setattr(runge_kutta, "_compiled", both)
+    for name in ("modified-band", "hunt-crossley", "hunt-crossley-n1.3-penetration", "kelvin-voigt-overdamped"):
+        IntegratedNormal(SCENES[name], SolverOptions(method="DOP853-scalar"))
+    assert len(runs) >= 4 and sum(len(t) for sol, _ in runs for t in sol.t_events) >= 8
+    for sol, floats in runs:
+        assert [t.tolist() for t in sol.t_events] == [t.tolist() for t in floats.t_events]
+        assert [y.tolist() for y in sol.y_events] == [y.tolist() for y in floats.y_events]
+        assert np.array_equal(sol.t, floats.t) and np.array_equal(sol.y, floats.y)
+
+
 def test_a_force_that_leaves_the_finite_numbers_is_refused_by_name_at_once():
     """Hunt-Crossley with chi v_n = 1e310 (inf): the force is inf or NaN from the first stage.  The compiled run
     stops there and names it; the Python floats' run spent its 10^6 evaluations first and blamed the budget."""

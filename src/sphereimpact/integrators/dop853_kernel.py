@@ -13,8 +13,9 @@ minimum step 10 ulp of t), every sum taken in scipy's order: the same steps as s
 
 The events are evaluated at each step's end, by kind (:data:`MAX_COMPRESSION`, :data:`PENETRATION`,
 :data:`FORCE`, :data:`BAND`), and the integration stops after the first step across which a terminal one falls
-through zero; their roots are found afterwards on the step's interpolant, in Python
-(:func:`sphereimpact.ode.dop853.located`), as solve_ivp finds them.
+through zero.  Their roots are then found on each crossed step's interpolant as the Python-float run finds them
+(:func:`sphereimpact.ode.dop853.located`): by the same crossing rule (``ode.dop853._crossed``) and Brent's method
+(``ode.roots.bracketed_root``), those very functions compiled here, on the interpolant's own arithmetic.
 """
 
 from __future__ import annotations
@@ -24,8 +25,10 @@ import numpy as np
 from numba import types
 
 from ..contact.laws.kernels import SIGNATURE
-from ..ode.dop853 import MAX_FACTOR, MIN_FACTOR, SAFETY, tableau
+from ..ode import dop853
+from ..ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
 from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
+from ..ode.roots import bracketed_root
 
 #: Event kinds, each falling through zero: y (maximum compression), delta (separation under the penetration
 #: criterion), the force inside contact and -1 outside (separation under the force criterion), and
@@ -40,7 +43,8 @@ _EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F = types.float64
 _ARRAY, _MATRIX = types.float64[::1], types.float64[:, ::1]
-_RESULT = types.Tuple((_ARRAY, _MATRIX, types.float64[:, :, ::1], _MATRIX, types.int64, types.int64))
+_RESULT = types.Tuple((_ARRAY, _MATRIX, types.float64[:, :, ::1], _MATRIX, types.int64, types.int64, _ARRAY,
+                       types.int64[:, ::1]))
 _SIGNATURE = _RESULT(types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _F, _F, _ARRAY, _F, _F, _F, _F,
                      types.int64[::1], types.int64[::1], _F, _F, types.int64)
 #: DOP853's tableau, frozen into the compiled code as constants (:func:`sphereimpact.ode.dop853.tableau`).
@@ -67,6 +71,25 @@ def _event(kind, force, params, scales, lam, band, x, y):
         delta = x * scales[0]
         return force(delta, y * scales[1], params) if delta > 0 else -1.0
     return max(lam * x - band, y)
+
+
+_crossed = numba.njit(**_COMPILE)(dop853._crossed)
+_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
+
+
+@numba.njit(**_COMPILE)
+def _event_at(t, args):
+    """An event's value at time t inside one step: its interpolant at t (``ode.dense.horner_dop853``'s arithmetic,
+    in its order), then the event of its kind.  ``args``: (kind, force, params, scales, lam, band, the step's
+    coefficients (7, 2), its start, its size, its start state x, y)."""
+    kind, force, params, scales, lam, band, rows, t0, h, x0, y0 = args
+    theta = (t - t0) / h
+    rest = 1 - theta
+    a = b = 0.0
+    for i in range(7):
+        factor = theta if i % 2 == 0 else rest
+        a, b = (a + rows[6 - i, 0]) * factor, (b + rows[6 - i, 1]) * factor
+    return _event(kind, force, params, scales, lam, band, a + x0, b + y0)
 
 
 @numba.njit(**_COMPILE)
@@ -108,9 +131,11 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
 
     Returns
     -------
-    ts, ys, coefficients, g, nfev, status
+    ts, ys, coefficients, g, nfev, status, roots, where
         Step ends (k + 1,), the states there (k + 1, 2), each step's interpolation coefficients, scipy's F
-        (k, 7, 2), the events' values at the step ends (k + 1, m), the evaluations used and the status.
+        (k, 7, 2), the events' values at the step ends (k + 1, m), the evaluations used, the status, and the root of
+        every event on every step across which it changed sign in its direction (r,), with that step and event's
+        index (r, 2), in the steps' order.
     """
     # the right-hand side is autonomous: the stages' times (C, C_EXTRA) are not needed
     a, b, e3, e5, a_extra, d, stages, extra = _A, _B, _E3, _E5, _A_EXTRA, _D, _STAGES, _C_EXTRA.size
@@ -127,7 +152,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
     for j in range(m):
         g[0, j] = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
     if not finite:
-        return ts[:1], ys[:1], coefficients[:0], g[:1], nfev, OVERFLOW
+        return ts[:1], ys[:1], coefficients[:0], g[:1], nfev, OVERFLOW, np.empty(0), np.empty((0, 2), dtype=np.int64)
     interval = abs(t_bound - t0)
     if first_step > 0.0:
         h_abs = first_step
@@ -235,11 +260,17 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         steps += 1
         ts[steps], ys[steps, 0], ys[steps, 1] = t, y[0], y[1]
         for j in range(m):
-            value = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
-            g[steps, j] = value
-            before = g[steps - 1, j]
-            up, down = before <= 0 <= value, before >= 0 >= value
-            crossed = (up and directions[j] > 0) or (down and directions[j] < 0) or ((up or down) and directions[j] == 0)
-            if crossed and kinds[j] != MAX_COMPRESSION:
+            g[steps, j] = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
+            if _crossed(g[steps - 1, j], g[steps, j], directions[j]) and kinds[j] != MAX_COMPRESSION:
                 status = TERMINAL
-    return ts[:steps + 1], ys[:steps + 1], coefficients[:steps], g[:steps + 1], nfev, status
+    roots, where, count = np.empty(steps * m), np.empty((steps * m, 2), dtype=np.int64), 0
+    for s in range(steps):
+        for j in range(m):
+            if _crossed(g[s, j], g[s + 1, j], directions[j]):
+                args = (kinds[j], force, params, scales, lam, band, coefficients[s], ts[s], ts[s + 1] - ts[s],
+                        ys[s, 0], ys[s, 1])
+                roots[count] = _root(_event_at, args, ts[s], ts[s + 1], 4 * EPS, 4 * EPS, ROOT_ITERATIONS)[0]
+                where[count, 0], where[count, 1] = s, j
+                count += 1
+    return (ts[:steps + 1], ys[:steps + 1], coefficients[:steps], g[:steps + 1], nfev, status, roots[:count],
+            where[:count])

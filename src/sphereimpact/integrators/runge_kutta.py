@@ -86,7 +86,7 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     """The normal motion by the compiled DOP853 (:func:`~.dop853_kernel.integrate`) on the law's kernel: the
     steps, states and events of :func:`sphereimpact.ode.dop853.solve` on ``rhs`` to the bit (tests/test_kernels.py),
     which ``rhs`` is not called for; its budget is charged with the evaluations made.  The driver's events say
-    which they are (``event.kind``)."""
+    which they are (``event.kind``); the compiled loop locates their roots too, by the same search."""
     from . import dop853_kernel as kernel  # _KERNEL_MODULE
 
     kinds = {"max_compression": kernel.MAX_COMPRESSION, "penetration": kernel.PENETRATION, "force": kernel.FORCE,
@@ -95,7 +95,7 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     law_kernel = scene.law.kernel
     band = [e for e in events if e.kind == "band"]
     lam, edge = (band[0].lam, band[0].edge) if band else (0.0, 0.0)
-    ts, ys, coefficients, g, nfev, status = kernel.integrate(
+    ts, ys, coefficients, g, nfev, status, roots, where = kernel.integrate(
         _checked_kernel(scene, rhs.scales), np.array(law_kernel.parameters(scene), dtype=float),
         np.array(rhs.scales, dtype=float),
         float(span[0]), float(span[1]), np.array(z0, dtype=float), float(rtol), float(atol), float(max_step),
@@ -109,7 +109,8 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     messages = {kernel.TERMINAL: "A termination event occurred.",
                 kernel.FINISHED: "The solver successfully reached the end of the integration interval.",
                 kernel.STEP_TOO_SMALL: "Required step size is less than spacing between numbers."}
-    return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status])
+    return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status],
+                          dict(zip(map(tuple, where.tolist()), roots.tolist())))
 
 
 def _scipy(method: str):

@@ -33,6 +33,8 @@ from .roots import brent
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # scipy's RungeKutta step control
 EPS = np.finfo(float).eps
+#: Most iterations of Brent's method locating one event's root on a step's interpolant (it needs far fewer).
+ROOT_ITERATIONS = 100
 
 
 def _dense_rows(matrix, lengths) -> list:
@@ -229,7 +231,7 @@ def _crossed(before, after, direction):
     return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
 
 
-def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: str) -> Solution:
+def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: str, found=None) -> Solution:
     """A DOP853 run as a :class:`Solution`, its events located: what :func:`solve` and the compiled normal
     motion (:mod:`sphereimpact.integrators.dop853_kernel`) return.
 
@@ -246,6 +248,9 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
         event fell through zero in its direction.
     nfev, status, message
         As :func:`solve` reports them.
+    found : mapping or None
+        (step, event index) -> root of every crossing, where the compiled loop found them by the same rule and
+        search; None: found here.
 
     Every step across which an event changes sign in its direction has its root found by Brent's method on
     the step's interpolant to 4 eps (:func:`~sphereimpact.ode.roots.brent`), the roots of one step in order;
@@ -270,8 +275,9 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
             for i in np.flatnonzero(crossed[step]).tolist():
                 # to a few ulp; an event function whose round-off keeps Brent from settling there still
                 # leaves it a bracket that narrow: its last iterate, not an error
-                root = brent(lambda time, e=events[i]: float(e(time, state(time))), t0, ts[step + 1],
-                             xtol=4 * EPS, rtol=4 * EPS, maxiter=100, strict=False)
+                root = found[step, i] if found is not None else brent(
+                    lambda time, e=events[i]: float(e(time, state(time))), t0, ts[step + 1], xtol=4 * EPS,
+                    rtol=4 * EPS, maxiter=ROOT_ITERATIONS, strict=False)
                 hits.append((root, i))
             hits.sort()
             for root, i in hits:

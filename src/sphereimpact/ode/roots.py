@@ -18,11 +18,16 @@ import numpy as np
 BRENT_ITERATIONS = 200
 
 
+#: :func:`bracketed_root`'s statuses: a root to the tolerance (or where f is 0), the last iterate after ``maxiter``
+#: iterations, no bracket (f(a), f(b) not finite or of one sign).
+ROOT, LAST_ITERATE, NO_BRACKET = 0, 1, 2
+
+
 def brent(f, a: float, b: float, xtol: float, rtol: float, maxiter: int = BRENT_ITERATIONS,
           strict: bool = True) -> float:
     """A root of ``f`` in the bracket [a, b] (f(a) and f(b) of opposite signs, or one of them 0), by Brent's method
     (R. P. Brent, Algorithms for Minimization without Derivatives, 1973, ch. 4): inverse quadratic interpolation or
-    the secant, with bisection wherever they would not shrink the bracket fast enough.
+    the secant, with bisection wherever they would not shrink the bracket fast enough (:func:`bracketed_root`).
 
     It stops once the bracket's half-width is below (``xtol`` + ``rtol`` |x|) / 2 around the best point x, the
     tolerance scipy.optimize.brentq documents for the same arguments, or where f is exactly 0.
@@ -34,14 +39,31 @@ def brent(f, a: float, b: float, xtol: float, rtol: float, maxiter: int = BRENT_
     RuntimeError
         Not converged within ``maxiter`` iterations (``strict``); with ``strict`` False, the best point so far.
     """
-    a, b = float(a), float(b)
-    f_a, f_b = float(f(a)), float(f(b))
-    if f_a == 0.0:
-        return a
-    if f_b == 0.0:
-        return b
-    if not (math.isfinite(f_a) and math.isfinite(f_b)) or (f_a > 0) == (f_b > 0):
+    root, status, other = bracketed_root(_call, f, float(a), float(b), xtol, rtol, maxiter)
+    if status == NO_BRACKET:
+        f_a, f_b = float(f(a)), float(f(b))
         raise ValueError(f"brent: f(a) = {f_a!r} and f(b) = {f_b!r} must be finite and of opposite signs")
+    if status == LAST_ITERATE and strict:
+        raise RuntimeError(f"brent: no convergence in {maxiter} iterations (bracket [{root!r}, {other!r}])")
+    return root
+
+
+def _call(x: float, f) -> float:
+    return float(f(x))
+
+
+def bracketed_root(f, args, a: float, b: float, xtol: float, rtol: float, maxiter: int):
+    """Brent's method itself, on ``f(x, args)`` returning a float: (x, status, the bracket's other end), status one
+    of :data:`ROOT`, :data:`LAST_ITERATE` (x the best point so far) and :data:`NO_BRACKET` (x NaN).  Plain
+    arithmetic on floats, so that numba compiles this very function for the compiled normal motion's events
+    (:mod:`sphereimpact.integrators.dop853_kernel`) and :func:`brent` runs it as Python: one implementation."""
+    f_a, f_b = f(a, args), f(b, args)
+    if f_a == 0.0:
+        return a, ROOT, b
+    if f_b == 0.0:
+        return b, ROOT, a
+    if not (math.isfinite(f_a) and math.isfinite(f_b)) or (f_a > 0) == (f_b > 0):
+        return math.nan, NO_BRACKET, math.nan
     c, f_c = a, f_a  # the other end of the bracket [b, c]; a: the previous best point
     step = before = b - a  # the last step and the one before it
     for _ in range(maxiter):
@@ -54,7 +76,7 @@ def brent(f, a: float, b: float, xtol: float, rtol: float, maxiter: int = BRENT_
         tol = 0.5 * (xtol + rtol * abs(b))
         half = 0.5 * (c - b)
         if f_b == 0.0 or abs(half) <= tol:
-            return b
+            return b, ROOT, c
         if abs(before) >= tol and abs(f_a) > abs(f_b):  # interpolate
             s = f_b / f_a
             if a == c:  # two points: the secant
@@ -75,10 +97,8 @@ def brent(f, a: float, b: float, xtol: float, rtol: float, maxiter: int = BRENT_
             step = before = half
         a, f_a = b, f_b
         b += step if abs(step) > tol else math.copysign(tol, half)
-        f_b = float(f(b))
-    if strict:
-        raise RuntimeError(f"brent: no convergence in {maxiter} iterations (bracket [{b!r}, {c!r}])")
-    return b
+        f_b = f(b, args)
+    return b, LAST_ITERATE, c
 
 
 #: Most Newton iterations per search (bisection steps where Newton leaves the bracket included).
