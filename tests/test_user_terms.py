@@ -72,7 +72,7 @@ def test_a_ball_file_saved_from_the_chapters_defaults_says_so_at_every_door(tmp_
 
     path = tmp_path / "ball.json"
     assert run(["simulate", "--json", "--mass", "0.05", "--save-ball", str(path)]) == 0
-    assert json.loads(path.read_text())["chapter"] == ["diameter", "k", "b", "speed"]
+    assert json.loads(path.read_text())["chapter"] == ["diameter", "k", "b"]  # no approach in a ball file
     ball = load_ball(path)
     assert ball.scene.chapter_ball == ("diameter", "k", "b") and ball.scene.mass == 0.05
     assert ball.scene.diameter == 0.063 and ball.scene.k == 60000.0
