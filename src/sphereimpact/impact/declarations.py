@@ -11,10 +11,11 @@ similar-scenes path as soon as it is declared, and a unit without a declared sca
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
+
+from ..choice import Choice
 
 
-class Kind(str, Enum):
+class Kind(Choice):
     """What an output's value is."""
 
     NUMBER = "number"  # a float compared to a tolerance
@@ -23,7 +24,7 @@ class Kind(str, Enum):
     SOLVER = "solver"  # the solver's statistics, not the impact's
 
 
-class Needs(str, Enum):
+class Needs(Choice):
     """What an output needs beyond the contact's end state."""
 
     END = "end"  # the end state alone

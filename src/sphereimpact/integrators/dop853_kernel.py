@@ -29,11 +29,10 @@ from ..ode import dop853
 from ..ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
 from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ..ode.roots import bracketed_root
+from .event_kinds import EventKind
 
-#: Event kinds, each falling through zero: y (maximum compression), delta (separation under the penetration
-#: criterion), the force inside contact and -1 outside (separation under the force criterion), and
-#: max(lam x - band, y) (eq. 4.2's ramp band in restitution).
-MAX_COMPRESSION, PENETRATION, FORCE, BAND = 0, 1, 2, 3
+#: The events' codes (:class:`.event_kinds.EventKind`), as plain integers for the compiled code.
+MAX_COMPRESSION, PENETRATION, FORCE, BAND = (int(kind) for kind in EventKind)
 #: Statuses: a terminal event fell through zero in the last step, the span's end reached, the step fell
 #: below 10 ulp of t, the right-hand side's budget spent, the force left the finite numbers.
 TERMINAL, FINISHED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 1, 0, -1, -2, -3

@@ -25,6 +25,7 @@ from ..ode.dense import StackedDOP853, fast_solution, is_instant
 from ..contact.motion import NormalMotion
 from ..errors import ImpactError
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
+from .event_kinds import EventKind
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene, SolverOptions
@@ -267,8 +268,9 @@ class _Run:
         def separation(tau, z):
             return sep(z[0] * d_scale, z[1] * v)
 
-        max_compression.direction, max_compression.kind = -1, "max_compression"
-        separation.direction, separation.kind = -1, "penetration" if scene.separation.pulls else "force"
+        max_compression.direction, max_compression.kind = -1, EventKind.MAX_COMPRESSION
+        separation.direction = -1
+        separation.kind = EventKind.PENETRATION if scene.separation.pulls else EventKind.FORCE
         separation.terminal = True
         self.rhs, self.force, self.max_compression, self.separation = rhs, force, max_compression, separation
         self.end = horizon(scene) * w
@@ -309,7 +311,7 @@ class _RampBand:
             return max(lam * z[0] - BAND_RESTART, z[1])
 
         band_exit.direction, band_exit.terminal = -1, True  # at the edge, or at t_m inside the band
-        band_exit.kind, band_exit.lam, band_exit.edge = "band", lam, BAND_RESTART
+        band_exit.kind, band_exit.lam, band_exit.edge = EventKind.BAND, lam, BAND_RESTART
         self.event = band_exit
 
     @classmethod

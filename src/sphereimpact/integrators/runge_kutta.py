@@ -15,6 +15,7 @@ import numpy as np
 from ..ode import dop853
 from .normal import IntegratedNormal
 from .base import INTEGRATORS, Integrator
+from .event_kinds import EventKind
 
 
 #: Right-hand-side evaluations a process makes in Python floats, on laws with a kernel, before it loads the compiled
@@ -89,18 +90,16 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     which they are (``event.kind``); the compiled loop locates their roots too, by the same search."""
     from . import dop853_kernel as kernel  # _KERNEL_MODULE
 
-    kinds = {"max_compression": kernel.MAX_COMPRESSION, "penetration": kernel.PENETRATION, "force": kernel.FORCE,
-             "band": kernel.BAND}
     scene = rhs.scene
     law_kernel = scene.law.kernel
-    band = [e for e in events if e.kind == "band"]
+    band = [e for e in events if e.kind is EventKind.BAND]
     lam, edge = (band[0].lam, band[0].edge) if band else (0.0, 0.0)
     ts, ys, coefficients, g, nfev, status, roots, where = kernel.integrate(
         _checked_kernel(scene, rhs.scales), np.array(law_kernel.parameters(scene), dtype=float),
         np.array(rhs.scales, dtype=float),
         float(span[0]), float(span[1]), np.array(z0, dtype=float), float(rtol), float(atol), float(max_step),
         float(first_step) if first_step is not None else 0.0,
-        np.array([kinds[e.kind] for e in events], dtype=np.int64),
+        np.array([e.kind for e in events], dtype=np.int64),
         np.array([getattr(e, "direction", 0) for e in events], dtype=np.int64), float(lam), float(edge),
         max(rhs.left, 0))
     rhs.spend(nfev if status != kernel.BUDGET else rhs.left + 1)
