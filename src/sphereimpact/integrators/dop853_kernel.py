@@ -15,7 +15,8 @@ The events are evaluated at each step's end, by kind (:data:`MAX_COMPRESSION`, :
 :data:`FORCE`, :data:`BAND`), and the integration stops after the first step across which a terminal one falls
 through zero.  Their roots are then found on each crossed step's interpolant as the Python-float run finds them
 (:func:`sphereimpact.ode.dop853.located`): by the same crossing rule (``ode.dop853._crossed``) and Brent's method
-(``ode.roots.bracketed_root``), those very functions compiled here, on the interpolant's own arithmetic.
+(``ode.roots.bracketed_root``) on the same interpolant (``ode.dense.interpolant_pair``), those very
+functions compiled here.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from numba import types
 from ..contact.laws.kernels import SIGNATURE
 from ..ode import dop853
 from ..ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
+from ..ode.dense import interpolant_pair
 from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ..ode.roots import bracketed_root
 from .event_kinds import EventKind
@@ -76,19 +78,17 @@ _crossed = numba.njit(**_COMPILE)(dop853._crossed)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
+_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+
+
 @numba.njit(**_COMPILE)
 def _event_at(t, args):
-    """An event's value at time t inside one step: its interpolant at t (``ode.dense.horner_dop853``'s arithmetic,
-    in its order), then the event of its kind.  ``args``: (kind, force, params, scales, lam, band, the step's
-    coefficients (7, 2), its start, its size, its start state x, y)."""
+    """An event's value at time t inside one step: its interpolant at t (``ode.dense.interpolant_pair``, the
+    Python run's arithmetic), then the event of its kind.  ``args``: (kind, force, params, scales, lam, band, the
+    step's coefficients (7, 2) in reverse order, its start, its size, its start state x, y)."""
     kind, force, params, scales, lam, band, rows, t0, h, x0, y0 = args
-    theta = (t - t0) / h
-    rest = 1 - theta
-    a = b = 0.0
-    for i in range(7):
-        factor = theta if i % 2 == 0 else rest
-        a, b = (a + rows[6 - i, 0]) * factor, (b + rows[6 - i, 1]) * factor
-    return _event(kind, force, params, scales, lam, band, a + x0, b + y0)
+    x, y = _interpolant_pair(rows, (t - t0) / h, x0, y0)
+    return _event(kind, force, params, scales, lam, band, x, y)
 
 
 @numba.njit(**_COMPILE)
@@ -266,7 +266,7 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
     for s in range(steps):
         for j in range(m):
             if _crossed(g[s, j], g[s + 1, j], directions[j]):
-                args = (kinds[j], force, params, scales, lam, band, coefficients[s], ts[s], ts[s + 1] - ts[s],
+                args = (kinds[j], force, params, scales, lam, band, coefficients[s][::-1], ts[s], ts[s + 1] - ts[s],
                         ys[s, 0], ys[s, 1])
                 roots[count] = _root(_event_at, args, ts[s], ts[s + 1], 4 * EPS, 4 * EPS, ROOT_ITERATIONS)[0]
                 where[count, 0], where[count, 1] = s, j

@@ -39,17 +39,24 @@ def horner_dop853(coefficients, x: float, y_old) -> list:
     scipy's, in its order.
     """
     if len(y_old) == 2:  # the normal motion's state, unrolled (the same operations, a third of the time)
-        a = b = 0.0
-        rest = 1 - x
-        for i, (p, q) in enumerate(coefficients):
-            factor = x if i % 2 == 0 else rest
-            a, b = (a + p) * factor, (b + q) * factor
-        return [a + y_old[0], b + y_old[1]]
+        return list(interpolant_pair(coefficients, x, y_old[0], y_old[1]))
     y = [0.0] * len(y_old)
     for i, row in enumerate(coefficients):
         factor = x if i % 2 == 0 else 1 - x
         y = [(a + b) * factor for a, b in zip(y, row)]
     return [a + b for a, b in zip(y, y_old)]
+
+
+def interpolant_pair(rows, x: float, first: float, second: float) -> tuple[float, float]:
+    """:func:`horner_dop853` for a state of two components (``first``, ``second`` at the step's start): ``rows``
+    the 7 rows of F in reverse order, each a pair.  Plain float arithmetic, so that numba compiles this very
+    function for the compiled normal motion's event search (:mod:`sphereimpact.integrators.dop853_kernel`)."""
+    a = b = 0.0
+    rest = 1 - x
+    for i in range(len(rows)):
+        factor = x if i % 2 == 0 else rest
+        a, b = (a + rows[i][0]) * factor, (b + rows[i][1]) * factor
+    return a + first, b + second
 
 
 class StackedDOP853:
