@@ -492,3 +492,38 @@ def test_f16_an_interrupted_write_leaves_the_old_table_whole(tmp_path, monkeypat
     with pytest.raises(KeyboardInterrupt):
         write_table(pd.DataFrame({"a": [2, 3]}), str(path))
     assert path.read_text() == "a\n1\n" and [p.name for p in tmp_path.iterdir()] == ["table.csv"]
+
+
+def test_one_scenes_plain_float_checks_answer_as_the_array_checks():
+    """A Scene checks its law parameters, magnitudes and scales in plain floats (numpy costs more than the scene);
+    on random inputs, good and bad, every value it passes equals the array path's to the bit, and every input the
+    array path refuses it leaves to that path (which then words the refusal)."""
+    from sphereimpact.contact.laws import LAWS, PARAMETER_NAMES
+    from sphereimpact.impact.inputs import law_parameters, magnitude_problem, scale_problem
+
+    rng = np.random.default_rng(7)
+    choices = [None, math.nan, math.inf, -1.0, 0.0, 1e-3, 0.5, 1.5, 7.0, 60000.0, 1e9, 1e200]
+    passed = refused = 0
+    for _ in range(3000):
+        law = LAWS[rng.choice(sorted(LAWS))]
+        given = {name: choices[rng.integers(len(choices))] for name in PARAMETER_NAMES if rng.uniform() < 0.4}
+        radius = float(10.0 ** rng.uniform(-3, 0))
+        try:
+            arrays = law_parameters(law.name, given, np.asarray(radius))  # a 0-d array: the array path
+        except ValueError as err:
+            with pytest.raises(ValueError) as floats:
+                law_parameters(law.name, given, radius)
+            assert str(floats.value) == str(err)
+            refused += 1
+            continue
+        floats = law_parameters(law.name, given, radius)
+        for name in PARAMETER_NAMES:
+            assert np.array_equal(floats[name], arrays[name], equal_nan=True), (law.name, given, name)
+        passed += 1
+    assert passed > 300 and refused > 300, (passed, refused)
+    specials = [0.0, math.inf, math.nan, 5e-324]
+    for _ in range(3000):
+        m, v, d, w = (specials[rng.integers(4)] if rng.uniform() < 0.05 else
+                      float(rng.choice([-1.0, 1.0]) * 10.0 ** rng.uniform(-300, 300)) for _ in range(4))
+        assert magnitude_problem(m, v, d, w) == magnitude_problem(*map(np.asarray, (m, v, d, w)))
+        assert scale_problem(m, v, abs(w), law) == scale_problem(*map(np.asarray, (m, v, abs(w))), law)

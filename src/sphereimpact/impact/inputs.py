@@ -121,10 +121,30 @@ def density_problem(mass, diameter, body: str = "ball") -> str | None:
             f"any ball's {low:g} to {high:g} kg/m^3{rows}: {slip}")
 
 
+#: The smallest normal double.
+_TINY = float(np.finfo(float).tiny)
+
+
+def _floats(*values) -> bool:
+    """True when every value is a float (a Python or numpy scalar): one scene's check, which plain float arithmetic
+    answers at a fraction of numpy's per-call cost.  Only a pass is taken from it; a failure is worded by the array
+    path."""
+    return all(isinstance(value, float) for value in values)
+
+
+def _finite(*values: float) -> bool:
+    return all(math.isfinite(value) for value in values)
+
+
 def magnitude_problem(mass, speed, diameter, spin=0.0) -> str | None:
     """Why squares of these (arrays, or numbers) would overflow double precision, naming the parameters and
     the first bad row, or None.  The outputs hold v^2, R^2, m v^2, I = alpha m R^2 and I omega^2 (energies,
     spin): beyond double precision they are inf or NaN, never a result."""
+    if _floats(mass, speed, diameter, spin):  # one scene (a Scene is built per row): its squares in plain floats
+        surface = spin * 0.5 * diameter
+        if _finite(speed * speed, diameter * diameter, mass * speed * speed,
+                   mass * (0.5 * diameter) * (0.5 * diameter), mass * surface * surface):
+            return None  # else the arrays below name what overflows
     with np.errstate(over="ignore", invalid="ignore"):
         m, v, d, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float))
                                            for x in (mass, speed, diameter, spin)))
@@ -153,6 +173,10 @@ def scale_problem(mass, v_normal, frequency, law, rows=None) -> str | None:
     bad row named, as ``rows`` numbers them if given), or None.  The motion is solved in
     x = delta / (v_n T), y = delta_dot / v_n, tau = t / T, with forces in units of m v_n / T
     (T = 1 / frequency, the law's contact time)."""
+    if _floats(mass, v_normal, frequency) and frequency != 0.0:  # one scene: its scales in plain floats
+        scales = (1.0 / frequency, v_normal / frequency, frequency * v_normal, mass * frequency * v_normal)
+        if _finite(*scales) and min(scales) >= _TINY:
+            return None  # else the arrays below name the scale that leaves the range
     with np.errstate(all="ignore"):
         m, v, w = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mass, v_normal, frequency)))
         scales = {"contact time T": 1.0 / w, "contact's deflection scale v_n T": v / w,
@@ -201,6 +225,10 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
         naming the parameter, the law and (for tables) the row.
     """
     law = LAWS.law(model)
+    if rows is None and isinstance(radius, float):
+        values = _one_scene(law, given, radius)
+        if values is not None:
+            return values  # else the arrays below find what is wrong and say it
     shape = np.shape(radius)
     where = (lambda i: "") if rows is None else (lambda i: f" (row {int(rows[i])})")
     values, present = {}, {}  # present: per scene, whether the parameter was given
@@ -238,6 +266,39 @@ def law_parameters(model: str, given: dict, radius, rows=None) -> dict:
                                  f"{alternative}{where(first)}")
             values[name][missing] = parameter.default
         _check_array(parameter, values[name], where)
+    return values
+
+
+def _one_scene(law, given: dict, radius: float) -> dict | None:
+    """:func:`law_parameters` of one scene in plain floats, where every given value is a float or None and all is
+    well: the same rules (each parameter the law's, k from ``modulus``, defaults, ranges) and the same values, or
+    None at the first thing amiss, which the array path then names (a numpy call costs more than this scene)."""
+    if not all(value is None or isinstance(value, float) for value in given.values()):
+        return None
+    uses = law.parameter_names
+    if any(value is not None and name not in uses for name, value in given.items()):
+        return None
+    k, modulus = given.get("k"), given.get("modulus")
+    if law.spring is Spring.HERTZ and modulus is not None:
+        if not (math.isfinite(modulus) and MODULUS.ok(modulus)):
+            return None
+        from_modulus = float(hertz_constant(modulus, radius))
+        if k is not None and k != from_modulus:
+            return None
+        k = from_modulus
+    values = dict.fromkeys(PARAMETER_NAMES, math.nan)
+    if modulus is not None:
+        values["modulus"] = modulus
+    for parameter in law.parameters:
+        name = parameter.name
+        if name not in PARAMETER_NAMES:  # the law's own: checked with the scene's
+            continue
+        value = k if name == "k" else given.get(name)
+        if value is None:
+            value = parameter.default
+        if value is None or not (math.isfinite(value) and parameter.ok(value)):
+            return None
+        values[name] = float(value)
     return values
 
 

@@ -343,9 +343,9 @@ class Scene:
     def _check_scales(self) -> None:
         with np.errstate(all="ignore"):
             try:
-                w = np.asarray(self.law.frequency(self), dtype=float)
+                w = float(self.law.frequency(self))
             except ArithmeticError:  # Python floats raise where numpy returns 0 or inf
-                w = np.nan
+                w = math.nan
         problem = scale_problem(self.mass, self.v_normal, w, self.law)
         if problem:
             raise ValueError(problem)
