@@ -170,3 +170,17 @@ def test_random_realistic_scenes_meet_the_contract_by_the_series():
         errors = relative_errors(got.to_dict(), ref.to_dict(), scene)
         assert max(errors.values()) <= 1e-9, (scene, errors)
         checked += 1
+
+
+def test_the_dense_polynomials_give_one_value_however_they_are_asked():
+    """A Taylor solution's state at an instant is the same to the bit asked alone (plain floats), among a few
+    (instant by instant) or among many (numpy, each step's coefficients gathered once), on step boundaries too."""
+    solution = taylor.solve(modified_series, {"zeta": 0.3, "lam": 40.0}, 0.0, 1e-10, 100.0,
+                            lambda x, y: x)["dense"]
+    rng = np.random.default_rng(3)
+    instants = np.concatenate([solution.ts, rng.uniform(solution.ts[0], solution.ts[-1], 200)])
+    alone = np.array([solution.single(float(tau)) for tau in instants]).T
+    assert np.array_equal(solution(instants), alone)
+    for few in (slice(0, 1), slice(5, 8), slice(-4, None)):
+        assert np.array_equal(solution(instants[few]), alone[:, few])
+    assert np.array_equal(solution(instants.reshape(2, -1)), alone.reshape(2, 2, -1))

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .dense import is_instant
+from .dense import SMALL, is_instant
 from .roots import brent
 from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 
@@ -114,12 +114,16 @@ class TaylorDense:
         if is_instant(tau):
             return np.array(self.single(float(tau)))
         tau = np.asarray(tau, dtype=float)
+        if tau.size <= SMALL:  # a few instants: the float path per instant beats numpy's per-call cost
+            return np.array([self.single(instant) for instant in tau.ravel().tolist()], dtype=float).T.reshape(
+                (2, *tau.shape))
         i = np.clip(np.searchsorted(self.ts, tau, side="left") - 1, 0, self._last)
         s = tau - self.ts[i]
+        cx, cy = self._cx[i], self._cy[i]  # each instant's step's coefficients, gathered once
         x, y = np.zeros(tau.shape), np.zeros(tau.shape)
         for k in range(self._cx.shape[1] - 1, -1, -1):
-            x = x * s + self._cx[i, k]
-            y = y * s + self._cy[i, k]
+            x = x * s + cx[..., k]
+            y = y * s + cy[..., k]
         return np.array([x, y])
 
 
