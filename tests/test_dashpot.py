@@ -152,7 +152,7 @@ def test_every_door_gives_simulate_answer():
     swept = sweep(table, chapter_ball=True)
     assert swept["omega_f"].iloc[0] == pytest.approx(api.omega_f, rel=1e-8)
     assert swept["omega_f"].iloc[1] == pytest.approx(simulate(scene.with_(speed=6.0)).omega_f, rel=1e-8)
-    as_rows = sweep(pd.DataFrame([scene.as_dict()]), chapter_ball=True)  # a Scene's own parameters, as as_dict gives them
+    as_rows = sweep(pd.DataFrame([scene.as_dict()]), chapter_ball=True)  # a Scene's parameters, as as_dict gives them
     assert as_rows["omega_f"].iloc[0] == pytest.approx(api.omega_f, rel=1e-8)
     with pytest.raises(ValueError, match="dashpot_cor is given twice"):
-        sweep(pd.DataFrame([scene.as_dict() | {"dashpot_cor": 0.5}]), chapter_ball=True)
+        sweep(pd.DataFrame([scene.as_dict() | {"parameters": {"dashpot_cor": 0.5}}]), chapter_ball=True)

@@ -189,7 +189,9 @@ def test_a_law_with_a_parameter_of_its_own_is_served_by_every_door(law, capsys):
         same = simulate(Scene(model=NAME, b=800.0, angle=30.0))
         assert simulate(scene).cor == pytest.approx(same.cor, rel=1e-9)
         assert Scene(model="grown", b=400.0).growth == 1.0  # its default
-        assert Scene(model="grown", b=400.0, parameters={"growth": 2.0}).with_(model=NAME).parameters == {}
+        copied = Scene(model="grown", b=400.0, growth=2.0).with_(model=NAME)  # by name, as a built-in one
+        assert "growth" not in copied.parameters and copied.growth is None and copied.b == 400.0
+        assert Scene(model="grown", b=400.0, growth=2.0) == scene.with_(angle=0.0)
         table = sweep(grid(angle=[0.0, 30.0], growth=[1.0, 2.0]).assign(model="grown", b=400.0), chapter_ball=True)
         for row in table.to_dict("records"):
             ref = simulate(Scene(model=NAME, b=400.0 * row["growth"], angle=row["angle"]))
@@ -462,13 +464,14 @@ def _exact_share_slide(scene, out):
 @pytest.mark.filterwarnings("ignore::sphereimpact.EnergyGainWarning")  # sliding on past rolling: the toy makes energy
 def test_an_own_parameter_and_setting_reach_the_model_through_the_api(share_slide):
     scene = Scene(angle=30.0, tangential="share-slide", parameters={"slide_share": 0.5})
-    assert scene.slide_share == 0.5 and scene.parameters == {"slide_share": 0.5}
+    assert scene.slide_share == 0.5 and scene.parameters == {"k": 6e4, "b": 10.5, "ramp": 100.0, "slide_share": 0.5}
+    assert Scene(angle=30.0, tangential="share-slide", slide_share=0.5) == scene  # by name, as a built-in one
     out = simulate(scene)
     vc_t, omega = _exact_share_slide(scene, out)
     assert out.vc_t == pytest.approx(vc_t, rel=1e-9) and out.omega_f == pytest.approx(omega, rel=1e-9)
     assert scene.with_(slide_share=0.25).slide_share == 0.25
     assert simulate(scene.with_(slide_share=0.25)).omega_f == pytest.approx(0.5 * out.omega_f, rel=1e-9)
-    assert scene.with_(tangential="rigid").parameters == {}  # the rigid contact has no own parameter
+    assert "slide_share" not in scene.with_(tangential="rigid").parameters  # the rigid contact has none of it
     # the setting arrives: the trapezoid rule's spin error falls as the square of its steps
     errors = [abs(simulate(scene, SolverOptions(settings={"trapezoid_steps": n})).omega_f / out.omega_f - 1)
               for n in (16, 32, 64)]
@@ -552,7 +555,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     assert done.returncode == 0, done.stderr[-3000:]
     ball = json.loads((work / folder / "ball.json").read_text())
     assert ball["plugins"] == ["plugin_model"] and ball["settings"] == {"trapezoid_steps": 16}
-    assert ball["contact"]["parameters"] == {"slide_share": 0.5}
+    assert ball["contact"]["slide_share"] == 0.5  # by name, beside the built-in parameters
     options = SolverOptions(settings={"trapezoid_steps": 16})
     scene = Scene(model="kelvin-voigt", b=10.5, tangential="share-slide",  # gravity 0, the one default
                   parameters={"slide_share": 0.5})

@@ -19,7 +19,7 @@ import json
 import math
 import sys
 import warnings
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -27,11 +27,12 @@ import numpy as np
 from .. import plugins as plugin_modules
 from ..errors import ExtrapolationWarning
 from ..files import write_text
+from ..contact.declared import own_parameters
 from ..contact.laws import LAWS, Relation, Spring
 from .calibrate import Calibration, calibrate, check_measurement
 from .inputs import as_number, check_flag
 from .pair import PARTNER_FIELDS
-from .scene import CHAPTER_BALL, ChapterValue, Scene, SolverOptions, chapter_law_parameters
+from .scene import CHAPTER_BALL, SCENE_KEYS, ChapterValue, Scene, SolverOptions, chapter_law_parameters
 
 #: A scene whose normal speed differs from the measurement's by more than this factor (either way) is an
 #: extrapolation of the calibrated law, and is said to be.
@@ -42,11 +43,12 @@ FORMAT = "sphereimpact-ball/2"
 #: approach columns, in this order (:mod:`sphereimpact.fit.measured`).
 APPROACH = ("speed", "incidence", "angle_to_surface", "angle", "spin")
 #: A ball file's sections, each the Scene fields it holds: the ball's body, its contact (the law and its
-#: parameters, friction, the separation criterion, the tangential model) and what it strikes (the flat's gravity,
-#: or a partner sphere).  Together every Scene field but the :data:`APPROACH`, which each bounce gives.
+#: parameters, friction, the separation criterion, the tangential model; a plug-in's parameters too, after these)
+#: and what it strikes (the flat's gravity, or a partner sphere).  Together every Scene field and parameter but the
+#: :data:`APPROACH`, which each bounce gives.
 _BODY, _STRUCK = ("mass", "diameter", "inertia_factor"), ("gravity", *PARTNER_FIELDS)
 SECTIONS = {"ball": _BODY,
-            "contact": tuple(f.name for f in fields(Scene) if f.name not in (*APPROACH, *_BODY, *_STRUCK)),
+            "contact": tuple(name for name in SCENE_KEYS if name not in (*APPROACH, *_BODY, *_STRUCK)),
             "surface": _STRUCK}
 
 
@@ -270,11 +272,8 @@ def ball_scene(ball: Ball, **approach) -> Scene:
 def ball_columns(ball: Ball, exclude=()) -> dict:
     """The ball's fields as a sweep table's constant columns (its models' own parameters too), leaving out the
     approach, the names in ``exclude`` and the parameters it does not give."""
-    fields = ball.scene.as_dict()
-    own = fields.pop("parameters", {})
-    kept = {name: value for name, value in fields.items()
+    return {name: value for name, value in ball.scene.as_dict().items()
             if name not in (*APPROACH, *exclude) and value is not None and name != "modulus"}  # k holds it
-    return kept | own
 
 
 def save_ball(ball: Ball, path) -> None:
@@ -288,13 +287,18 @@ def save_ball(ball: Ball, path) -> None:
               **({"chapter": list(ball.scene.chapter_ball)} if ball.scene.chapter_ball else {}),
               **({"plugins": list(ball.plugins)} if ball.plugins else {}),
               **({"settings": dict(ball.options.settings)} if ball.options.settings else {}),
-              **{section: {name: scene[name] for name in names if name in scene}
-                 for section, names in SECTIONS.items()},
+              **{section: {name: scene[name] for name in _section(section) if name in scene} for section in SECTIONS},
               "measurement": None if ball.measurement is None else {
                   "cor": ball.measurement.cor, "cor_speed": ball.measurement.speed,
                   "contact_time": ball.measurement.contact_time, "relation": ball.measurement.relation},
               "fitted": ball.fitted, **({"relations": ball.relations} if ball.relations else {})}
     write_text(path, json.dumps(record, indent=2) + "\n")  # whole or not at all: --force never truncates a ball
+
+
+def _section(section: str) -> tuple:
+    """The names ``section`` may hold: those of :data:`SECTIONS`, and in ``contact`` every parameter a registered
+    model declares besides (a plug-in's, which the file names the plug-in of)."""
+    return (*SECTIONS[section], *(own_parameters() if section == "contact" else ()))
 
 
 def load_ball(path, plugins=()) -> Ball:
@@ -334,8 +338,9 @@ def load_ball(path, plugins=()) -> Ball:
         raise ValueError(f"ball: {str(path)!r}: chapter must be a list of the parts taken from the chapter's ball "
                          f"({', '.join(CHAPTER_BALL)}); got {chapter!r}")
     given = {}
-    for section, names in SECTIONS.items():
+    for section in SECTIONS:
         values = record.get(section, {})
+        names = _section(section)
         stray = [name for name in values if name not in names] if isinstance(values, dict) else None
         if stray is None or stray:
             where = (f"{stray[0]!r} is part of the approach, which each bounce gives, not the ball file" if stray

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..contact.laws import LAWS, PARAMETER_NAMES, Spring
 from ..errors import UnitWarning
-from ..contact.declared import settings as declared_settings
+from ..contact.declared import own_parameters, settings as declared_settings
 from ..contact.separation import Separation
 from ..integrators import method_names
 from ..contact.tangential import (KAPPA_FROM, STIFFNESS, TANGENTIAL_PARAMETERS, TANGENTIALS, kappa_from_poisson,
@@ -29,9 +29,14 @@ from .inputs import (PARTNER_RULES, PATH_RULES, RULES, _check, _check_choice, as
                      law_parameters, magnitude_problem, scale_problem)
 from .pair import PARTNER_FIELDS, missing_partner, partner_gravity, reduced_body, stray_partner
 
-#: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); the law's own parameters in
-#: ``parameters`` are read, the tangential model's are not.
-TANGENTIAL_ONLY = ("mu", "tangential", *TANGENTIAL_PARAMETERS, "spin", "parameters")
+#: Scene fields the normal motion does not read (:attr:`Scene.normal_problem`); of ``parameters`` the law's are read,
+#: the tangential model's are not.
+TANGENTIAL_ONLY = ("mu", "tangential", "spin", "parameters")
+#: The built-in models' parameter names: the law parameters the laws' checks resolve together (k, b, ramp, chi,
+#: exponent, and modulus for k) and the three ways of giving the tangential stiffness (kappa, poisson,
+#: shear_modulus).  A scene holds them in ``parameters`` as it holds a plug-in's own; tables, JSON and
+#: :meth:`Scene.as_dict` write each of them always (empty where the scene's models do not use it).
+BUILT_IN = (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS)
 #: Standard gravity [m/s^2], used when gravity is switched on without a value.
 STANDARD_GRAVITY = 9.80665
 #: True while Scenes are built whose bodies were judged already, or are no body (:func:`bodies_judged`).
@@ -95,7 +100,7 @@ class FrozenMapping(Mapping):
         return repr(self._values)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Scene:
     """One sphere striking a rigid inclined flat, or a partner sphere at rest.
 
@@ -122,7 +127,8 @@ class Scene:
         Normal force law, a key of :data:`sphereimpact.contact.laws.LAWS` (``kelvin-voigt``, ``modified``,
         ``linear-hunt-crossley``, ``hertz``, ``hunt-crossley`` or a registered one).
     k, b, ramp, chi, exponent, modulus : float or None
-        The law's parameters; each law declares which it uses, their units, ranges and defaults, and a
+        The built-in laws' parameters, given by name like any parameter of a law or tangential model (see
+        ``parameters``); each law declares which it uses, their units, ranges and defaults, and a
         parameter the law does not use is refused.  None takes the law's default (an error where it has
         none).  ``k``: stiffness constant of the spring term [N/m for linear laws, N/m^n for Hertz laws;
         chapter 60000 N/m]; ``b``: damping [N s/m], chapter 10.5; ``ramp``: c in 1 - exp(-c delta / R),
@@ -167,9 +173,11 @@ class Scene:
         The partner's spin [rad/s] in the ball's rotational sense (two spheres turning the same way rub at the
         contact: the slip is v_t - omega_0 R - partner_spin R2); 0 by default.
     parameters : mapping of str to float
-        The law's and the tangential model's own parameters (those that are not fields above, declared by a
-        registered model: :mod:`sphereimpact.contact.parameters`), each read as ``scene.name``; checked,
-        with their defaults filled in.  Empty for the built-in models.
+        The law's and the tangential model's parameters (:mod:`sphereimpact.contact.parameters`), built-in or a
+        plug-in's alike: given here or by name (``Scene(k=6e4)`` is ``Scene(parameters={"k": 6e4})``), checked,
+        with their defaults filled in (k from ``modulus``, kappa from ``poisson`` or ``shear_modulus``), and each
+        read as ``scene.name``: None where the scene's models do not use a parameter some registered model
+        declares.  Holds every parameter the scene's models use, and the other ways of giving one that were given.
     """
 
     mass: float = CHAPTER_MASS
@@ -179,18 +187,9 @@ class Scene:
     speed: float = CHAPTER_SPEED
     mu: float = 0.2
     model: str = "modified"
-    k: float | None = None
-    b: float | None = None
-    ramp: float | None = None
-    chi: float | None = None
-    exponent: float | None = None
-    modulus: float | None = None
     gravity: float = 0.0
     separation: Separation = Separation.FORCE
     tangential: str = "rigid"
-    kappa: float | None = None
-    poisson: float | None = None
-    shear_modulus: float | None = None
     spin: float = 0.0
     incidence: float | None = None
     angle_to_surface: float | None = None
@@ -199,6 +198,21 @@ class Scene:
     partner_inertia_factor: float = 0.4
     partner_spin: float = 0.0
     parameters: Mapping[str, float] = FrozenMapping()
+
+    def __init__(self, parameters: Mapping[str, float] = FrozenMapping(), **given):
+        """The fields by keyword; any other keyword is a parameter of the scene's models, as a key of ``parameters``
+        is (given both ways, refused)."""
+        if not isinstance(parameters, Mapping):
+            raise TypeError(f"parameters must be a mapping of name to value; got {type(parameters).__name__}")
+        named = {name: given.pop(name) for name in list(given) if name not in FIELDS}
+        twice = [name for name in named if name in parameters and named[name] is not None]
+        if twice:
+            raise ValueError(f"{twice[0]} is given twice: by name and in parameters")
+        for name, default in _DEFAULTS.items():
+            object.__setattr__(self, name, given.get(name, default))
+        raw = {name: value for name, value in {**parameters, **named}.items() if value is not None}
+        object.__setattr__(self, "parameters", FrozenMapping(raw))  # as given: resolved by __post_init__
+        self.__post_init__()
 
     def __post_init__(self):
         for name, (allowed, ok) in RULES.items():
@@ -217,15 +231,18 @@ class Scene:
             return
         _check_choice("model", self.model, tuple(LAWS))
         object.__setattr__(self, "separation", Separation.parse(self.separation))
-        object.__setattr__(self, "parameters", self._own_parameters())
-        given = {name: None if getattr(self, name) is None or type(getattr(self, name)) is ChapterValue
-                 else as_number(name, getattr(self, name)) for name in PARAMETER_NAMES}
+        raw = dict(self.parameters)
+        own = self._own_parameters(raw)
+        given = {name: None if raw.get(name) is None or type(raw[name]) is ChapterValue
+                 else as_number(name, raw[name]) for name in PARAMETER_NAMES}
         values = law_parameters(self.model, given, self.radius)
         chapter = _chapter_parameters(self.law, given)
+        resolved = {}
         for name in PARAMETER_NAMES:
             value = float(values[name])
-            value = None if math.isnan(value) else ChapterValue(value) if name in chapter else value
-            object.__setattr__(self, name, value)
+            if not math.isnan(value):
+                resolved[name] = ChapterValue(value) if name in chapter else value
+        self._hold(resolved)
         self._check_scales()
         weight = self.mass * self.g_normal  # pressing the ball into the flat [N]
         if weight > 0 and float(self.force(self.radius, 0.0)) < weight:  # the spring alone cannot hold it at R
@@ -233,7 +250,15 @@ class Scene:
                              f"R = {self.radius:.3g} m (m g cos(beta) = {weight:.3g} N, more than the "
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
-        self._resolve_kappa()
+        self._hold(resolved | self._resolve_kappa(raw) | own)
+
+    def _hold(self, values: dict) -> None:
+        """Hold the resolved ``values`` as the scene's ``parameters``, each also read as ``scene.name`` (an instance
+        attribute: the force laws read them in every evaluation)."""
+        for name in [name for name in self.__dict__ if name in self.__dict__.get("parameters", ())]:
+            del self.__dict__[name]
+        object.__setattr__(self, "parameters", FrozenMapping(values))
+        self.__dict__.update(values)
 
     def _check_partner(self) -> bool:
         """Check the partner's fields; True when the scene has a partner sphere."""
@@ -264,8 +289,8 @@ class Scene:
         with bodies_judged():  # the reduced sphere is no body: each body's density was judged above
             reduced = Scene(**own | dict(mass=m_star, diameter=2.0 * r_star, inertia_factor=alpha_star,
                                          spin=spin_star))
-        for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS, "separation", "parameters"):
-            object.__setattr__(self, name, getattr(reduced, name))
+        object.__setattr__(self, "separation", reduced.separation)
+        self._hold(dict(reduced.parameters))
         self.__dict__["_reduced"] = reduced
 
     @property
@@ -273,7 +298,8 @@ class Scene:
         """The parts of the ball this scene took from the chapter's because its user did not give them (``mass``,
         ``diameter``, and the law's stiffness ``k`` and damping where they are the chapter's defaults): empty when
         the ball is described (:class:`ChapterValue`)."""
-        return tuple(name for name in CHAPTER_BALL if type(getattr(self, name)) is ChapterValue)
+        return tuple(name for name in CHAPTER_BALL
+                     if type(self.parameters.get(name, getattr(self, name, None))) is ChapterValue)
 
     @property
     def chapter_approach(self) -> tuple:
@@ -293,37 +319,36 @@ class Scene:
         """True when the ball strikes a partner sphere, not the flat."""
         return self.partner_mass is not None
 
-    def _own_parameters(self) -> FrozenMapping:
-        """The law's and the tangential model's own parameters: each given one declared, each checked, the
-        defaults filled in, a required one present."""
-        if not isinstance(self.parameters, Mapping):
-            raise TypeError(f"parameters must be a mapping of name to value; got {type(self.parameters).__name__}")
+    def _own_parameters(self, raw: dict) -> dict:
+        """The law's and the tangential model's parameters beyond the built-in ones (:data:`BUILT_IN`, which
+        their own checks take): each given one declared, each checked, the defaults filled in, a required one
+        present."""
         law, model = LAWS.law(self.model), TANGENTIALS.model(self.tangential)
         declared = {p.name: (p, f"model {self.model!r}") for p in law.own_parameters}
         declared |= {p.name: (p, f"tangential {self.tangential!r}") for p in model.own_parameters}
         for name, (_, owner) in declared.items():
             if name in FIELDS:
                 raise ValueError(f"{owner} declares a parameter {name!r}, the name of a Scene field: rename it")
-        for name in self.parameters:
-            if name not in declared:
+        for name in raw:
+            if name not in declared and name not in BUILT_IN:
                 owners = [f"{p.name} ({owner})" for p, owner in declared.values()]
                 raise ValueError(f"{name} is not a parameter of model {self.model!r} or tangential "
                                  f"{self.tangential!r}; their own parameters: {', '.join(owners) or 'none'}")
         values = {}
         for name, (parameter, owner) in declared.items():
-            value = self.parameters.get(name)
+            value = raw.get(name)
             if value is None:
                 if parameter.default is None:
                     raise ValueError(f"{name} is required by {owner}: {parameter.doc} [{parameter.unit}]")
                 value = parameter.default
             values[name] = _check(name, value, parameter.range_text, parameter.ok)
-        return FrozenMapping(values)
+        return values
 
     def __getattr__(self, name: str):
-        """An own parameter of the scene's law or tangential model, read like a field (``scene.name``)."""
-        own = self.__dict__.get("parameters") if not name.startswith("_") else None
-        if own is not None and name in own:
-            return own[name]
+        """A parameter some registered model declares and this scene's models do not use: None (the ones they use
+        are read as attributes, :meth:`_hold`)."""
+        if not name.startswith("_") and (name in BUILT_IN or name in own_parameters()):
+            return None
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     def _check_path(self) -> None:
@@ -350,15 +375,15 @@ class Scene:
         if problem:
             raise ValueError(problem)
 
-    def _resolve_kappa(self) -> None:
-        """Check the tangential model against the law and set ``kappa`` from whichever way it was given."""
+    def _resolve_kappa(self, raw: dict) -> dict:
+        """Check the tangential model against the law; its stiffness's values: the ways it was given, and ``kappa``
+        from whichever way that was."""
         model = TANGENTIALS.model(self.tangential)
         given = {}
         for parameter in STIFFNESS:
-            if getattr(self, parameter.name) is not None:
-                given[parameter.name] = _check(parameter.name, getattr(self, parameter.name), parameter.range_text,
+            if raw.get(parameter.name) is not None:
+                given[parameter.name] = _check(parameter.name, raw[parameter.name], parameter.range_text,
                                                parameter.ok)
-                object.__setattr__(self, parameter.name, given[parameter.name])
         unused = [name for name in given if name not in model.parameter_names]
         if unused and not model.stiffness_parameters:
             raise ValueError(f"{unused[0]} is a parameter of the compliant tangential models "
@@ -368,7 +393,7 @@ class Scene:
         if refusal:
             raise ValueError(refusal)
         if not model.stiffness_parameters:
-            return
+            return given
         if unused:
             name = unused[0]
             taking = " or ".join(f"'{other}'" for other in TANGENTIALS.taking(name))
@@ -383,11 +408,12 @@ class Scene:
                      else kappa_from_shear_modulus(given[name], self.k, self.radius))
             if "kappa" in given and given["kappa"] != value:  # equal: a scene copied with both
                 raise ValueError(f"give kappa or {name}, not both (kappa from {name} = {value:.6g})")
-            object.__setattr__(self, "kappa", float(value))
+            given["kappa"] = float(value)
         elif "kappa" not in given:
             others = [name for name in model.parameter_names if name != "kappa"]
             raise ValueError(f"kappa is required by tangential {self.tangential!r}: k_t / k_n, > 0 "
                              "(2 (1 - nu) / (2 - nu) = 0.667 for rubber, nu = 0.5), or give " + " or ".join(others))
+        return {name: given[name] for name in TANGENTIAL_PARAMETERS if name in given}
 
     # Derived quantities (SI) -------------------------------------------------
     # The geometric ones are cached: the post-processing of one impact reads them thousands of times, and
@@ -494,9 +520,9 @@ class Scene:
         and the tangential model's own parameters, which the normal motion does not read (the normal force law
         sees delta and its rate alone).  Scenes with equal normal problems have the same normal motion
         (:func:`sphereimpact.impact.solve.reusing_normal_motions` shares it)."""
-        law_own = {p.name for p in self.law.own_parameters}
+        law = set(self.law.parameter_names)
         return (tuple((f.name, getattr(self, f.name)) for f in fields(self) if f.name not in TANGENTIAL_ONLY)
-                + (tuple(sorted((name, value) for name, value in self.parameters.items() if name in law_own)),))
+                + (tuple(sorted((name, value) for name, value in self.parameters.items() if name in law)),))
 
     @property
     def slip0(self) -> float:
@@ -513,46 +539,40 @@ class Scene:
         return self.law.continued(delta, delta_dot, self.reduced)
 
     def as_dict(self) -> dict:
-        """The fields as plain values, for JSON and tables (``parameters`` as a dict, left out when empty; the
-        partner's fields left out without a partner): ``Scene(**scene.as_dict())`` is the scene again."""
-        out = {f.name: getattr(self, f.name) for f in fields(self)
-               if f.name != "parameters" and (self.has_partner or f.name not in PARTNER_FIELDS)}
-        return out | ({"parameters": dict(self.parameters)} if self.parameters else {})
+        """The fields and the parameters as plain values, for JSON and tables, in :data:`SCENE_KEYS`' order (every
+        built-in parameter, None where unused; the partner's fields left out without a partner), then the
+        plug-ins' parameters the scene has: ``Scene(**scene.as_dict())`` is the scene again."""
+        out = {name: getattr(self, name) for name in SCENE_KEYS if self.has_partner or name not in PARTNER_FIELDS}
+        return out | {name: value for name, value in self.parameters.items() if name not in BUILT_IN}
 
     def with_(self, **changes) -> "Scene":
         """A validated copy with some fields changed.
 
-        Changing ``model`` drops the old law's parameters that the new law does not use (and ``modulus``
-        when ``k`` changes); the others carry over.  An own parameter of the law or the tangential model is
-        changed by its name, like a field (``with_(name=value)``).  ``tangential='rigid'`` drops kappa, poisson and
-        shear_modulus; kappa given as poisson or shear_modulus is recomputed.  Giving a path (``incidence`` or
-        ``angle_to_surface``) levels the flat and drops the other path; giving a tilt ``angle`` drops the path.
+        A parameter is changed by its name (``with_(k=...)``, ``with_(name=value)`` for a plug-in's), None dropping
+        it.  The parameters that the new law and tangential model do not use are dropped (changing ``model`` or
+        ``tangential='rigid'``), the others carry over; ``modulus`` is dropped when ``k`` changes, k follows the
+        modulus at a new diameter, and kappa given as poisson or shear_modulus is recomputed.  Giving a path
+        (``incidence`` or ``angle_to_surface``) levels the flat and drops the other path; giving a tilt ``angle``
+        drops the path.
         """
-        if "model" in changes:
-            uses = LAWS.law(changes["model"]).parameter_names
-            changes = {name: None for name in PARAMETER_NAMES if name not in uses} | changes
-        if "k" in changes and "modulus" not in changes:
-            changes["modulus"] = None
+        named = {name: changes.pop(name) for name in list(changes) if name not in FIELDS}
+        values = dict(changes.pop("parameters", self.parameters)) | named
+        if "k" in named and "modulus" not in named:
+            values.pop("modulus", None)
         if any(name in changes for name in PATH_RULES):  # a path given: a level flat, and no other path
             changes = {"angle": 0.0, **{name: None for name in PATH_RULES}} | changes
         elif changes.get("angle"):  # a tilted flat approached vertically: no path
             changes = {name: None for name in PATH_RULES} | changes
-        if ("diameter" in changes or "partner_diameter" in changes) and self.modulus is not None \
-                and "k" not in changes:
-            changes["k"] = None  # k follows the modulus at the new (contact's) radius
-        tangential = TANGENTIALS.model(changes.get("tangential", self.tangential))
-        if not tangential.stiffness_parameters:
-            changes = {name: None for name in TANGENTIAL_PARAMETERS} | changes
-        elif "kappa" not in changes and (self.poisson is not None or self.shear_modulus is not None):
-            changes["kappa"] = None  # kappa follows poisson or shear_modulus (and k, R)
-        own = {name: changes.pop(name) for name in list(changes) if name not in FIELDS}
-        if own or "model" in changes or "tangential" in changes:
-            keep = {p.name for p in (*LAWS.law(changes.get("model", self.model)).own_parameters,
-                                     *tangential.own_parameters)}
-            kept = {name: value for name, value in changes.get("parameters", self.parameters).items() if name in keep}
-            changes["parameters"] = kept | own
+        if ("diameter" in changes or "partner_diameter" in changes) and values.get("modulus") is not None \
+                and "k" not in named:
+            values.pop("k", None)  # k follows the modulus at the new (contact's) radius
+        if "kappa" not in named and (values.get("poisson") is not None or values.get("shear_modulus") is not None):
+            values.pop("kappa", None)  # kappa follows poisson or shear_modulus (and k, R)
+        uses = {*LAWS.law(changes.get("model", self.model)).parameter_names,
+                *TANGENTIALS.model(changes.get("tangential", self.tangential)).parameter_names}
+        values = {name: value for name, value in values.items() if name in uses or name in named}
         with bodies_judged():  # judged when this scene was built
-            return replace(self, **changes)
+            return replace(self, **changes, parameters=values)
 
 
 def chapter_law_parameters(law) -> tuple:
@@ -572,8 +592,14 @@ def _chapter_parameters(law, given: dict) -> set:
             if given.get(name) is None and not (name == "k" and given.get("modulus") is not None)}
 
 
-#: The Scene's fields: any other name given to :meth:`Scene.with_` is an own parameter.
+#: The Scene's fields: any other name given to it or to :meth:`Scene.with_` is a parameter of its models.
 FIELDS = frozenset(f.name for f in fields(Scene))
+#: Each field's default (``parameters`` aside).
+_DEFAULTS = {f.name: f.default for f in fields(Scene) if f.name != "parameters"}
+#: A scene's fields and built-in parameters in the order of its tables' columns and its JSON's keys (each model's
+#: parameters after its name): :meth:`Scene.as_dict`'s keys.
+SCENE_KEYS = tuple(name for f in fields(Scene) if f.name != "parameters" for name in
+                   (f.name, *{"model": PARAMETER_NAMES, "tangential": TANGENTIAL_PARAMETERS}.get(f.name, ())))
 
 
 #: Allowed tolerances.  Looser than 1e-2 the outputs are meaningless (rtol 0.5 moves the COR by 2e-3 and

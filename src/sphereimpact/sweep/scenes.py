@@ -21,7 +21,7 @@ from ..contact.separation import Separation
 from ..contact.declared import own_parameters
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
 from ..impact.pair import PARTNER_FIELDS
-from ..impact.scene import Scene, bodies_judged
+from ..impact.scene import FIELDS, SCENE_KEYS, Scene, bodies_judged
 from ..memory import check_size
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
@@ -29,8 +29,8 @@ from . import batch
 #: Scene parameters, with the single-impact defaults for missing columns.  A model's own parameters are
 #: columns too, after these (those of the models a table names: :func:`own_parameter_columns`).  A partner
 #: sphere's columns are not: a table that names them is swept as its reduced spheres' (:mod:`.pairs`).
-SCENE_COLUMNS = tuple(f.name for f in fields(Scene) if f.name != "parameters" and f.name not in PARTNER_FIELDS)
-DEFAULTS = {name: Scene.__dataclass_fields__[name].default for name in SCENE_COLUMNS}
+SCENE_COLUMNS = tuple(name for name in SCENE_KEYS if name not in PARTNER_FIELDS)
+DEFAULTS = {name: Scene.__dataclass_fields__[name].default if name in FIELDS else None for name in SCENE_COLUMNS}
 
 
 def scene_table(scenes) -> pd.DataFrame:
