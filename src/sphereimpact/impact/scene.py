@@ -208,7 +208,7 @@ class Scene:
         twice = [name for name in named if name in parameters and named[name] is not None]
         if twice:
             raise ValueError(f"{twice[0]} is given twice: by name and in parameters")
-        for name, default in _DEFAULTS.items():
+        for name, default in FIELD_DEFAULTS.items():
             object.__setattr__(self, name, given.get(name, default))
         raw = {name: value for name, value in {**parameters, **named}.items() if value is not None}
         object.__setattr__(self, "parameters", FrozenMapping(raw))  # as given: resolved by __post_init__
@@ -298,8 +298,7 @@ class Scene:
         """The parts of the ball this scene took from the chapter's because its user did not give them (``mass``,
         ``diameter``, and the law's stiffness ``k`` and damping where they are the chapter's defaults): empty when
         the ball is described (:class:`ChapterValue`)."""
-        return tuple(name for name in CHAPTER_BALL
-                     if type(self.parameters.get(name, getattr(self, name, None))) is ChapterValue)
+        return tuple(name for name in CHAPTER_BALL if type(getattr(self, name)) is ChapterValue)
 
     @property
     def chapter_approach(self) -> tuple:
@@ -595,7 +594,7 @@ def _chapter_parameters(law, given: dict) -> set:
 #: The Scene's fields: any other name given to it or to :meth:`Scene.with_` is a parameter of its models.
 FIELDS = frozenset(f.name for f in fields(Scene))
 #: Each field's default (``parameters`` aside).
-_DEFAULTS = {f.name: f.default for f in fields(Scene) if f.name != "parameters"}
+FIELD_DEFAULTS = {f.name: f.default for f in fields(Scene) if f.name != "parameters"}
 #: A scene's fields and built-in parameters in the order of its tables' columns and its JSON's keys (each model's
 #: parameters after its name): :meth:`Scene.as_dict`'s keys.
 SCENE_KEYS = tuple(name for f in fields(Scene) if f.name != "parameters" for name in

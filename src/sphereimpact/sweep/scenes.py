@@ -21,7 +21,7 @@ from ..contact.separation import Separation
 from ..contact.declared import own_parameters
 from ..impact.inputs import PATH_RULES, TEXT_FIELDS, check_columns, own_parameter_columns, scale_problem
 from ..impact.pair import PARTNER_FIELDS
-from ..impact.scene import FIELDS, SCENE_KEYS, Scene, bodies_judged
+from ..impact.scene import FIELD_DEFAULTS, SCENE_KEYS, Scene, bodies_judged
 from ..memory import check_size
 from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
 from . import batch
@@ -30,7 +30,7 @@ from . import batch
 #: columns too, after these (those of the models a table names: :func:`own_parameter_columns`).  A partner
 #: sphere's columns are not: a table that names them is swept as its reduced spheres' (:mod:`.pairs`).
 SCENE_COLUMNS = tuple(name for name in SCENE_KEYS if name not in PARTNER_FIELDS)
-DEFAULTS = {name: Scene.__dataclass_fields__[name].default if name in FIELDS else None for name in SCENE_COLUMNS}
+DEFAULTS = {name: FIELD_DEFAULTS.get(name) for name in SCENE_COLUMNS}  # None: a parameter (its law's default)
 
 
 def scene_table(scenes) -> pd.DataFrame:

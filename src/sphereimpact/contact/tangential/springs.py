@@ -94,6 +94,14 @@ STICK_STEPS = 64
 END_SLACK = 1e-12
 
 
+def _history_rate(rescale: str, n: float, delta: float, delta_dot: float) -> float:
+    """The history rule rho [1/s] at one instant, in plain floats (:meth:`CompliantTangential._rho`): 0 without
+    rescaling, outside contact or (``unloading``) while the contact grows; else (n - 1) delta_dot / delta."""
+    if rescale == "never" or delta <= 0 or (delta_dot >= 0 and rescale == "unloading"):
+        return 0.0
+    return (n - 1.0) * delta_dot / delta
+
+
 @dataclass(frozen=True)
 class CompliantPhase(Phase):
     """A rigid-model :class:`~sphereimpact.contact.tangential.Phase` (mode ``sticking`` or ``sliding`` here) and what
@@ -189,10 +197,8 @@ class CompliantTangential:
     def _rho(self, delta, delta_dot):
         """History rule rho [1/s]: 0 without rescaling; (dk_t/dt)/k_t = (n-1) delta_dot / delta while
         unloading (``rescale='unloading'``) or at every instant (``always``)."""
-        if is_instant(delta):  # one instant (the stick phase's right-hand side): plain floats
-            if self._rescale == "never" or delta <= 0 or (delta_dot >= 0 and self._rescale == "unloading"):
-                return 0.0
-            return (self._n - 1.0) * delta_dot / delta
+        if is_instant(delta):  # one instant: plain floats
+            return _history_rate(self._rescale, self._n, delta, delta_dot)
         if self._rescale == "never":
             return np.zeros_like(np.asarray(delta, dtype=float))
         rate = np.minimum(delta_dot, 0.0) if self._rescale == "unloading" else np.asarray(delta_dot, dtype=float)
@@ -265,8 +271,8 @@ class CompliantTangential:
         g_t = s.g_tangent
 
         root_m, t0, n = self._root_m, p.t0, self._n
-        # k_t = kappa n k delta^(n - 1) (spring_stiffness) and rho (_rho), spelled out in the right-hand side: it
-        # is called about a thousand times a contact, and the lookups they make per call were a third of its cost
+        # k_t = kappa n k delta^(n - 1) (spring_stiffness) spelled out in the right-hand side, its constants read
+        # here: it is called about a thousand times a contact, and the lookups per call were a third of its cost
         kappa, k, nk, rescale = s.kappa, float(s.k), n * s.k, self._rescale
         state = normal.state
 
@@ -277,8 +283,7 @@ class CompliantTangential:
             k_t = kappa * (k if n == 1.0 else nk * max(delta, 0.0) ** (n - 1.0))
             slip = slip0 + g_t * (t - t0) + inverse_mass * z[1] * js
             force = z[0] - root_m * math.sqrt(k_t) * slip / fs if root_m else z[0]  # F / fs
-            rho = (0.0 if rescale == "never" or delta <= 0 or (delta_dot >= 0 and rescale == "unloading")
-                   else (n - 1.0) * delta_dot / delta)
+            rho = _history_rate(rescale, n, delta, delta_dot)
             return [(-k_t * slip + rho * z[0] * fs) / (w * fs), force, z[1]]
 
         def total(tau, z):  # F / fs: the spring's force less the dashpot's
