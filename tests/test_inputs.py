@@ -199,6 +199,17 @@ CONFIGS = [
     ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "contact": {"model": "modified"}, "ball": BALL},
      "config key ball (or contact): describe your ball: give contact.k or contact.contact_time, contact.b or contact.cor"),
     ({"kharaz_fit": {"free": ["mu", "mu"]}}, "config key kharaz_fit.free: ['mu', 'mu'] has non-unique elements"),
+    # issue 42: a contact parameter, built-in or a plug-in's, is a key of contact by name; a name no model of the
+    # study declares, or a value that is not a number, is refused naming it
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL, "contact": {"modulus": 1e8, "kapa": 3.0}},
+     "config key contact (or ball, surface, plugins): kapa is not a parameter of model 'hunt-crossley' or "
+     "tangential 'rigid'"),
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL,
+      "contact": {"modulus": 1e8, "tangental": "mindlin"}},
+     "config key contact.tangental: 'mindlin' is not of type 'number' (a plug-in law's or tangential model's own"),
+    ({"study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL,
+      "contact": {"modulus": 1e8, "parameters": {"dashpot_cor": 0.5}}},
+     "config key contact.parameters: {'dashpot_cor': 0.5} is not of type 'number'"),
 ]
 
 
@@ -209,6 +220,31 @@ def test_config_input_is_refused_naming_the_key(change, message):
     config = yaml.safe_load(open("config/config.yaml")) | change
     errors = config_errors(config, SCHEMA)
     assert any(message in e for e in errors), errors
+
+
+def test_a_study_gives_every_contact_parameter_by_name():
+    """A study's contact keys are its models' parameters by name, the tangential dashpot's as the built-in ones;
+    the keys that are not parameters are the schema's other contact keys, no more."""
+    import yaml
+
+    from sphereimpact.contact.laws import PARAMETER_NAMES
+    from sphereimpact.contact.tangential import TANGENTIAL_PARAMETERS
+    from sphereimpact.study.config import with_defaults
+    from sphereimpact.study.own import CONTACT_KEYS, study_ball
+
+    schema = yaml.safe_load(open(SCHEMA))
+    assert set(schema["properties"]["contact"]["properties"]) == {*CONTACT_KEYS, *PARAMETER_NAMES,
+                                                                  *TANGENTIAL_PARAMETERS}
+    config = yaml.safe_load(open("config/config.yaml")) | {
+        "study": "mine", "bounces": {"drop": {"speed": 5.0}}, "ball": BALL,
+        "contact": {"model": "hertz", "modulus": 1e8, "tangential": "mindlin", "kappa": 0.8, "dashpot_cor": 0.5}}
+    assert config_errors(config, SCHEMA) == []
+    scene = study_ball(with_defaults(schema, config)).scene
+    assert (scene.dashpot_cor, scene.kappa, scene.modulus) == (0.5, 0.8, 1e8)
+    expected = Scene(mass=0.0459, diameter=0.0427, model="hertz", modulus=1e8, tangential="mindlin", kappa=0.8,
+                     parameters={"dashpot_cor": 0.5}, gravity=scene.gravity, mu=scene.mu)
+    assert simulate(scene.with_(speed=5.0, incidence=30.0)).omega_f == simulate(
+        expected.with_(speed=5.0, incidence=30.0)).omega_f
 
 
 def test_the_shipped_configs_are_valid():

@@ -547,7 +547,7 @@ def test_an_own_parameter_and_setting_reach_the_model_through_the_pipeline(share
     config = tmp_path / "plug.yaml"
     config.write_text("study: plug\nplugins: [plugin_model]\nball: {mass: 0.145, diameter: 0.063}\n"
                       "contact: {model: kelvin-voigt, k: 60000.0, b: 10.5, tangential: share-slide,\n"
-                      "          parameters: {slide_share: 0.5}, settings: {trapezoid_steps: 16}}\n"
+                      "          slide_share: 0.5, settings: {trapezoid_steps: 16}}\n"
                       "bounces: {oblique: {speed: 3.0, incidence: 30.0}}\n"
                       "ranges: {speeds: '1:3:1', map_speeds: '2:4:2', map_angles: '30:60:30'}\n")
     folder = "results/studies/plug"

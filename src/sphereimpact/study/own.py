@@ -14,13 +14,13 @@ from __future__ import annotations
 
 from .. import plugins
 from ..impact.ball import Ball, Measurement, calibrated_ball, load_ball, uncalibrated, undescribed
-from ..contact.laws import LAWS, PARAMETER_NAMES, Relation
+from ..contact.laws import LAWS, Relation
 from ..memory import check_size
 from ..parsing import parse_range, range_count
 from ..impact.inputs import PATH_RULES
 from ..impact.scene import Scene, SolverOptions
 from ..contact.materials import material_fields
-from ..contact.tangential import TANGENTIAL_PARAMETERS, TANGENTIALS
+from ..contact.tangential import TANGENTIALS
 
 #: The chapter's study: the replication.  Any other name is a study of one's own ball.
 CHAPTER = "chapter4"
@@ -38,17 +38,23 @@ def folder(config: dict) -> str:
     return f"{ROOT}/{config['study']}"
 
 
+#: The keys of a study's ``contact`` section that are not a parameter of its models: every other key is one,
+#: built-in or a plug-in's, by name (the Scene checks that its models declare it).
+CONTACT_KEYS = ("model", "separation", "tangential", "materials", "settings", "cor", "contact_time", "cor_speed",
+                "cor_relation")
+
+
 def _fields(config: dict) -> dict:
     """The Scene fields of the study's ball, contact and surface sections (without the measurement)."""
     ball, surface, contact = config["ball"], config["surface"], config["contact"]
-    given = {name: contact[name] for name in (*PARAMETER_NAMES, *TANGENTIAL_PARAMETERS) if name in contact}
+    given = {name: value for name, value in contact.items() if name not in CONTACT_KEYS}
     if "materials" in contact:  # E* (and kappa) of the two bodies, as a DEM deck gives them
         body = {name: (m["E"], m["nu"]) for name, m in contact["materials"].items()}
         given |= material_fields(body["ball"], body.get("surface"),
                                  bool(TANGENTIALS.model(contact["tangential"]).stiffness_parameters), set(given))
     return dict(mass=ball["mass"], diameter=ball["diameter"], inertia_factor=ball["inertia_factor"], mu=surface["mu"],
                 gravity=surface["gravity"], model=contact["model"], separation=contact["separation"],
-                tangential=contact["tangential"], **given, parameters=contact.get("parameters", {}),
+                tangential=contact["tangential"], **given,
                 **{f"partner_{name}": value for name, value in surface.get("partner", {}).items()})
 
 
@@ -64,9 +70,9 @@ def measurement(config: dict) -> Measurement | None:
 def study_ball(config: dict, fitted: str | None = None) -> Ball:
     """The study's ball: from its ``ball_file``, or from its ball, surface and contact sections, its damping (and k)
     calibrated to the configured COR (and contact time) at ``cor_speed`` (1 m/s if not given) when one is given.
-    The config's ``plugins`` are imported first; ``contact.parameters`` are its models' own parameters and
-    ``contact.settings`` their settings.  ``fitted``: the ball file its ``fit`` section's fit wrote, which then
-    is the study's ball."""
+    The config's ``plugins`` are imported first; ``contact`` gives its models' parameters by name, a plug-in's as
+    the built-in ones, and ``contact.settings`` their settings.  ``fitted``: the ball file its ``fit`` section's
+    fit wrote, which then is the study's ball."""
     names = tuple(plugins.load(config.get("plugins", [])))
     if fitted:
         return load_ball(fitted)
