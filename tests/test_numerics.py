@@ -68,6 +68,20 @@ def test_work_precision_charts_the_closed_form_exactly_where_the_law_has_one():
     assert set(reduced["case"]) == set(cases) and (reduced["error"].between(1e-9, 1e-4)).all()
 
 
+def test_a_work_precision_line_stops_after_its_first_point_over_the_cost_cap():
+    """Points are run from the loosest tolerance on; once one impact takes more than the cap, the line's tighter
+    tolerances are rows saying why they were not run (any time is over a cap of 1e-12 s; none is over 1e9 s)."""
+    scene = {"kv": Scene(model="kelvin-voigt", angle=30.0)}
+    capped = work_precision(scene, tolerances=(1e-8, 1e-4, 1e-6), methods=("RK45",), cost_cap=1e-12)
+    capped = capped[capped["body"] == "reduced"]
+    assert list(capped["rtol"]) == [1e-4, 1e-6, 1e-8]
+    assert capped["status"].tolist()[0] == "ok" and capped["error"].notna().tolist() == [True, False, False]
+    assert all(status.startswith("not run: rtol 0.0001 took ") and status.endswith("over the cost cap")
+               for status in capped["status"].tolist()[1:])
+    free = work_precision(scene, tolerances=(1e-4, 1e-6), methods=("RK45",), cost_cap=1e9)
+    assert (free["status"] == "ok").all()
+
+
 def test_speedups_at_equal_accuracy():
     frame = pd.DataFrame([
         ("c", "kv", "reduced", "A", 1e-10, 1e-11, 2.0), ("c", "kv", "planar", "A", 1e-10, 1e-10, 6.0),

@@ -71,7 +71,8 @@ CAPTIONS = {
                        "shows; each run writes its own to results/figures/. Work-precision: worst relative error "
                        "against median wall time per impact (top) and against right-hand-side evaluations (bottom), "
                        "one colour per method, solid the reduced body, dashed the planar one, dotted the 1e-9 "
-                       "target; one column per scene."),
+                       "target; one column per scene. A line ends at its first impact slower than the config's "
+                       "numerics.cost_cap."),
     "stability": ("Numerics", "Where methods fail, one panel per failure mode: stiffness, the force jump at first "
                               "touch, friction at grip, locating separation, and the modified law past separation; "
                               "the naive formulation beside the package's."),

@@ -25,6 +25,10 @@ METHODS = ("taylor", "DOP853-scalar", "RK23", "RK45", "DOP853", "Radau", "BDF", 
 TOLERANCES = tuple(10.0 ** -e for e in range(3, 13))
 #: Accuracy every output must meet with the package's default method and tolerance.
 TARGET = 1e-9
+#: Seconds [s] one impact may take before a method's line stops: its tighter tolerances are not run (each is
+#: a row saying so), since a line whose slope is measured only grows dearer from there (RK23's and Radau's at
+#: the tightest tolerances).  Which points that stops depends on the machine, as every time of the chart does.
+COST_CAP = 0.5
 
 
 def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "reduced") -> dict:
@@ -39,10 +43,19 @@ def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "redu
             "time": seconds, "nfev": out.nfev, "status": "ok"}
 
 
-def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHODS) -> pd.DataFrame:
+def _not_run(method: str, body: str, rtol: float, over: dict) -> dict:
+    """The row of a point not run: ``over``, the point of the same line that took more than the cap."""
+    return {"method": method, "body": body, "rtol": rtol, "error": None, "time": None, "nfev": None,
+            "status": f"not run: rtol {over['rtol']:g} took {over['time']:.2g} s an impact, over the cost cap"}
+
+
+def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHODS,
+                   cost_cap: float = COST_CAP) -> pd.DataFrame:
     """Every method x body x tolerance for each case, plus the closed form where it exists (timed in the steady
-    state, :func:`~.timing.steady_state`)."""
+    state, :func:`~.timing.steady_state`), from the loosest tolerance to the tightest; a line stops after the first
+    point whose impact took more than ``cost_cap`` seconds (its other points are rows saying so)."""
     steady_state()
+    tolerances = sorted(tolerances, reverse=True)
     rows = []
     for case, scene in cases.items():
         log.info("work-precision: case %s", case)
@@ -54,8 +67,13 @@ def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHO
             for method in methods:
                 if body == "planar" and INTEGRATORS[method].ivp != method:  # reduced only, or run as another
                     continue
+                over = None
                 for rtol in tolerances:
-                    rows.append(base | measure(scene, ref.outputs, method, rtol, body))
+                    point = measure(scene, ref.outputs, method, rtol, body) if over is None else _not_run(
+                        method, body, rtol, over)
+                    rows.append(base | point)
+                    if over is None and point["time"] is not None and point["time"] > cost_cap:
+                        over = point
     return pd.DataFrame(rows)
 
 

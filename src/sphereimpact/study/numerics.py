@@ -36,7 +36,7 @@ def domain_cases(config: dict, models=("modified", "kelvin-voigt")) -> dict:
 def write_work_precision(config: dict, csv_path: str) -> None:
     numerics = config["numerics"]
     frame = work_precision(chapter_cases(config) | domain_cases(config), numerics["tolerances"],
-                           numerics["methods"])
+                           numerics["methods"], numerics["cost_cap"])
     frame["case"] = frame["case"].str.split("/").str[0]
     frame.to_csv(csv_path, **CSV)
 

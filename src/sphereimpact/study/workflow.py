@@ -35,7 +35,7 @@ RULE_KEYS = {
     "figure": ("primary.separation",),
     "figure_index": ("primary.separation",),
     "work_precision": (*_SCENE, "cases", "primary", "numerics.methods", "numerics.tolerances",
-                       "numerics.domain"),
+                       "numerics.cost_cap", "numerics.domain"),
     "stability": (*_SCENE, "numerics.methods", "numerics.stability"),
     "ablation": (*_SCENE, "cases", "primary"),
     "microslip_resolution": ("numerics.microslip", "validation", "bench.repeats"),
