@@ -4,6 +4,7 @@ import math
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 from sphereimpact import SolverOptions
@@ -12,8 +13,15 @@ from sphereimpact.numerics.reference import output_scales
 ROOT = Path(__file__).resolve().parents[1]
 #: The small configuration the pipeline tests run on.
 TEST_CONFIG = "config/test.yaml"
-#: What a copy of the project for a pipeline test leaves out.
-IGNORE = shutil.ignore_patterns("__pycache__", "*.egg-info")
+#: numba's disk cache of a module's compiled kernels: an index and machine code in the module's __pycache__, valid
+#: while the module's size and modification time are the same (a copy keeps both).
+KERNEL_CACHE = (".nbi", ".nbc")
+#: Compiles every built-in kernel of the project's own tree, or loads it from the disk cache: what a process of
+#: the pipeline would otherwise compile on first use, each of a fresh copy's concurrent jobs on its own.
+COMPILE_KERNELS = ("from sphereimpact.contact.laws import LAWS; from sphereimpact.integrators import dop853_kernel; "
+                   "from sphereimpact.contact.tangential import microslip_march; "
+                   "[law.kernel.load() for law in LAWS.values() if law.kernel is not None]; "
+                   "microslip_march.compile_all()")
 #: Tight options for comparisons at the 1e-9 level.
 TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)
 
@@ -38,12 +46,24 @@ def pytest_collection_modifyitems(items):
     items.sort(key=lambda item: item.path.name != "test_workflow.py")
 
 
+def _left_out(directory: str, names: list) -> list:
+    """What a project copy leaves out: bytecode (its own is compiled once by its jobs) and build metadata; numba's
+    cache of the kernels is kept."""
+    if Path(directory).name == "__pycache__":
+        return [name for name in names if not name.endswith(KERNEL_CACHE)]
+    return [name for name in names if name.endswith(".egg-info")]
+
+
 def project_copy(work: Path) -> Path:
-    """A copy of what the pipeline needs (Snakefile, workflow, config, notebooks, src, data) in ``work``."""
+    """A copy of what the pipeline needs (Snakefile, workflow, config, notebooks, src, data) in ``work``, with the
+    project's kernels compiled first (:data:`COMPILE_KERNELS`) and their disk cache copied: its jobs load them.  The
+    kernels' code and answers are the same; only who compiles them changes."""
+    subprocess.run([sys.executable, "-c", COMPILE_KERNELS], check=True, cwd=ROOT,
+                   env=os.environ | {"PYTHONPATH": str(ROOT / "src")})
     for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,
-                                                            **({"ignore": IGNORE} if src.is_dir() else {}))
+                                                            **({"ignore": _left_out} if src.is_dir() else {}))
     return work
 
 
