@@ -193,3 +193,27 @@ def test_a_commands_start_is_timed_in_fresh_processes_beside_pythons():
     assert list(table["contender"]) == list(STARTUP) and table["scene"].eq(STARTUP_SCENE).all()
     assert (table["time"] > 0).all() and table["time_ratio"].iloc[0] == 1.0
     assert table["time_ratio"].iloc[1] == pytest.approx(table["time"].iloc[1] / table["time"].iloc[0], rel=1e-12)
+
+
+def test_the_stability_studies_one_job_each_merge_into_the_table_of_all_at_once(tmp_path):
+    """The pipeline runs each failure-mode study in its own job (the timed one alone) and merges their tables: the
+    merged table is, byte for byte, the one all the studies write at once (studies without timings here); a study
+    the config does not list is refused by name."""
+    import yaml
+
+    from sphereimpact.study.config import with_defaults
+    from sphereimpact.study.numerics import merge_stability, write_stability
+
+    schema = yaml.safe_load(open("config/schema.yaml"))
+    config = with_defaults(schema, yaml.safe_load(open("config/config.yaml")))
+    config["numerics"] |= {"stability": ["past-separation", "onset"], "methods": ["RK45", "LSODA"]}
+    parts = []
+    for study in config["numerics"]["stability"]:
+        parts.append(tmp_path / f"{study}.csv")
+        write_stability(config, parts[-1], study)
+    merge_stability(parts, tmp_path / "merged.csv")
+    write_stability(config, tmp_path / "whole.csv")
+    assert (tmp_path / "merged.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+    assert pd.read_csv(tmp_path / "whole.csv")["study"].unique().tolist() == ["past-separation", "onset"]
+    with pytest.raises(ValueError, match=r"stability study 'grip' is not one of numerics.stability"):
+        write_stability(config, tmp_path / "grip.csv", "grip")

@@ -45,10 +45,10 @@ OUTPUTS = ["results/summary.csv", "results/summary.md", "results/replication.csv
 FIGURE_TOLERANCE = 2.0
 #: Rules whose jobs are timed and so run alone (``threads: workflow.cores``): the test's small run lets them
 #: share the machine, since its timings are not read.
-TIMED_RULES = ("work_precision", "bench", "bench_sweep", "microslip_resolution", "sweep_paths")
+TIMED_RULES = ("work_precision", "stability_study", "bench", "bench_sweep", "microslip_resolution", "sweep_paths")
 #: Rules whose jobs are benchmarks or heavy studies.
-HEAVY = ("work_precision", "stability", "bench", "bench_sweep", "ablation", "sweep_shard", "microslip_resolution",
-         "sweep_paths")
+HEAVY = ("work_precision", "stability_study", "stability", "bench", "bench_sweep", "ablation", "sweep_shard",
+         "microslip_resolution", "sweep_paths")
 
 
 def planned(run) -> dict:

@@ -1,4 +1,4 @@
-"""Snakemake script: one numerical study (rule work_precision, stability or ablation)."""
+"""Snakemake script: one numerical study (rule work_precision, ablation or microslip_resolution)."""
 from sphereimpact.study.numerics import write_study
 from sphereimpact.study.workflow import job_log
 

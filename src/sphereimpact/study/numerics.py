@@ -79,11 +79,21 @@ def write_bench_sweep(config: dict, csv_path: str) -> None:
                 million=bench["million"], laws=bench["laws"], fit_of=fit_of)
 
 
-def write_stability(config: dict, csv_path: str) -> None:
-    """The failure-mode studies on the first configured case's ball (each study sets its own angle)."""
+def write_stability(config: dict, csv_path: str, study: str | None = None) -> None:
+    """The failure-mode studies on the first configured case's ball (each study sets its own angle): those of
+    ``numerics.stability``, or ``study`` alone (the pipeline runs each in its own job, the timed one alone)."""
     base = scene_for(config, next(iter(config["cases"])), "modified", Separation.FORCE)
     numerics = config["numerics"]
-    stability(base, numerics["stability"], numerics["methods"]).to_csv(csv_path, **CSV)
+    if study is not None and study not in numerics["stability"]:
+        raise ValueError(f"stability study {study!r} is not one of numerics.stability {numerics['stability']}")
+    studies = numerics["stability"] if study is None else [study]
+    stability(base, studies, numerics["methods"]).to_csv(csv_path, **CSV)
+
+
+def merge_stability(parts: list[str], csv_path: str) -> None:
+    """The failure-mode studies' tables (:func:`write_stability` of one study each), in the order given, as the
+    one table :func:`write_stability` writes for them all."""
+    pd.concat([pd.read_csv(part) for part in parts], ignore_index=True).to_csv(csv_path, **CSV)
 
 
 def write_ablation(config: dict, published_path: str, csv_path: str) -> None:
@@ -122,15 +132,13 @@ def write_microslip_resolution(config: dict, csv_path: str) -> None:
 
 
 def write_study(rule: str, config: dict, csv_path: str, published: str | None = None) -> None:
-    """The study of workflow rule ``rule`` (``work_precision``, ``stability``, ``ablation`` or
-    ``microslip_resolution``)."""
+    """The study of workflow rule ``rule`` (``work_precision``, ``ablation`` or ``microslip_resolution``; the
+    stability studies: :func:`write_stability`)."""
     if rule == "microslip_resolution":
         write_microslip_resolution(config, csv_path)
     elif rule == "ablation":
         write_ablation(config, published, csv_path)
     elif rule == "work_precision":
         write_work_precision(config, csv_path)
-    elif rule == "stability":
-        write_stability(config, csv_path)
     else:
         raise ValueError(f"no numerical study for rule {rule!r}")
