@@ -51,7 +51,7 @@ rule stability_study:
         study="[a-z-]+",
     threads: lambda wildcards: workflow.cores if wildcards.study == "stiffness" else 1  # timed: alone
     benchmark:
-        "results/benchmarks/numerics/stability/{study}.tsv"
+        "results/benchmarks/numerics/stability_study/{study}.tsv"
     log:
         "logs/stability/{study}.log",
     conda:
