@@ -1,5 +1,6 @@
 """Shared helpers for the tests."""
 
+import functools
 import math
 import os
 import shutil
@@ -46,6 +47,13 @@ def pytest_collection_modifyitems(items):
     items.sort(key=lambda item: item.path.name != "test_workflow.py")
 
 
+@functools.cache
+def _compile_kernels() -> None:
+    """:data:`COMPILE_KERNELS` in a fresh process, once per test process (every later copy finds the cache warm)."""
+    subprocess.run([sys.executable, "-c", COMPILE_KERNELS], check=True, cwd=ROOT,
+                   env=os.environ | {"PYTHONPATH": str(ROOT / "src")})
+
+
 def _left_out(directory: str, names: list) -> list:
     """What a project copy leaves out: bytecode (its own is compiled once by its jobs) and build metadata; numba's
     cache of the kernels is kept."""
@@ -58,8 +66,7 @@ def project_copy(work: Path) -> Path:
     """A copy of what the pipeline needs (Snakefile, workflow, config, notebooks, src, data) in ``work``, with the
     project's kernels compiled first (:data:`COMPILE_KERNELS`) and their disk cache copied: its jobs load them.  The
     kernels' code and answers are the same; only who compiles them changes."""
-    subprocess.run([sys.executable, "-c", COMPILE_KERNELS], check=True, cwd=ROOT,
-                   env=os.environ | {"PYTHONPATH": str(ROOT / "src")})
+    _compile_kernels()
     for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,

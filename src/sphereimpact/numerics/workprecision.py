@@ -37,16 +37,15 @@ def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "redu
     try:
         seconds, out = median_time(lambda: simulate(scene, options, body=body))
     except ImpactError as err:
-        return {"method": method, "body": body, "rtol": rtol, "error": None, "time": None, "nfev": None,
-                "status": f"failed: {err}"}
+        return _without_result(method, body, rtol, f"failed: {err}")
     return {"method": method, "body": body, "rtol": rtol, "error": worst_error(out.to_dict(), ref, scene),
             "time": seconds, "nfev": out.nfev, "status": "ok"}
 
 
-def _not_run(method: str, body: str, rtol: float, over: dict) -> dict:
-    """The row of a point not run: ``over``, the point of the same line that took more than the cap."""
+def _without_result(method: str, body: str, rtol: float, status: str) -> dict:
+    """The row of a point with no result: failed, or not run (``status`` says which and why)."""
     return {"method": method, "body": body, "rtol": rtol, "error": None, "time": None, "nfev": None,
-            "status": f"not run: rtol {over['rtol']:g} took {over['time']:.2g} s an impact, over the cost cap"}
+            "status": status}
 
 
 def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHODS,
@@ -69,8 +68,9 @@ def work_precision(cases: dict[str, Scene], tolerances=TOLERANCES, methods=METHO
                     continue
                 over = None
                 for rtol in tolerances:
-                    point = measure(scene, ref.outputs, method, rtol, body) if over is None else _not_run(
-                        method, body, rtol, over)
+                    point = measure(scene, ref.outputs, method, rtol, body) if over is None else _without_result(
+                        method, body, rtol, f"not run: rtol {over['rtol']:g} took {over['time']:.2g} s an impact, "
+                        "over the cost cap")
                     rows.append(base | point)
                     if over is None and point["time"] is not None and point["time"] > cost_cap:
                         over = point
