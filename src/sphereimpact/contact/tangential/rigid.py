@@ -282,7 +282,9 @@ class TangentialMotion:
         self.phases, self.t_roll = [], None if phase.mode == Regime.SLIDING else 0.0
         while True:
             grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
-            if phase.mode == Regime.SLIDING:  # sigma s falls through zero when the contact point stops slipping
+            if phase.mode == Regime.SLIDING and self._slides_throughout(phase):
+                t_switch = None
+            elif phase.mode == Regime.SLIDING:  # sigma s falls through zero when the contact point stops slipping
                 t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): p.sigma * self._slip(p, t, j0),
                                       grid, direction=-1)
             elif self._hold > 0:
@@ -304,6 +306,16 @@ class TangentialMotion:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         self.regime = self.phases[-1].mode
         self.switches = len(self.phases) - 1
+
+    def _slides_throughout(self, p: Phase) -> bool:
+        """Whether sliding phase ``p`` lasts to t_f, decided without a search where that is exact: from t = 0
+        without gravity along the flat the slip s0 - sigma mu (1 + 1/alpha) J+ / m falls with J+ alone, so the
+        contact slides throughout when J+(t_f) falls short (:func:`impulse_outcome`'s test, the sweep's);
+        otherwise the grip is searched for on the dense output."""
+        s = self.scene
+        if s.g_tangent != 0 or p.t0 != 0:
+            return False
+        return s.mu * slip_per_impulse(s.mass, s.inertia_factor) * self.jp(self.normal.t_f) < abs(s.slip0)
 
     def _evaluate(self, p: Phase, t):
         """(v_t [m/s], omega [rad/s], x_t [m]) at t within phase p (floats for one instant)."""
