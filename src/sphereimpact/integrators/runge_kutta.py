@@ -79,8 +79,19 @@ def _checked_kernel(scene, scales):
                 raise ValueError(f"law {law.name!r}: its kernel gives P = {mine!r} N where its scalar formula gives "
                                  f"{theirs!r} N (delta {x * d_scale:.3g} m, delta_dot {y * v:.3g} m/s): a kernel must "
                                  "be the scalar formula compiled")
-        _CHECKED[key] = compiled
+        _CHECKED[key] = _by_address(compiled)
     return _CHECKED[key]
+
+
+def _by_address(kernel):
+    """``kernel`` (a numba dispatcher compiled for :data:`~sphereimpact.contact.laws.kernels.SIGNATURE`) as its
+    compiled function's address, which numba reads off the object at each call: passed as the dispatcher, each
+    call of the integrator looked the address up in numba's code library again."""
+    from numba.core.types import CompileResultWAP
+
+    from ..contact.laws.kernels import SIGNATURE
+
+    return CompileResultWAP(kernel.get_compile_result(SIGNATURE))  # compiled for it, its return cast if need be
 
 
 def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
