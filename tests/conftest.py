@@ -19,10 +19,7 @@ TEST_CONFIG = "config/test.yaml"
 KERNEL_CACHE = (".nbi", ".nbc")
 #: Compiles every built-in kernel of the project's own tree, or loads it from the disk cache: what a process of
 #: the pipeline would otherwise compile on first use, each of a fresh copy's concurrent jobs on its own.
-COMPILE_KERNELS = ("from sphereimpact.contact.laws import LAWS; from sphereimpact.integrators import dop853_kernel; "
-                   "from sphereimpact.contact.tangential import microslip_march; "
-                   "[law.kernel.load() for law in LAWS.values() if law.kernel is not None]; "
-                   "microslip_march.compile_all()")
+COMPILE_KERNELS = "from sphereimpact.integrators.compiled import compile_all; compile_all()"
 #: Tight options for comparisons at the 1e-9 level.
 TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)
 

@@ -1,6 +1,8 @@
-"""The compiled normal motion: each law's force kernel is its scalar formula to the bit, and the compiled DOP853
-(sphereimpact.integrators.dop853_kernel) gives the Python-float DOP853's answer to the bit (that one takes scipy's
-steps: tests/test_dop853.py), on every built-in law, both separation criteria, gravity and eq. 4.2's ramp band."""
+"""The compiled normal motion: each law's force kernel is its scalar formula to the bit, each series kernel its
+series, and the compiled DOP853 (sphereimpact.integrators.dop853_kernel) gives the Python-float DOP853's answer to
+the bit (that one takes scipy's steps: tests/test_dop853.py), the compiled Taylor method
+(sphereimpact.integrators.taylor_kernel) the Python-float one's, on every built-in law, both separation criteria,
+gravity and eq. 4.2's ramp band."""
 
 import numpy as np
 import pytest
@@ -9,13 +11,13 @@ from sphereimpact import ImpactError, Scene, SolverOptions, simulate
 from sphereimpact.contact.laws import LAWS
 from sphereimpact.contact.laws import kernels
 from sphereimpact.contact.laws.base import Kernel
-from sphereimpact.integrators import runge_kutta
+from sphereimpact.integrators import compiled as compiled_rule, runge_kutta
 from sphereimpact.ode import dop853
 
 @pytest.fixture(autouse=True)
 def compiled_from_the_start(monkeypatch):
     """The compiled integrator from the first motion (a process loads it only once it has integrated much)."""
-    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 0)
 
 
 SCENES = {
@@ -122,19 +124,19 @@ def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_py
         calls.append(1)
         return _python_floats(*args)
 
-    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 10**9)
-    monkeypatch.setattr(runge_kutta, "_spent_in_floats", 0)
-    monkeypatch.setattr(runge_kutta, "_KERNEL_MODULE", "not loaded")
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**9)
+    monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
+    monkeypatch.setattr(compiled_rule, "_KERNEL_MODULE", "not loaded")
     monkeypatch.setattr(runge_kutta, "_compiled", spy)
     scene, options = SCENES["hertz"], SolverOptions(method="DOP853-scalar")
     first = simulate(scene, options)
-    assert not calls and runge_kutta._spent_in_floats == first.nfev  # 510 evaluations in two runs
-    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 3 * first.nfev)
+    assert not calls and compiled_rule._spent_in_floats == first.nfev  # 510 evaluations in two runs
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 3 * first.nfev)
     for _ in range(2):
         simulate(scene, options)
-    assert not calls and runge_kutta._spent_in_floats == 3 * first.nfev
+    assert not calls and compiled_rule._spent_in_floats == 3 * first.nfev
     simulate(scene, options)
-    assert len(calls) == 2 and runge_kutta._spent_in_floats == 3 * first.nfev  # both runs, compiled
+    assert len(calls) == 2 and compiled_rule._spent_in_floats == 3 * first.nfev  # both runs, compiled
 
 
 def test_across_the_domain_the_compiled_answer_is_the_python_floats_one_to_the_bit(monkeypatch):
@@ -166,3 +168,102 @@ def test_across_the_domain_the_compiled_answer_is_the_python_floats_one_to_the_b
     floats = outcomes()
     assert sum(isinstance(a, dict) for a in compiled) > 250
     assert compiled == floats
+
+
+#: The built-in laws with a series: each has a series kernel.
+SERIES_LAWS = ("kelvin-voigt", "linear-hunt-crossley", "modified")
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_a_built_in_law_has_a_series_kernel_exactly_where_it_has_a_series(name):
+    law = LAWS[name]
+    assert (law.series_kernel is not None) == (law.series is not None) == (name in SERIES_LAWS)
+
+
+@pytest.mark.parametrize("name", SERIES_LAWS)
+def test_every_series_kernel_is_its_law_series_to_the_bit(name):
+    """At random states (inside and past separation, either rate), orders and gravity, with the family numbers
+    over decades."""
+    law = LAWS[name]
+    kernel = law.series_kernel.load(series=True)
+    rng = np.random.default_rng(3)
+    for _ in range(500):
+        x, y, order = rng.uniform(-0.1, 1.5), rng.uniform(-1.2, 1.2), int(rng.integers(8, 25))
+        gamma = 0.0 if rng.uniform() < 0.5 else rng.uniform(-0.05, 0.05)
+        numbers = {"zeta": 10 ** rng.uniform(-3, 1), "lam": 10 ** rng.uniform(0, 3), "chi_v": 10 ** rng.uniform(-3, 0.5)}
+        scene = SCENES[name]
+        numbers = {key: numbers[key] for key in scene.family}
+        xs, ys = np.empty(order + 1), np.empty(order + 1)
+        kernel(x, y, np.array(list(numbers.values())), gamma, order, xs, ys)
+        python_xs, python_ys = law.series(x, y, numbers, gamma, order)
+        np.testing.assert_array_equal(xs, python_xs)  # to the bit (NaN where both overflowed)
+        np.testing.assert_array_equal(ys, python_ys)
+
+
+def _in_python_floats(monkeypatch):
+    """This process integrates in Python floats from now on (as one that has integrated little)."""
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**12)
+    monkeypatch.setattr(compiled_rule, "_KERNEL_MODULE", "not loaded")
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-10, 1e-12])
+@pytest.mark.parametrize("name", [name for name in sorted(SCENES) if SCENES[name].law.series_kernel is not None])
+def test_the_compiled_taylor_method_is_the_python_floats_one_to_the_bit(name, rtol, monkeypatch):
+    scene, options = SCENES[name], SolverOptions(method="taylor", rtol=rtol, atol=rtol)
+    compiled = simulate(scene, options).to_dict()
+    _in_python_floats(monkeypatch)
+    floats = simulate(scene, options).to_dict()
+    compiled.pop("wall_time"), floats.pop("wall_time")
+    assert compiled == floats
+
+
+def test_across_the_domain_the_compiled_taylor_answer_is_the_python_floats_one_to_the_bit(monkeypatch):
+    """400 random scenes of the differential test's domain with a series (eq. 4.1, eq. 4.2 with its ramp over
+    decades, linear Hunt-Crossley; both criteria, gravity on level and sloped flats, spin), each by the Taylor method
+    compiled and in Python floats at two tolerances: the same outcome, or the same refusal."""
+    import warnings
+
+    from sphereimpact.numerics.consistency import random_scenes
+    from sphereimpact.sweep.engine import scene_of, scene_table
+
+    frame = scene_table(random_scenes(800, seed=12, groups=0))
+    frame = frame[frame["model"].isin(SERIES_LAWS)].iloc[:400]
+
+    def outcomes():
+        answers = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for row in frame.to_dict("records"):
+                scene = scene_of(row).with_(tangential="rigid")
+                for rtol in (1e-8, 1e-12):
+                    try:
+                        outcome = simulate(scene, SolverOptions(method="taylor", rtol=rtol, atol=rtol))
+                        answers.append({k: v for k, v in outcome.to_dict().items() if k != "wall_time"})
+                    except ImpactError as err:
+                        answers.append(f"{type(err).__name__}: {err}")
+        return answers
+
+    compiled = outcomes()
+    _in_python_floats(monkeypatch)
+    floats = outcomes()
+    assert len(frame) == 400 and sum(isinstance(a, dict) for a in compiled) > 700
+    assert compiled == floats
+
+
+def test_a_process_counts_its_taylor_steps_in_python_floats_toward_loading_the_compiled_method(monkeypatch):
+    _in_python_floats(monkeypatch)
+    monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
+    first = simulate(SCENES["modified"], SolverOptions(method="taylor"))
+    assert compiled_rule._spent_in_floats == first.nfev > 0  # its steps times its order
+    second = simulate(SCENES["hertz"], SolverOptions(method="DOP853-scalar"))
+    assert compiled_rule._spent_in_floats == first.nfev + second.nfev  # and DOP853's evaluations alike
+
+
+def test_a_series_kernel_that_is_not_the_series_is_refused_by_name(monkeypatch):
+    from dataclasses import replace
+
+    wrong = replace(LAWS["modified"], name="modified-wrong-series",
+                    series_kernel=Kernel("kelvin_voigt_series", lambda p: (p.family["zeta"],)))
+    monkeypatch.setitem(LAWS, wrong.name, wrong)
+    with pytest.raises(ValueError, match="law 'modified-wrong-series': its series kernel's coefficients differ"):
+        simulate(Scene(model=wrong.name, incidence=30.0), SolverOptions(method="taylor"))

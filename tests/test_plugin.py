@@ -89,12 +89,12 @@ def test_a_law_that_brings_its_own_kernel_is_integrated_compiled_with_the_python
     from dataclasses import replace
 
     from sphereimpact import Kernel
-    from sphereimpact.integrators import runge_kutta
+    from sphereimpact.integrators import compiled as compiled_rule, runge_kutta
     from sphereimpact.ode import dop853
 
     compiled_law = LAWS.register(replace(GROWING, name="growing-compiled", scalar=_growing_scalar,
                                          kernel=Kernel(_growing_kernel, lambda p: (p.k, p.b, p.radius))))
-    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 0)
     calls = []
     compiled = runge_kutta._compiled
     monkeypatch.setattr(runge_kutta, "_compiled", lambda *args: calls.append(1) or compiled(*args))
@@ -137,11 +137,11 @@ def test_a_kernel_that_does_not_compile_or_is_not_the_scalar_formula_is_refused_
     from dataclasses import replace
 
     from sphereimpact import Kernel
-    from sphereimpact.integrators import runge_kutta
+    from sphereimpact.integrators import compiled as compiled_rule
 
     bad = LAWS.register(replace(GROWING, name="growing-bad", scalar=_growing_scalar,
                                 kernel=Kernel(kernel, lambda p: (p.k, p.b, p.radius))))
-    monkeypatch.setattr(runge_kutta, "COMPILE_AFTER", 0)
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 0)
     try:
         with pytest.raises(ValueError, match=message):
             simulate(Scene(model="growing-bad", b=400.0, angle=30.0))

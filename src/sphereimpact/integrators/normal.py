@@ -441,7 +441,8 @@ class IntegratedNormal(_DimensionlessNormal):
 
 class TaylorNormal(_DimensionlessNormal):
     """Normal motion integrated by the Taylor-series method (:mod:`sphereimpact.ode.series`), for a law with a
-    ``series``.
+    ``series``: compiled (:mod:`.taylor_kernel`) for a law with a series kernel once the process integrates
+    compiled (:func:`.compiled.compiled_now`), the same steps and answer to the bit.
 
     The local tolerance (each step's truncation bound on the O(1) state) is min(rtol, atol), those
     tightened where the outputs are ill-conditioned (over-damped under the force criterion): by the square
@@ -477,10 +478,23 @@ class TaylorNormal(_DimensionlessNormal):
         ramp_rate = law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale
         numbers = {name: float(value) for name, value in scene.family.items()}
+        from . import compiled as rule  # when this process integrates compiled
+
+        compiled = law.series_kernel is not None and law.kernel is not None and law.scalar is not None
         try:
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                sol = series.solve(law.series, numbers, gamma, min(rtol, atol),
-                                   horizon(scene) * w, separation, lam or None, options.max_step * w)
+                if compiled and rule.compiled_now():  # the same steps and answer, compiled
+                    from .taylor_kernel import solved
+
+                    sol = solved(rule.checked_series_kernel(scene), rule.checked_kernel(scene, (d_scale, v)),
+                                 law.series_kernel.parameters(scene), law.kernel.parameters(scene), gamma,
+                                 min(rtol, atol), horizon(scene) * w, lam, options.max_step * w, d_scale, v,
+                                 scene.separation.pulls)
+                else:
+                    sol = series.solve(law.series, numbers, gamma, min(rtol, atol),
+                                       horizon(scene) * w, separation, lam or None, options.max_step * w)
+                    if compiled:
+                        rule.spend_in_floats(sol["dense"].steps * sol["order"])
         except series.StepBudgetError:
             raise ImpactError(f"no separation within {series.MAX_STEPS} Taylor steps ({describe_family(scene)}"
                               f"criterion '{scene.separation}'): the contact is too stiff or too slow to end") from None

@@ -141,11 +141,10 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
 
 
 #: A fresh process's first use of the compiled kernels: numba imported, every kernel compiled or loaded (the
-#: microslip march's, the normal motion's integrator and every built-in law's force).
+#: microslip march's, the normal motion's two integrators, every built-in law's force and series:
+#: :func:`sphereimpact.integrators.compiled.compile_all`).
 _FIRST_USE = ("import time; start = time.perf_counter(); "
-              "from sphereimpact.contact.tangential import microslip_march; microslip_march.compile_all(); "
-              "from sphereimpact.integrators import dop853_kernel; from sphereimpact.contact.laws import LAWS; "
-              "[law.kernel.load() for law in LAWS.values() if law.kernel is not None]; "
+              "from sphereimpact.integrators.compiled import compile_all; compile_all(); "
               "print(time.perf_counter() - start)")
 
 

@@ -8,11 +8,11 @@ import time
 
 
 def steady_state() -> None:
-    """Load the compiled integrator before timing (:func:`sphereimpact.integrators.runge_kutta.load_compiled`): a
+    """Load the compiled integrator before timing (:func:`sphereimpact.integrators.compiled.load_compiled`): a
     process integrates in Python floats until it has integrated enough to repay loading the compiled loop, so
     without this a benchmark's first points would time the one and its later points the other (the same answers).
     Every speed benchmark times the steady state of a process that integrates much."""
-    from ..integrators.runge_kutta import load_compiled
+    from ..integrators.compiled import load_compiled
 
     load_compiled()
 

@@ -140,8 +140,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options (method `auto`: the law's closed "
         "form where it has one, else the Taylor method where it has a series, else DOP853-scalar, scipy's DOP853 "
-        "per scene in plain floats, compiled (numba) once a process has integrated enough to repay loading it, "
-        "as here) against the hand-written script (one `solve_ivp` call, scalar right-hand side, the two events, no "
+        "per scene in plain floats; both compiled (numba) once a process has integrated enough to repay loading "
+        "them, as here) against the hand-written script (one `solve_ivp` call, scalar right-hand side, the two events, no "
         "dense output) at the loosest tolerance whose error is no larger than `simulate`'s. Error: the worst "
         "relative error over t_m, δ_m, "
         f"t_f, COR, ω_f and v_E,t against the closed form, the {FINE_DIGITS}-digit Taylor reference (eq. 4.2) or scipy's "
@@ -152,7 +152,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "rigid contact on the same scene (error: e_t's and spin's against the fine reference resolution) and "
         "beside its element row's march alone, the compiled kernel (numba) on the impact's own inputs: the rest "
         "of the impact is its normal motion. Once per process, not per impact: compiling the package's kernels (the "
-        "march's, the normal motion's DOP853 and the laws' forces) on a fresh machine (numba imported, an empty disk "
+        "march's, the normal motion's DOP853 and Taylor loops, the laws' forces and series) on a fresh machine (numba imported, an empty disk "
         "cache) and loading them from the cache that filled, each in a fresh Python process. Time ratio: over the "
         "rigid contact, the impact and the load.",
         tangential,

@@ -63,7 +63,7 @@ class Kernel:
         with numba, then), ``"module:name"`` for a plug-in's own, or the function itself (plain, or already
         compiled for that signature).  It must be the law's ``scalar`` formula, in its arithmetic (the
         integrator's events and landing evaluate that one): on its first use in a process it is compiled and held
-        to that formula at a few states of the scene (``integrators.runge_kutta._checked_kernel``), and refused by
+        to that formula at a few states of the scene (``integrators.compiled.checked_kernel``), and refused by
         name where it does not compile or differs.
     parameters : callable
         ``parameters(p) -> tuple of float``: the ``params`` the kernel reads, from a Scene.
@@ -72,8 +72,9 @@ class Kernel:
     function: object
     parameters: Callable
 
-    def load(self):
-        """The compiled function (compiled or loaded from numba's disk cache on the process's first call)."""
+    def load(self, series: bool = False):
+        """The compiled function (compiled or loaded from numba's disk cache on the process's first call): a force
+        kernel, or with ``series`` a series kernel (:data:`~sphereimpact.contact.laws.kernels.SERIES_SIGNATURE`)."""
         from . import kernels
 
         function = self.function
@@ -82,7 +83,9 @@ class Kernel:
 
             module, _, name = function.rpartition(":")
             function = getattr(importlib.import_module(module) if module else kernels, name)
-        return function if hasattr(function, "signatures") else kernels.compiled(function)
+        if hasattr(function, "signatures"):
+            return function
+        return kernels.compiled(function, kernels.SERIES_SIGNATURE if series else kernels.SIGNATURE)
 
 
 @dataclass(frozen=True)
@@ -166,6 +169,11 @@ class ContactLaw:
         The law's force compiled (:class:`Kernel`): method ``DOP853-scalar`` then integrates the normal motion in
         compiled code (:mod:`sphereimpact.integrators.dop853_kernel`); without one it runs the same algorithm on
         ``scalar`` in Python floats, or scipy's DOP853 without that either.
+    series_kernel : Kernel or None
+        The law's ``series`` compiled (a function of :mod:`~sphereimpact.contact.laws.kernels` by name, its
+        ``parameters`` the family numbers it reads, in order): method ``taylor`` then integrates in compiled
+        code (:mod:`sphereimpact.integrators.taylor_kernel`) once the process integrates compiled, with the
+        Python series' answer to the bit; without one it runs ``series`` in Python floats.
     per_compression : callable or None
         ``per_compression(x, y, numbers) -> Q``: P_hat / x, continued through x = 0, for a law whose force
         has a forced zero at first touch and separation (eq. 4.2): its sign is the force's inside the contact,
@@ -192,6 +200,7 @@ class ContactLaw:
     per_compression: Callable | None = None
     passive: bool = False
     kernel: Kernel | None = None
+    series_kernel: Kernel | None = None
 
     def __post_init__(self):
         names = [p.name for p in self.parameters]

@@ -17,10 +17,16 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 from numba import types
 
 #: P = kernel(delta, delta_dot, params): the one signature of every force kernel.
 SIGNATURE = types.float64(types.float64, types.float64, types.float64[::1])
+#: series(x, y, numbers, gamma, order, xs, ys): the one signature of every series kernel, which writes the Taylor
+#: coefficients of orders 0 to ``order`` of x and y into ``xs`` and ``ys`` (the law's ``series``, compiled for
+#: the compiled Taylor method, :mod:`sphereimpact.integrators.taylor_kernel`).
+SERIES_SIGNATURE = types.none(types.float64, types.float64, types.float64[::1], types.float64, types.int64,
+                              types.float64[::1], types.float64[::1])
 #: Cache the machine code on disk; IEEE semantics (no fast-math): the scalar formula's numbers, bit for bit.
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 
@@ -31,11 +37,11 @@ _INVERSE_FACTORIALS = tuple(1.0 / math.factorial(n) for n in range(1, 9))
 _COMPILED: dict = {}
 
 
-def compiled(function):
-    """``function`` (a kernel of this module or a plug-in's, a plain Python function) compiled for
-    :data:`SIGNATURE`, once per process."""
+def compiled(function, signature=SIGNATURE):
+    """``function`` (a kernel of this module or a plug-in's, a plain Python function) compiled for ``signature``
+    (:data:`SIGNATURE`, or :data:`SERIES_SIGNATURE` for a series kernel), once per process."""
     if function not in _COMPILED:
-        _COMPILED[function] = numba.njit(SIGNATURE, **_COMPILE)(function)
+        _COMPILED[function] = numba.njit(signature, **_COMPILE)(function)
     return _COMPILED[function]
 
 
@@ -79,3 +85,42 @@ def hertz(delta, delta_dot, p):
 def hunt_crossley(delta, delta_dot, p):
     """k sign(delta) |delta|^n (1 + chi delta_dot); p = (k, n, chi)."""
     return p[0] * _power(delta, p[1]) * (1.0 + p[2] * delta_dot)
+
+
+# --- series kernels: the laws' ``series`` (contact/laws/linear.py), their arithmetic in its order ---------------
+def kelvin_voigt_series(x, y, numbers, gamma, order, xs, ys):
+    """``linear.kelvin_voigt_series`` into xs, ys; numbers = (zeta,)."""
+    two_zeta = 2.0 * numbers[0]
+    xs[0], ys[0] = x, y
+    for k in range(order):
+        xs[k + 1] = ys[k] / (k + 1)
+        ys[k + 1] = ((gamma if k == 0 else 0.0) - xs[k] - two_zeta * ys[k]) / (k + 1)
+
+
+def modified_series(x, y, numbers, gamma, order, xs, ys):
+    """``linear.modified_series`` into xs, ys; numbers = (zeta, lam).  The convolution c_k summed from i = 0 up,
+    as Python's ``sum`` adds."""
+    two_zeta, lam = 2.0 * numbers[0], numbers[1]
+    es = np.empty(order + 1)
+    xs[0], ys[0], es[0] = x, y, math.exp(-lam * x)
+    ramp = -math.expm1(-lam * x)
+    for k in range(order):
+        c = 0.0
+        for i in range(k + 1):
+            c += ys[i] * es[k - i]
+        damping = ys[0] * ramp if k == 0 else ys[k] - c
+        xs[k + 1] = ys[k] / (k + 1)
+        ys[k + 1] = ((gamma if k == 0 else 0.0) - xs[k] - two_zeta * damping) / (k + 1)
+        es[k + 1] = -lam * c / (k + 1)
+
+
+def linear_hunt_crossley_series(x, y, numbers, gamma, order, xs, ys):
+    """``linear.linear_hunt_crossley_series`` into xs, ys; numbers = (chi_v,)."""
+    q = numbers[0]
+    xs[0], ys[0] = x, y
+    for k in range(order):
+        xy = 0.0
+        for i in range(k + 1):
+            xy += xs[i] * ys[k - i]
+        xs[k + 1] = ys[k] / (k + 1)
+        ys[k + 1] = ((gamma if k == 0 else 0.0) - xs[k] - q * xy) / (k + 1)

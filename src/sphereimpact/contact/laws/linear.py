@@ -263,7 +263,8 @@ LAWS.register(ContactLaw(
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=kelvin_voigt_scaled, closed_form=SPRING_DAMPER, scalar=kelvin_voigt_scalar,
     rate=kelvin_voigt_rate, series=kelvin_voigt_series, passive=True,
-    kernel=Kernel("kelvin_voigt", lambda p: (p.k, p.b))))
+    kernel=Kernel("kelvin_voigt", lambda p: (p.k, p.b)),
+    series_kernel=Kernel("kelvin_voigt_series", lambda p: (p.family["zeta"],))))
 
 LAWS.register(ContactLaw(
     "modified", "eq. 4.2, P = k delta + b delta_dot (1 - exp(-c delta/R)) (the chapter's model, c = ramp)",
@@ -272,7 +273,8 @@ LAWS.register(ContactLaw(
     horizon=lambda p: 100.0 * np.pi * (1.0 + 2.0 * damping_ratio(p)),
     damping="b", scaled=modified_scaled, ramp_rate=lambda p: p.ramp / p.radius, scalar=modified_scalar,
     rate=modified_rate, series=modified_series, per_compression=modified_per_compression, passive=True,
-    kernel=Kernel("modified", lambda p: (p.k, p.b, p.ramp, p.radius))))
+    kernel=Kernel("modified", lambda p: (p.k, p.b, p.ramp, p.radius)),
+    series_kernel=Kernel("modified_series", lambda p: (p.family["zeta"], p.family["lam"]))))
 
 LAWS.register(ContactLaw(
     "linear-hunt-crossley", "linear spring with Hunt-Crossley damping, P = k delta (1 + chi delta_dot)",
@@ -281,4 +283,5 @@ LAWS.register(ContactLaw(
     horizon=lambda p: 100.0 * np.pi * (1.0 + p.chi * p.v_normal),
     damping="chi", cor_relations=hunt_crossley_relations(), scaled=linear_hunt_crossley_scaled,
     scalar=linear_hunt_crossley_scalar, rate=linear_hunt_crossley_rate, series=linear_hunt_crossley_series, passive=True,
-    kernel=Kernel("linear_hunt_crossley", lambda p: (p.k, p.chi))))
+    kernel=Kernel("linear_hunt_crossley", lambda p: (p.k, p.chi)),
+    series_kernel=Kernel("linear_hunt_crossley_series", lambda p: (p.family["chi_v"],))))
