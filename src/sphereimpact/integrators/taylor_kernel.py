@@ -68,7 +68,15 @@ def _event(s, args):
     return _separation(force, params, d_scale, v, pulls, _horner(xs, s), _horner(ys, s))
 
 
-_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)
+_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event is called, not passed
+
+
+@numba.njit(**_COMPILE)
+def _event_root(kind, xs, ys, edge, force, params, d_scale, v, pulls, h):
+    """``series._root`` of the event of ``kind`` on [0, h]: (s, status) (one call site, so compiled once)."""
+    s, status, _ = _root(_event, (kind, xs, ys, edge, force, params, d_scale, v, pulls), 0.0, h, 1e-300, _ROOT_TOL,
+                         BRENT_ITERATIONS)
+    return s, status
 
 
 @numba.njit(**_COMPILE)
@@ -136,8 +144,7 @@ def solve(series_kernel, force, numbers, params, gamma, tol, end, lam, max_step,
             h = min(h, 2.0 * reach / below)
         x_end = _horner(xs, h)
         if band and x > band_top and edge >= x_end:
-            h, found, _ = _root(_event, (_EDGE, xs, ys, edge, force, params, d_scale, v, pulls), 0.0, h, 1e-300,
-                                _ROOT_TOL, BRENT_ITERATIONS)
+            h, found = _event_root(_EDGE, xs, ys, edge, force, params, d_scale, v, pulls, h)
             if found != 0:
                 status = NO_ROOT if found == NO_BRACKET else ROOT_UNCONVERGED
                 break
@@ -150,16 +157,14 @@ def solve(series_kernel, force, numbers, params, gamma, tol, end, lam, max_step,
         starts[steps] = tau
         cx[steps], cy[steps] = xs, ys
         if math.isnan(tau_m) and y > 0.0 >= y_end:
-            s, found, _ = _root(_event, (_RATE, xs, ys, edge, force, params, d_scale, v, pulls), 0.0, h, 1e-300,
-                                _ROOT_TOL, BRENT_ITERATIONS)
+            s, found = _event_root(_RATE, xs, ys, edge, force, params, d_scale, v, pulls, h)
             if found != 0:
                 status = NO_ROOT if found == NO_BRACKET else ROOT_UNCONVERGED
                 break
             tau_m = tau + s
         g_end = _separation(force, params, d_scale, v, pulls, x_end, y_end)
         if not math.isnan(tau_m) and g > 0.0 >= g_end:
-            s, found, _ = _root(_event, (_SEPARATION, xs, ys, edge, force, params, d_scale, v, pulls), 0.0, h,
-                                1e-300, _ROOT_TOL, BRENT_ITERATIONS)
+            s, found = _event_root(_SEPARATION, xs, ys, edge, force, params, d_scale, v, pulls, h)
             if found != 0:
                 status = NO_ROOT if found == NO_BRACKET else ROOT_UNCONVERGED
                 break
