@@ -144,5 +144,3 @@ class _Address:
 
     def __call__(self, *args):
         return self._call(*args)
-
-

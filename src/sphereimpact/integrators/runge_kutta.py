@@ -3,7 +3,7 @@
 
 ``DOP853-scalar`` is DOP853's algorithm in plain floats on a law with a scalar formula, scipy's DOP853 on any
 other: compiled (:mod:`.dop853_kernel`) for a law with a kernel once the process has integrated enough to repay
-loading it (:data:`.compiled.COMPILE_AFTER`), else in Python (:mod:`sphereimpact.ode.dop853`), the same answer to the bit.
+loading it (:mod:`.compiled`), else in Python (:mod:`sphereimpact.ode.dop853`), the same answer to the bit.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from .event_kinds import EventKind
 
 
 def _plain_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
-    """DOP853 in plain floats: compiled (:func:`_compiled`) where the law has a kernel, once the process has spent
-    :data:`COMPILE_AFTER` evaluations in Python floats or loaded the compiled integrator; else in Python."""
+    """DOP853 in plain floats: compiled (:func:`_compiled`) where the law has a kernel, once the process integrates
+    compiled (:func:`.compiled.compiled_now`); else in Python."""
     law = rhs.scene.law
     if law.kernel is not None and compiled_now():
         return _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step)

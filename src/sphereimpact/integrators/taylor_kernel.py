@@ -6,7 +6,7 @@ separation) enter by function pointer (:mod:`sphereimpact.contact.laws.kernels`)
 law with a series and numba caches it on disk once.  Each step is the Python loop's, in its order: the coefficients,
 the step from the last two of them (``series.step_size``), the ramp band's bound and edge (``series.band_limit``),
 the events' roots by Brent's method (``ode.roots.bracketed_root``, that very function compiled) on the step's
-polynomials, so the answer is the Python-float method's to the bit (tests/test_taylor.py).  :func:`solved` runs it
+polynomials, so the answer is the Python-float method's to the bit (tests/test_kernels.py).  :func:`solved` runs it
 and returns what ``series.solve`` returns, raising what it raises.
 """
 
