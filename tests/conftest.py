@@ -1,6 +1,5 @@
 """Shared helpers for the tests."""
 
-import functools
 import math
 import os
 import shutil
@@ -9,6 +8,7 @@ import sys
 from pathlib import Path
 
 from sphereimpact import SolverOptions
+from sphereimpact.integrators.compiled import GROUPS
 from sphereimpact.numerics.reference import output_scales
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -17,9 +17,9 @@ TEST_CONFIG = "config/test.yaml"
 #: numba's disk cache of a module's compiled kernels: an index and machine code in the module's __pycache__, valid
 #: while the module's size and modification time are the same (a copy keeps both).
 KERNEL_CACHE = (".nbi", ".nbc")
-#: Compiles every built-in kernel of the project's own tree, or loads it from the disk cache: what a process of
-#: the pipeline would otherwise compile on first use, each of a fresh copy's concurrent jobs on its own.
-COMPILE_KERNELS = "from sphereimpact.integrators.compiled import compile_all; compile_all()"
+#: Compiles one group of the built-in kernels of the project's own tree (``group``), or loads it from the disk
+#: cache: what a test process, or a process of a copy's pipeline, would otherwise compile on first use.
+COMPILE_KERNELS = "from sphereimpact.integrators.compiled import compile_all; compile_all({group!r})"
 #: Tight options for comparisons at the 1e-9 level.
 TIGHT = SolverOptions(method="DOP853", rtol=1e-12, atol=1e-14)
 
@@ -38,17 +38,22 @@ def assert_outputs_close(got, ref, rtol: float) -> None:
 
 
 
+def pytest_configure(config):
+    """Compile the project's kernels before any test runs, in two processes at once (a fresh clone's numba cache
+    is empty): the test processes then load them, none compiling what another compiles beside it.  Once, in the
+    process that starts the others (xdist's controller)."""
+    if hasattr(config, "workerinput"):
+        return
+    runs = [subprocess.Popen([sys.executable, "-c", COMPILE_KERNELS.format(group=group)], cwd=ROOT,
+                             env=os.environ | {"PYTHONPATH": str(ROOT / "src")}) for group in GROUPS]
+    if any(run.wait() for run in runs):
+        raise RuntimeError("compiling the project's kernels failed (see the output above)")
+
+
 def pytest_collection_modifyitems(items):
     """The pipeline tests first: run in parallel by file (pyproject's ``-n 2 --dist loadfile``), their
     long module fixture (the test pipeline) then overlaps the unit tests on the other worker."""
     items.sort(key=lambda item: item.path.name != "test_workflow.py")
-
-
-@functools.cache
-def _compile_kernels() -> None:
-    """:data:`COMPILE_KERNELS` in a fresh process, once per test process (every later copy finds the cache warm)."""
-    subprocess.run([sys.executable, "-c", COMPILE_KERNELS], check=True, cwd=ROOT,
-                   env=os.environ | {"PYTHONPATH": str(ROOT / "src")})
 
 
 def _left_out(directory: str, names: list) -> list:
@@ -61,9 +66,8 @@ def _left_out(directory: str, names: list) -> list:
 
 def project_copy(work: Path) -> Path:
     """A copy of what the pipeline needs (Snakefile, workflow, config, notebooks, src, data) in ``work``, with the
-    project's kernels compiled first (:data:`COMPILE_KERNELS`) and their disk cache copied: its jobs load them.  The
-    kernels' code and answers are the same; only who compiles them changes."""
-    _compile_kernels()
+    disk cache of the project's kernels (compiled before any test, :func:`pytest_configure`): its jobs load them.
+    The kernels' code and answers are the same; only who compiles them changes."""
     for item in ("Snakefile", "workflow", "config", "notebooks", "src", "data"):
         src = ROOT / item
         (shutil.copytree if src.is_dir() else shutil.copy)(src, work / item,

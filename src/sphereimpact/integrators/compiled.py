@@ -32,20 +32,34 @@ def load_compiled() -> None:
     importlib.import_module(_TAYLOR_MODULE)
 
 
-def compile_all() -> None:
-    """Compile every kernel of the package (or load it from numba's disk cache): both integrators' loops, every
-    built-in law's force and series kernels, the microslip march's (what a fresh machine compiles once; a
-    process otherwise compiles each on its first use)."""
+#: The package's kernels in two groups of about equal compile time, each compiled in one process of
+#: :func:`compile_all` when two compile at once on a fresh machine: DOP853's loop and the laws' forces it calls, and
+#: the Taylor method's loop, the laws' series and the microslip march.
+GROUPS = ("dop853", "taylor")
+
+
+def compile_all(group: str | None = None) -> None:
+    """Compile every kernel of the package (or load it from numba's disk cache), or those of one of :data:`GROUPS`:
+    both integrators' loops, every built-in law's force and series kernels, the microslip march's (what a fresh
+    machine compiles once; a process otherwise compiles each on its first use)."""
+    import importlib
+
     from ..contact.laws import LAWS
     from ..contact.tangential import microslip_march
 
-    load_compiled()
-    for law in LAWS.values():
-        if law.kernel is not None:
-            law.kernel.load()
-        if law.series_kernel is not None:
-            law.series_kernel.load(series=True)
-    microslip_march.compile_all()
+    if group not in (None, *GROUPS):
+        raise ValueError(f"group must be one of {', '.join(GROUPS)}, or None for every kernel; got {group!r}")
+    if group in (None, "dop853"):
+        importlib.import_module(_KERNEL_MODULE)
+        for law in LAWS.values():
+            if law.kernel is not None:
+                law.kernel.load()
+    if group in (None, "taylor"):
+        importlib.import_module(_TAYLOR_MODULE)
+        for law in LAWS.values():
+            if law.series_kernel is not None:
+                law.series_kernel.load(series=True)
+        microslip_march.compile_all()
 
 
 def compiled_now() -> bool:

@@ -28,7 +28,7 @@ TARGET = 1e-9
 #: Seconds [s] one impact may take before a method's line stops: its tighter tolerances are not run (each is
 #: a row saying so), since a line whose slope is measured only grows dearer from there (RK23's and Radau's at
 #: the tightest tolerances).  Which points that stops depends on the machine, as every time of the chart does.
-COST_CAP = 0.5
+COST_CAP = 0.2
 
 
 def measure(scene: Scene, ref: dict, method: str, rtol: float, body: str = "reduced") -> dict:
