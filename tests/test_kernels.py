@@ -206,13 +206,25 @@ def _in_python_floats(monkeypatch):
     monkeypatch.setattr(compiled_rule, "_KERNEL_MODULE", "not loaded")
 
 
+def _counting_compiled_taylor(monkeypatch) -> list:
+    """The compiled Taylor loop's runs from now on, one entry each (so a test sees which path answered)."""
+    from sphereimpact.integrators import taylor_kernel
+
+    runs, solved = [], taylor_kernel.solved
+    monkeypatch.setattr(taylor_kernel, "solved", lambda *args: runs.append(1) or solved(*args))
+    return runs
+
+
 @pytest.mark.parametrize("rtol", [1e-4, 1e-10, 1e-12])
 @pytest.mark.parametrize("name", [name for name in sorted(SCENES) if SCENES[name].law.series_kernel is not None])
 def test_the_compiled_taylor_method_is_the_python_floats_one_to_the_bit(name, rtol, monkeypatch):
     scene, options = SCENES[name], SolverOptions(method="taylor", rtol=rtol, atol=rtol)
+    runs = _counting_compiled_taylor(monkeypatch)
     compiled = simulate(scene, options).to_dict()
+    assert len(runs) == 1
     _in_python_floats(monkeypatch)
     floats = simulate(scene, options).to_dict()
+    assert len(runs) == 1  # the second in Python floats
     compiled.pop("wall_time"), floats.pop("wall_time")
     assert compiled == floats
 
@@ -243,9 +255,12 @@ def test_across_the_domain_the_compiled_taylor_answer_is_the_python_floats_one_t
                         answers.append(f"{type(err).__name__}: {err}")
         return answers
 
+    runs = _counting_compiled_taylor(monkeypatch)
     compiled = outcomes()
+    compiled_runs = len(runs)
     _in_python_floats(monkeypatch)
     floats = outcomes()
+    assert compiled_runs >= 700 and len(runs) == compiled_runs  # the first pass compiled, the second in floats
     assert len(frame) == 400 and sum(isinstance(a, dict) for a in compiled) > 700
     assert compiled == floats
 
@@ -267,3 +282,8 @@ def test_a_series_kernel_that_is_not_the_series_is_refused_by_name(monkeypatch):
     monkeypatch.setitem(LAWS, wrong.name, wrong)
     with pytest.raises(ValueError, match="law 'modified-wrong-series': its series kernel's coefficients differ"):
         simulate(Scene(model=wrong.name, incidence=30.0), SolverOptions(method="taylor"))
+
+
+def test_compiling_the_kernels_by_group_refuses_a_group_it_does_not_have():
+    with pytest.raises(ValueError, match="group must be one of dop853, taylor, or None for every kernel; got 'numpy'"):
+        compiled_rule.compile_all("numpy")
