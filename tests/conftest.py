@@ -46,7 +46,7 @@ def pytest_configure(config):
         return
     runs = [subprocess.Popen([sys.executable, "-c", COMPILE_KERNELS.format(group=group)], cwd=ROOT,
                              env=os.environ | {"PYTHONPATH": str(ROOT / "src")}) for group in GROUPS]
-    if any(run.wait() for run in runs):
+    if any([run.wait() for run in runs]):  # both waited for, whichever fails
         raise RuntimeError("compiling the project's kernels failed (see the output above)")
 
 

@@ -477,7 +477,6 @@ class TaylorNormal(_DimensionlessNormal):
         rtol, atol = conditioned_tolerances(scene, options, floor=ATOL_FLOOR, power=2)
         ramp_rate = law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale
-        numbers = {name: float(value) for name, value in scene.family.items()}
         from . import compiled as rule  # when this process integrates compiled
 
         compiled = law.series_kernel is not None and law.kernel is not None and law.scalar is not None
@@ -491,6 +490,7 @@ class TaylorNormal(_DimensionlessNormal):
                                  min(rtol, atol), horizon(scene) * w, lam, options.max_step * w, d_scale, v,
                                  scene.separation.pulls)
                 else:
+                    numbers = {name: float(value) for name, value in scene.family.items()}
                     sol = series.solve(law.series, numbers, gamma, min(rtol, atol),
                                        horizon(scene) * w, separation, lam or None, options.max_step * w)
                     if compiled:

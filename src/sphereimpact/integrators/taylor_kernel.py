@@ -79,15 +79,7 @@ def _event_root(kind, xs, ys, edge, force, params, d_scale, v, pulls, h):
     return s, status
 
 
-@numba.njit(**_COMPILE)
-def _step_size(xs, ys, tol):
-    """``series.step_size``."""
-    h = math.inf
-    for k in (xs.size - 2, xs.size - 1):
-        size = max(abs(xs[k]), abs(ys[k]))
-        if size > 0.0:
-            h = min(h, (tol / size) ** (1.0 / k))
-    return h
+_step_size = numba.njit(**_COMPILE)(series.step_size)  # that very function compiled
 
 
 @numba.njit(**_COMPILE)
