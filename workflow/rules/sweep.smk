@@ -137,6 +137,7 @@ rule consistency_references:
         shards=len(CONSISTENCY_SHARDS),
     wildcard_constraints:
         shard="[0-9]+",
+    priority: 1  # first: the differential test's chain is the longest of one-core jobs (see rule consistency)
     benchmark:
         "results/benchmarks/sweep/consistency_references/{shard}.tsv",
     log:
@@ -156,6 +157,9 @@ rule consistency:
     params:
         code=code("workflow/scripts/consistency.py"),
         config=params_for("consistency"),
+    # started as soon as its references are: a long one-core job, it then shares the machine with the short ones,
+    # not with an idle core while the timed jobs (which run alone) wait for it
+    priority: 1
     benchmark:
         "results/benchmarks/sweep/consistency.tsv",
     log:
