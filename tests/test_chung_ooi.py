@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from sphereimpact import simulate
 from sphereimpact.cli import run
 from sphereimpact.study import chung_ooi
 from sphereimpact.study.chung_ooi import (HERTZ_TIME, OUTPUTS, deviations, load_tests, read_table, scenes_of_test, solve,
@@ -293,3 +294,21 @@ def test_the_departure_study_refuses_what_it_cannot_run(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "config key validation.sphere.modulus: -5.0 is less than or equal to the minimum" in err
     assert not out.exists()
+
+
+def test_the_reduction_gap_with_mindlins_spring_is_of_the_line_turns_order():
+    """Issue 41 item 7: test 8's pairs (the exact microslip contact) measured against the planar two-body model with
+    Mindlin's undamped spring at each row's kappa, as with the rigid contact: a first-order effect of the turn, so
+    below the turn times the speed and of its order; empty on a plane and for a rigid contact's spring."""
+    from sphereimpact.study.chung_ooi import _line_turn, reduction_gap
+
+    table = scenes_of_test(8)
+    for scene in table["scene"].iloc[[4, 16, 22]]:  # kappa 802 (case A) and 0.8 (case B), spins 0.7 to 2 rad/s
+        turn = _line_turn(scene, simulate(scene)) * scene.speed
+        spring, rigid = reduction_gap(scene, "mindlin"), reduction_gap(scene)
+        assert 0.05 * turn < spring < turn and 0.5 < spring / rigid < 2.0
+    plane = scenes_of_test(5)["scene"].iloc[3]
+    assert math.isnan(reduction_gap(plane, "mindlin")) and math.isnan(reduction_gap(plane))
+    assert math.isnan(reduction_gap(table["scene"].iloc[4].with_(tangential="rigid"), "mindlin"))
+    with pytest.raises(ValueError, match="tangential must be 'rigid' or 'mindlin'; got 'linear'"):
+        reduction_gap(table["scene"].iloc[4], "linear")

@@ -293,7 +293,7 @@ def test_a_registered_tangential_model_is_served_by_simulate_sweep_and_cli(tange
     assert cli["vc_t"] == out.vc_t and cli["omega_f"] == out.omega_f
     assert run(["simulate", "--angle", "30", "--tangential", "toy-slide", "--poisson", "0.5"]) == 2
     assert "poisson sets kappa of tangential 'linear' or 'mindlin'" in capsys.readouterr().err
-    with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only; tangential "
+    with pytest.raises(ValueError, match="body 'planar' has the rigid tangential contact only on the flat; tangential "
                                          "'toy-slide' is solved by body 'reduced'"):
         simulate(scene, body="planar")
 

@@ -38,18 +38,19 @@ RESOLVED_DEPTH = 1e-6
 
 class SegmentedMotion:
     """An impact integrated as a sequence of solve_ivp segments, one per tangential mode (``sliding`` with the sign
-    of its slip, or ``rolling``), each ended by its switch event; the first segment's maximum compression and the
-    last's separation are events too.  The shared loop of the planar bodies (:class:`PlanarMotion`,
-    :class:`sphereimpact.impact.planar_pair.PlanarPairMotion`): a subclass gives ``_segment(mode, sigma, t0, t_end,
-    z)`` (solve_ivp's result, events: max compression, separation, switch), ``_switched(mode, z)`` (the next mode,
-    sign and state at a switch), ``_contact(z)`` (delta, delta_dot, P), the state's size and the reduced scene.
+    of its slip, or ``rolling``; a compliant contact's ``sticking``), each ended by its switch event; the first
+    segment's maximum compression and the last's separation are events too.  The shared loop of the planar bodies
+    (:class:`PlanarMotion`, :class:`sphereimpact.impact.planar_pair.PlanarPairMotion`): a subclass gives
+    ``_segment(mode, sigma, t0, t_end, z)`` (solve_ivp's result, events: max compression, separation, switch),
+    ``_switched(mode, z)`` (the next mode, sign and state at a switch), ``_contact(z)`` (delta, delta_dot, P), the
+    state's size and the reduced scene.
 
     Attributes
     ----------
     t_m, t_f : float
         Maximum compression and separation [s].
     t_roll : float or None
-        First instant the contact point stops slipping [s], None if never.
+        First instant the contact point stops slipping (rolls or sticks) [s], None if never.
     regime : str
         The mode at separation (``none`` without tangential motion).
     switches : int
@@ -62,11 +63,14 @@ class SegmentedMotion:
         The state at separation.
     """
 
+    #: Segments an impact may take before it is refused (a compliant contact's ringing may raise it).
+    max_phases = MAX_PHASES
+
     def _run(self, options: SolverOptions, z, mode: str, sigma: float) -> None:
         s = self.scene
         t0, t_end = 0.0, horizon(s)
         self._segments, self._modes, self._sigmas, t_m, nfev = [], [], [], None, 0
-        self.t_roll = 0.0 if mode == Regime.ROLLING and s.has_tangential_motion else None
+        self.t_roll = 0.0 if mode != Regime.SLIDING and s.has_tangential_motion else None
         while True:
             sol = self._segment(mode, sigma, t0, t_end, z)
             nfev += sol.nfev
@@ -85,8 +89,8 @@ class SegmentedMotion:
             if mode == Regime.SLIDING and self.t_roll is None:
                 self.t_roll = t0
             mode, sigma, z = self._switched(mode, sol.y_events[2][0].copy())
-            if len(self._segments) >= MAX_PHASES:
-                raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
+            if len(self._segments) >= self.max_phases:
+                raise ImpactError(f"more than {self.max_phases} stick-slip switches in one contact")
         if t_m is None:
             raise ImpactError("separation found before maximum compression: event missed")
         self.end = sol.y_events[1][0]

@@ -19,6 +19,18 @@ momentum; the outputs are read in the frame of the first touch, as the reduction
 force's work W = int F s dt, integrated (the power of the contact forces is -P delta_dot + F s; the first touch's
 frame would mix the turning normal's work into it).  The lever arms are R1 and R2, as in the reduction: the two
 contact points then lie delta apart along n, and the angular momentum about a fixed point changes by int delta F dt.
+
+A compliant tangential contact (the undamped springs of :mod:`sphereimpact.contact.tangential.springs`: ``linear``,
+``mindlin``, ``mindlin-displacement``) adds the spring's force F to the state, held along the turning t as the DEM
+codes rotate theirs into the new tangent plane (in the plane of motion that keeps its magnitude): sticking,
+dF/dt = -k_t s + rho F, until |F| reaches mu max(P, 0); sliding, F = -sigma mu max(P, 0), until the stick rule no
+longer pushes |F| past the moving cap,
+
+    g = sigma s - (mu dP/dt - rho mu P) / k_t,   dP/dt from the law at delta_ddot = -P / m* - (v.t)^2 / |d|,
+
+falls through zero: the reduced model's rules (k_t, rho and the first phase as there), with the slip and the
+compression of the turning frame.  The tangential dashpot (``dashpot_cor`` below 1) and the exact microslip contact
+are the reduced model's only.
 """
 
 from __future__ import annotations
@@ -28,7 +40,10 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..contact.tangential import Regime
+from ..contact.laws import force_rate, spring_exponent, spring_stiffness
+from ..contact.tangential import TANGENTIALS, Regime
+from ..contact.tangential.rigid import MAX_PHASES, RIGID
+from ..contact.tangential.springs import LINEAR, MINDLIN, MINDLIN_DISPLACEMENT, START_PROBE, history_rate
 from ..integrators import ivp_method
 from ..integrators.normal import separation_function
 from .planar import SegmentedMotion
@@ -37,6 +52,16 @@ from .scene import Scene, SolverOptions
 #: The least compression scale v_n T [in R1 + R2] the model resolves: delta = R1 + R2 - |d| is a difference of
 #: O(R1 + R2) numbers (as the planar body on the flat, :data:`sphereimpact.impact.planar.RESOLVED_DEPTH`).
 RESOLVED_DEPTH = 1e-6
+#: The compliant tangential contacts the pair's model implements, each with its history rule (``rescale`` of
+#: :class:`~sphereimpact.contact.tangential.springs.CompliantTangential`); served only as these very objects.
+SPRINGS = ((LINEAR, "never"), (MINDLIN, "unloading"), (MINDLIN_DISPLACEMENT, "always"))
+#: Every tangential contact the pair's model implements.
+CONTACTS = (RIGID, *(model for model, _ in SPRINGS))
+
+
+def serves(model) -> bool:
+    """Whether the pair's planar model implements tangential ``model`` (a TangentialModel; by identity)."""
+    return any(model is known for known in CONTACTS)
 
 
 class PlanarPairMotion(SegmentedMotion):
@@ -50,7 +75,7 @@ class PlanarPairMotion(SegmentedMotion):
     Parameters
     ----------
     pair : Scene
-        A scene with a partner sphere and the rigid tangential contact.
+        A scene with a partner sphere and a tangential contact of :data:`CONTACTS` (a spring without dashpot).
     options : SolverOptions
         A solve_ivp method and tolerances.
     """
@@ -65,28 +90,72 @@ class PlanarPairMotion(SegmentedMotion):
         self._lever = r1 * r1 / i1 + r2 * r2 / i2  # spin's share of the slip per unit tangential impulse [1/kg]
         self._k = 1.0 / pair.mass + 1.0 / pair.partner_mass + self._lever
         self._i1, self._i2 = i1, i2
+        model = TANGENTIALS[s.tangential]
+        if not serves(model):
+            raise ValueError(f"body 'planar' has the {', '.join(m.name for m in CONTACTS)} tangential contacts for two "
+                             f"spheres; tangential {s.tangential!r} is solved by body 'reduced'")
+        #: the spring's history rule, None for the rigid contact
+        self._rescale = next((rule for known, rule in SPRINGS if known is model), None)
+        if self._rescale is not None and s.parameters.get("dashpot_cor", 1.0) != 1.0:
+            raise ValueError(f"dashpot_cor: body 'planar' has the tangential springs without their dashpot (1); got "
+                             f"{s.parameters['dashpot_cor']:g}, solved by body 'reduced'")
         depth = s.v_normal / s.frequency / self._reach
         if depth < RESOLVED_DEPTH:
             raise ValueError(f"body 'planar': this scene compresses the pair by about {depth:.3g} (R1 + R2), below "
                              f"the {RESOLVED_DEPTH:g} its coordinates resolve; body 'reduced' solves it")
         length = s.v_normal / s.frequency
-        scale = np.array([length, length, s.speed, s.speed, s.speed / s.radius, s.mass * s.speed ** 2])
+        scale = [length, length, s.speed, s.speed, s.speed / s.radius, s.mass * s.speed ** 2]
+        if self._rescale is not None:  # the spring's force F [N], at its scale m* v omega_n
+            scale.append(s.mass * s.speed * s.frequency)
+            self._n = spring_exponent(s.law, s)
+            # an undamped tangential spring rings (as the reduced model allows): each half-period of it may stick and
+            # slip once more, about sqrt(k_t K) T / pi of them at the compression scale's stiffness
+            k_t = s.kappa * float(spring_stiffness(s.law, length, s))
+            self.max_phases = MAX_PHASES + int(4.0 * math.sqrt(k_t * self._k) / s.frequency)
+        scale = np.array(scale)
         # first step a small part of the contact: solve_ivp's own guess, from the state's O(R1 + R2) magnitudes,
         # overshoots the contact of stiff spheres into overflowing trial forces
         self._options = dict(method=ivp_method(options.method), rtol=options.rtol, atol=options.atol * scale,
                              max_step=options.max_step, dense_output=True, first_step=1e-3 / s.frequency)
         # d, v, w* and the tangential force's work W = int F s dt [J]: first touch at d = (0, R1 + R2)
-        z = np.array([0.0, self._reach, s.v_tangent, -s.v_normal, s.spin, 0.0])
+        z = [0.0, self._reach, s.v_tangent, -s.v_normal, s.spin, 0.0] + ([0.0] if self._rescale is not None else [])
         slip0 = s.slip0
         # no friction, or no tangential motion at all (the line of centres never turns): F = 0 throughout, no switch
         self._free = s.mu == 0 or not s.has_tangential_motion
-        self._run(options, z, Regime.SLIDING if slip0 != 0 or self._free else Regime.ROLLING, -1.0 if slip0 < 0 else 1.0)
+        if self._free:
+            mode = Regime.SLIDING
+        elif self._rescale is not None:
+            mode = self._first_spring_mode(slip0)
+        else:
+            mode = Regime.SLIDING if slip0 != 0 else Regime.ROLLING
+        self._run(options, np.array(z), mode, -1.0 if slip0 < 0 else 1.0)
         end = self.end
         self.line_turn = abs(math.atan2(end[0], end[1]))
         self.work_t = float(end[5])
         self.bodies = self._bodies(end)
 
+    def _first_spring_mode(self, slip0: float) -> str:
+        """A spring's first phase, as the reduced model decides it: sticking where the cap starts finite, else
+        unless the stick trial force |s0| k_t t / n outgrows the cap at t = START_PROBE T (Maw's psi_1 > 1)."""
+        s = self.scene
+        if s.mu * max(float(s.stage_force(0.0, s.v_normal)), 0.0) > 0:
+            return Regime.STICKING
+        eps = START_PROBE / s.frequency
+        delta = s.v_normal * eps
+        trial = abs(slip0) * s.kappa * float(spring_stiffness(s.law, delta, s)) * eps / self._n
+        return Regime.SLIDING if trial > s.mu * max(float(s.stage_force(delta, s.v_normal)), 0.0) else Regime.STICKING
+
     def _switched(self, mode: str, z):
+        if self._rescale is not None:  # a spring: F continuous at the cap, either way
+            cap = self.scene.mu * max(float(self._contact(z)[2]), 0.0)
+            if mode == Regime.SLIDING:
+                z[6] = -self._sigmas[-1] * cap
+                return Regime.STICKING, 1.0, z
+            sigma = -1.0 if z[6] > 0 else 1.0  # F = +cap: the contact slips backwards
+            if z[6] == 0.0:  # the cap closed to zero with F: slip goes the contact point's way
+                sigma = 1.0 if self._slip(z) >= 0 else -1.0
+            z[6] = -sigma * cap
+            return Regime.SLIDING, sigma, z
         if mode == Regime.SLIDING:
             _, _, _, t_vec = self._geometry(z)
             z[4] = float(z[2:4] @ t_vec) / self.scene.radius  # exactly on the constraint
@@ -106,6 +175,27 @@ class PlanarPairMotion(SegmentedMotion):
         delta_dot = -(n_vec[0] * z[2] + n_vec[1] * z[3])
         return delta, delta_dot, self.scene.stage_force(delta, delta_dot)
 
+    def _slip(self, z) -> float:
+        """s = v.t - w* R* [m/s] of one state z."""
+        _, _, _, t_vec = self._geometry(z)
+        return float(t_vec @ z[2:4]) - z[4] * self.scene.radius
+
+    def _stick_gap(self, sigma: float, z) -> float:
+        """g of a sliding spring at state z (see module docstring): positive while the stick rule would push |F|
+        past the cap; 1 where there is no cap or no spring."""
+        s = self.scene
+        dist, delta, n_vec, t_vec = self._geometry(z)
+        delta_dot = -float(n_vec @ z[2:4])
+        p = float(s.stage_force(delta, delta_dot))
+        k_t = s.kappa * float(spring_stiffness(s.law, delta, s))
+        if p <= 0 or k_t <= 0:
+            return 1.0
+        along = float(t_vec @ z[2:4])
+        delta_ddot = -p / s.mass - along * along / dist
+        rho = history_rate(self._rescale, self._n, delta, delta_dot)
+        cap_rate = s.mu * float(force_rate(s.law, delta, delta_dot, delta_ddot, s))
+        return sigma * (along - z[4] * s.radius) - (cap_rate - rho * s.mu * p) / k_t
+
     def _rolling_force(self, z) -> float:
         """F_r [N]: the tangential force that keeps the slip at 0 while the line of centres turns."""
         dist, _, n_vec, _ = self._geometry(z)
@@ -119,18 +209,27 @@ class PlanarPairMotion(SegmentedMotion):
         m_star, lever, r_star = s.mass, self._lever, s.radius
         sep = separation_function(s)
 
+        spring, sticking = self._rescale is not None, mode == Regime.STICKING
+
         def force(z, p):
             if self._free:
                 return 0.0
-            return -sigma * s.mu * max(float(p), 0.0) if mode == Regime.SLIDING else self._rolling_force(z)
+            if mode == Regime.SLIDING:
+                return -sigma * s.mu * max(float(p), 0.0)
+            return z[6] if sticking else self._rolling_force(z)
 
         def rhs(t, z):
             _, _, n_vec, t_vec = self._geometry(z)
-            _, _, p = self._contact(z)  # smooth past separation, as in the reduced model
+            delta, delta_dot, p = self._contact(z)  # smooth past separation, as in the reduced model
             f = force(z, p)
             a = (p * n_vec + f * t_vec) / m_star
             slip = t_vec[0] * z[2] + t_vec[1] * z[3] - z[4] * r_star
-            return [z[2], z[3], a[0], a[1], -f * lever / r_star, f * slip]
+            rates = [z[2], z[3], a[0], a[1], -f * lever / r_star, f * slip]
+            if spring:  # the stick rule while sticking; F slaved to the cap while sliding
+                k_t = s.kappa * float(spring_stiffness(s.law, delta, s))
+                rho = history_rate(self._rescale, self._n, float(delta), float(delta_dot))
+                rates.append(-k_t * slip + rho * z[6] if sticking and not self._free else 0.0)
+            return rates
 
         def max_compression(t, z):
             return self._contact(z)[1]
@@ -142,6 +241,10 @@ class PlanarPairMotion(SegmentedMotion):
         def switch(t, z):
             if self._free:
                 return 1.0
+            if spring:  # |F| reaches the cap while sticking; the stick rule stops outgrowing it while sliding
+                if sticking:
+                    return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(z[6])
+                return self._stick_gap(sigma, z)
             if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 _, _, _, t_vec = self._geometry(z)
                 return sigma * (float(t_vec @ z[2:4]) - z[4] * r_star)
@@ -173,9 +276,9 @@ class PlanarPairMotion(SegmentedMotion):
         p = np.maximum(self._contact(z)[2], 0.0)
         if self._free:
             return np.zeros_like(p)
-        rolling = np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])])
         sliding = np.array([mode == Regime.SLIDING for mode in self._modes])[which]
-        return np.where(sliding, -np.array(self._sigmas)[which] * self.scene.mu * p, rolling)
+        held = z[6] if self._rescale is not None else np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])])
+        return np.where(sliding, -np.array(self._sigmas)[which] * self.scene.mu * p, held)
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, the relative centre velocity along t0 and n0, w* and the relative displacement along

@@ -164,13 +164,13 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
         from .planar import CONTACTS, planar_motion
 
         motion_of = planar_motion(TANGENTIALS[scene.tangential])
-        if scene.has_partner and motion_of is not None:  # both centres free: the pair's own planar model
+        if scene.has_partner:  # both centres free: the pair's own planar model (which refuses what it has not)
             from .planar_pair import PlanarPairMotion
 
             motion_of = PlanarPairMotion
         if motion_of is None:
             served = ", ".join(model.name for model, _ in CONTACTS)
-            raise ValueError(f"body 'planar' has the {served} tangential contact only; tangential "
+            raise ValueError(f"body 'planar' has the {served} tangential contact only on the flat; tangential "
                              f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
                              "not depend on friction)")
     start = time.perf_counter()

@@ -94,7 +94,7 @@ STICK_STEPS = 64
 END_SLACK = 1e-12
 
 
-def _history_rate(rescale: str, n: float, delta: float, delta_dot: float) -> float:
+def history_rate(rescale: str, n: float, delta: float, delta_dot: float) -> float:
     """The history rule rho [1/s] at one instant, in plain floats (:meth:`CompliantTangential._rho`): 0 without
     rescaling, outside contact or (``unloading``) while the contact grows; else (n - 1) delta_dot / delta."""
     if rescale == "never" or delta <= 0 or (delta_dot >= 0 and rescale == "unloading"):
@@ -198,7 +198,7 @@ class CompliantTangential:
         """History rule rho [1/s]: 0 without rescaling; (dk_t/dt)/k_t = (n-1) delta_dot / delta while
         unloading (``rescale='unloading'``) or at every instant (``always``)."""
         if is_instant(delta):  # one instant: plain floats
-            return _history_rate(self._rescale, self._n, delta, delta_dot)
+            return history_rate(self._rescale, self._n, delta, delta_dot)
         if self._rescale == "never":
             return np.zeros_like(np.asarray(delta, dtype=float))
         rate = np.minimum(delta_dot, 0.0) if self._rescale == "unloading" else np.asarray(delta_dot, dtype=float)
@@ -283,7 +283,7 @@ class CompliantTangential:
             k_t = kappa * (k if n == 1.0 else nk * max(delta, 0.0) ** (n - 1.0))
             slip = slip0 + g_t * (t - t0) + inverse_mass * z[1] * js
             force = z[0] - root_m * math.sqrt(k_t) * slip / fs if root_m else z[0]  # F / fs
-            rho = _history_rate(rescale, n, delta, delta_dot)
+            rho = history_rate(rescale, n, delta, delta_dot)
             return [(-k_t * slip + rho * z[0] * fs) / (w * fs), force, z[1]]
 
         def total(tau, z):  # F / fs: the spring's force less the dashpot's
