@@ -230,6 +230,8 @@ def test_damped_mindlin_variant_is_the_dem_codes_contact(tmp_path, capsys):
     assert sorted(p.name for p in out.iterdir()) == ["test4.csv"]  # test 5 is elastic: one reference
     four = read_table(out / "test4.csv")
     assert set(four["rule"]) == {"mindlin+dashpot"} and set(four["tangential"]) == {"mindlin"}
+    chung_ooi.run_study(tmp_path / "study", [4])  # the pipeline's study writes the variant from the DEM rules' table
+    assert (tmp_path / "study/damped-mindlin/test4.csv").read_bytes() == (out / "test4.csv").read_bytes()
     assert np.allclose(four["dashpot_cor"], 0.98)
     seven = solve(scenes_of_test(7, "mindlin+dashpot").iloc[[0, 7, 14]])  # slow, middle and fast spins
     assert np.max(np.abs(seven["vc_t"])) < 1e-9 * np.max(seven["spin"] * 0.05)
@@ -296,19 +298,21 @@ def test_the_departure_study_refuses_what_it_cannot_run(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_the_reduction_gap_with_mindlins_spring_is_of_the_line_turns_order():
-    """Issue 41 item 7: test 8's pairs (the exact microslip contact) measured against the planar two-body model with
-    Mindlin's undamped spring at each row's kappa, as with the rigid contact: a first-order effect of the turn, so
-    below the turn times the speed and of its order; empty on a plane and for a rigid contact's spring."""
+def test_the_reduction_gap_with_a_spring_is_of_the_line_turns_order():
+    """Issue 41 item 7: test 8's pairs measured against the planar two-body model with a tangential spring, as with
+    the rigid contact: the exact microslip contact's rows with Mindlin's undamped spring at their kappa, the damped
+    Mindlin variant's and a linear DEM rule's with their own.  A first-order effect of the turn, so below the turn
+    times the speed and of its order; empty on a plane and for a rigid contact's spring."""
     from sphereimpact.study.chung_ooi import _line_turn, reduction_gap
 
-    table = scenes_of_test(8)
-    for scene in table["scene"].iloc[[4, 16, 22]]:  # kappa 802 (case A) and 0.8 (case B), spins 0.7 to 2 rad/s
-        turn = _line_turn(scene, simulate(scene)) * scene.speed
-        spring, rigid = reduction_gap(scene, "mindlin"), reduction_gap(scene)
-        assert 0.05 * turn < spring < turn and 0.5 < spring / rigid < 2.0
+    for rule in ("microslip", "mindlin+dashpot", "linear+dashpot"):
+        table = scenes_of_test(8, rule)
+        for scene in table["scene"].iloc[[4, 16, 22]]:  # kappa 802 (case A) and 0.8 (case B), spins 0.7 to 2 rad/s
+            turn = _line_turn(scene, simulate(scene)) * scene.speed
+            spring, rigid = reduction_gap(scene, "spring"), reduction_gap(scene)
+            assert 0.05 * turn < spring < turn and 0.5 < spring / rigid < 2.0, (rule, spring, rigid, turn)
     plane = scenes_of_test(5)["scene"].iloc[3]
-    assert math.isnan(reduction_gap(plane, "mindlin")) and math.isnan(reduction_gap(plane))
-    assert math.isnan(reduction_gap(table["scene"].iloc[4].with_(tangential="rigid"), "mindlin"))
-    with pytest.raises(ValueError, match="tangential must be 'rigid' or 'mindlin'; got 'linear'"):
+    assert math.isnan(reduction_gap(plane, "spring")) and math.isnan(reduction_gap(plane))
+    assert math.isnan(reduction_gap(table["scene"].iloc[4].with_(tangential="rigid"), "spring"))
+    with pytest.raises(ValueError, match="tangential must be 'rigid' or 'spring'; got 'linear'"):
         reduction_gap(table["scene"].iloc[4], "linear")

@@ -11,7 +11,7 @@ impulses (J_n, J_t) it exchanged.  Exact, that is, with the line of centres held
 centres' relative tangential motion turns it by about max(|v_t|, |v_t'|) t_f / (R1 + R2) radians, which the
 reduction neglects (an error of that order in the tangential outputs; Chung & Ooi's reference files give the
 angle per row, ``line_turn``).  The planar two-body model (:mod:`.planar_pair`, ``simulate(..., body='planar')``,
-the rigid tangential contact and the undamped springs) frees both centres and measures what that costs (the files'
+the rigid tangential contact and the springs) frees both centres and measures what that costs (the files'
 ``reduction_gap`` and ``reduction_gap_spring``); the cost falls with the contact time, first order in the turn.
 Momentum is conserved to round-off either way.  Spins are in one rotational sense, the ball's (positive: topspin of
 the ball), so two spheres turning the same way rub at the contact.

@@ -20,7 +20,7 @@ force's work W = int F s dt, integrated (the power of the contact forces is -P d
 frame would mix the turning normal's work into it).  The lever arms are R1 and R2, as in the reduction: the two
 contact points then lie delta apart along n, and the angular momentum about a fixed point changes by int delta F dt.
 
-A compliant tangential contact (the undamped springs of :mod:`sphereimpact.contact.tangential.springs`: ``linear``,
+A compliant tangential contact (the springs of :mod:`sphereimpact.contact.tangential.springs`: ``linear``,
 ``mindlin``, ``mindlin-displacement``) adds the spring's force F to the state, held along the turning t as the DEM
 codes rotate theirs into the new tangent plane (in the plane of motion that keeps its magnitude): sticking,
 dF/dt = -k_t s + rho F, until |F| reaches mu max(P, 0); sliding, F = -sigma mu max(P, 0), until the stick rule no
@@ -29,8 +29,10 @@ longer pushes |F| past the moving cap,
     g = sigma s - (mu dP/dt - rho mu P) / k_t,   dP/dt from the law at delta_ddot = -P / m* - (v.t)^2 / |d|,
 
 falls through zero: the reduced model's rules (k_t, rho and the first phase as there), with the slip and the
-compression of the turning frame.  The tangential dashpot (``dashpot_cor`` below 1) and the exact microslip contact
-are the reduced model's only.
+compression of the turning frame.  A tangential dashpot (``dashpot_cor`` below 1, the DEM codes' of
+:mod:`sphereimpact.contact.tangential.dashpot`) makes the force F_s - c_t s, F_s the spring's, and adds the reduced
+model's dashpot terms to g, the slip's rate while sliding being -sigma mu max(P, 0) K - (v.n)(v.t) / |d| here (the
+turn's share).  The exact microslip contact is the reduced model's only.
 """
 
 from __future__ import annotations
@@ -42,6 +44,7 @@ from scipy.integrate import solve_ivp
 
 from ..contact.laws import force_rate, spring_exponent, spring_stiffness
 from ..contact.tangential import TANGENTIALS, Regime
+from ..contact.tangential.dashpot import dashpot_ratio
 from ..contact.tangential.rigid import MAX_PHASES, RIGID
 from ..contact.tangential.springs import LINEAR, MINDLIN, MINDLIN_DISPLACEMENT, START_PROBE, history_rate
 from ..integrators import ivp_method
@@ -75,7 +78,7 @@ class PlanarPairMotion(SegmentedMotion):
     Parameters
     ----------
     pair : Scene
-        A scene with a partner sphere and a tangential contact of :data:`CONTACTS` (a spring without dashpot).
+        A scene with a partner sphere and a tangential contact of :data:`CONTACTS`.
     options : SolverOptions
         A solve_ivp method and tolerances.
     """
@@ -96,9 +99,10 @@ class PlanarPairMotion(SegmentedMotion):
                              f"spheres; tangential {s.tangential!r} is solved by body 'reduced'")
         #: the spring's history rule, None for the rigid contact
         self._rescale = next((rule for known, rule in SPRINGS if known is model), None)
-        if self._rescale is not None and s.parameters.get("dashpot_cor", 1.0) != 1.0:
-            raise ValueError(f"dashpot_cor: body 'planar' has the tangential springs without their dashpot (1); got "
-                             f"{s.parameters['dashpot_cor']:g}, solved by body 'reduced'")
+        # c_t = root_m sqrt(k_t): the dashpot's coefficient per root of stiffness [sqrt(kg)] (0: none), as the reduced
+        # model sets it (a spring that takes no dashpot has no dashpot_cor)
+        cor = s.parameters.get("dashpot_cor")
+        self._root_m = 0.0 if cor is None else 2.0 * dashpot_ratio(cor, s.law.spring) * math.sqrt(s.mass)
         depth = s.v_normal / s.frequency / self._reach
         if depth < RESOLVED_DEPTH:
             raise ValueError(f"body 'planar': this scene compresses the pair by about {depth:.3g} (R1 + R2), below "
@@ -110,7 +114,7 @@ class PlanarPairMotion(SegmentedMotion):
             self._n = spring_exponent(s.law, s)
             # an undamped tangential spring rings (as the reduced model allows): each half-period of it may stick and
             # slip once more, about sqrt(k_t K) T / pi of them at the compression scale's stiffness
-            k_t = s.kappa * float(spring_stiffness(s.law, length, s))
+            k_t = float(self._stiffness(length))
             self.max_phases = MAX_PHASES + int(4.0 * math.sqrt(k_t * self._k) / s.frequency)
         scale = np.array(scale)
         # first step a small part of the contact: solve_ivp's own guess, from the state's O(R1 + R2) magnitudes,
@@ -135,26 +139,45 @@ class PlanarPairMotion(SegmentedMotion):
         self.bodies = self._bodies(end)
 
     def _first_spring_mode(self, slip0: float) -> str:
-        """A spring's first phase, as the reduced model decides it: sticking where the cap starts finite, else
-        unless the stick trial force |s0| k_t t / n outgrows the cap at t = START_PROBE T (Maw's psi_1 > 1)."""
+        """A spring's first phase, as the reduced model decides it: where the cap starts finite, sticking if the
+        dashpot's force |s0| c_t fits within it; else sticking unless the stick trial force |s0| (k_t t / n + c_t)
+        outgrows the cap at t = START_PROBE T (Maw's psi_1 > 1)."""
         s = self.scene
-        if s.mu * max(float(s.stage_force(0.0, s.v_normal)), 0.0) > 0:
-            return Regime.STICKING
+        cap = s.mu * max(float(s.stage_force(0.0, s.v_normal)), 0.0)
+        if cap > 0:
+            return Regime.STICKING if abs(slip0) * self._dashpot(0.0) <= cap else Regime.SLIDING
         eps = START_PROBE / s.frequency
         delta = s.v_normal * eps
-        trial = abs(slip0) * s.kappa * float(spring_stiffness(s.law, delta, s)) * eps / self._n
+        trial = abs(slip0) * (self._stiffness(delta) * eps / self._n + self._dashpot(delta))
         return Regime.SLIDING if trial > s.mu * max(float(s.stage_force(delta, s.v_normal)), 0.0) else Regime.STICKING
 
+    def _stiffness(self, delta):
+        """k_t [N/m] at compression(s) delta: kappa times the normal spring's tangent stiffness."""
+        return self.scene.kappa * spring_stiffness(self.scene.law, delta, self.scene)
+
+    def _dashpot(self, delta):
+        """The tangential dashpot's c_t = root_m sqrt(k_t) [N s/m] at compression(s) delta (0 without one)."""
+        return self._root_m * np.sqrt(self._stiffness(delta)) if self._root_m else 0.0 * np.asarray(delta, float)
+
+    def _spring_force(self, z):
+        """A sticking spring's force on the ball [N] at state(s) z: the spring's less the dashpot's, F_s - c_t s."""
+        _, delta, _, t_vec = self._geometry(z)
+        if not self._root_m:
+            return z[6]
+        return z[6] - self._dashpot(delta) * (t_vec[0] * z[2] + t_vec[1] * z[3] - z[4] * self.scene.radius)
+
     def _switched(self, mode: str, z):
-        if self._rescale is not None:  # a spring: F continuous at the cap, either way
-            cap = self.scene.mu * max(float(self._contact(z)[2]), 0.0)
+        if self._rescale is not None:  # a spring: F continuous at the cap either way, the spring holding F + c_t s
+            delta, _, p = self._contact(z)
+            cap, slip = self.scene.mu * max(float(p), 0.0), self._slip(z)
             if mode == Regime.SLIDING:
-                z[6] = -self._sigmas[-1] * cap
+                z[6] = -self._sigmas[-1] * cap + float(self._dashpot(delta)) * slip
                 return Regime.STICKING, 1.0, z
-            sigma = -1.0 if z[6] > 0 else 1.0  # F = +cap: the contact slips backwards
-            if z[6] == 0.0:  # the cap closed to zero with F: slip goes the contact point's way
-                sigma = 1.0 if self._slip(z) >= 0 else -1.0
-            z[6] = -sigma * cap
+            force = float(self._spring_force(z))
+            sigma = -1.0 if force > 0 else 1.0  # F = +cap: the contact slips backwards
+            if force == 0.0:  # the cap closed to zero with F: slip goes the contact point's way
+                sigma = 1.0 if slip >= 0 else -1.0
+            z[6] = -sigma * cap + float(self._dashpot(delta)) * slip
             return Regime.SLIDING, sigma, z
         if mode == Regime.SLIDING:
             _, _, _, t_vec = self._geometry(z)
@@ -187,14 +210,24 @@ class PlanarPairMotion(SegmentedMotion):
         dist, delta, n_vec, t_vec = self._geometry(z)
         delta_dot = -float(n_vec @ z[2:4])
         p = float(s.stage_force(delta, delta_dot))
-        k_t = s.kappa * float(spring_stiffness(s.law, delta, s))
+        k_t = float(self._stiffness(delta))
         if p <= 0 or k_t <= 0:
             return 1.0
         along = float(t_vec @ z[2:4])
         delta_ddot = -p / s.mass - along * along / dist
         rho = history_rate(self._rescale, self._n, delta, delta_dot)
+        cap, slip = s.mu * p, along - z[4] * s.radius
         cap_rate = s.mu * float(force_rate(s.law, delta, delta_dot, delta_ddot, s))
-        return sigma * (along - z[4] * s.radius) - (cap_rate - rho * s.mu * p) / k_t
+        gap = sigma * slip - (cap_rate - rho * cap) / k_t
+        if not self._root_m:
+            return gap
+        # F = F_s - c_t s: the dashpot's share of the stick rule's rate, as the reduced model's
+        c_t = float(self._dashpot(delta))
+        if c_t * abs(slip) > cap and sigma * slip > 0:  # the dashpot alone exceeds the cap: slide on
+            return 1.0
+        c_rate = 0.0 if self._n == 1.0 else 0.5 * (self._n - 1.0) * c_t * delta_dot / delta  # c_t ~ delta^((n-1)/2)
+        slip_rate = -sigma * cap * self._k + delta_dot * along / dist  # the turn's share: -(v.n)(v.t) / |d|
+        return gap + sigma * (c_rate * slip + c_t * slip_rate - rho * c_t * slip) / k_t
 
     def _rolling_force(self, z) -> float:
         """F_r [N]: the tangential force that keeps the slip at 0 while the line of centres turns."""
@@ -216,7 +249,7 @@ class PlanarPairMotion(SegmentedMotion):
                 return 0.0
             if mode == Regime.SLIDING:
                 return -sigma * s.mu * max(float(p), 0.0)
-            return z[6] if sticking else self._rolling_force(z)
+            return float(self._spring_force(z)) if sticking else self._rolling_force(z)
 
         def rhs(t, z):
             _, _, n_vec, t_vec = self._geometry(z)
@@ -225,8 +258,8 @@ class PlanarPairMotion(SegmentedMotion):
             a = (p * n_vec + f * t_vec) / m_star
             slip = t_vec[0] * z[2] + t_vec[1] * z[3] - z[4] * r_star
             rates = [z[2], z[3], a[0], a[1], -f * lever / r_star, f * slip]
-            if spring:  # the stick rule while sticking; F slaved to the cap while sliding
-                k_t = s.kappa * float(spring_stiffness(s.law, delta, s))
+            if spring:  # the stick rule on the spring's force while sticking; F slaved to the cap while sliding
+                k_t = float(self._stiffness(delta))
                 rho = history_rate(self._rescale, self._n, float(delta), float(delta_dot))
                 rates.append(-k_t * slip + rho * z[6] if sticking and not self._free else 0.0)
             return rates
@@ -243,7 +276,7 @@ class PlanarPairMotion(SegmentedMotion):
                 return 1.0
             if spring:  # |F| reaches the cap while sticking; the stick rule stops outgrowing it while sliding
                 if sticking:
-                    return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(z[6])
+                    return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(float(self._spring_force(z)))
                 return self._stick_gap(sigma, z)
             if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 _, _, _, t_vec = self._geometry(z)
@@ -277,7 +310,8 @@ class PlanarPairMotion(SegmentedMotion):
         if self._free:
             return np.zeros_like(p)
         sliding = np.array([mode == Regime.SLIDING for mode in self._modes])[which]
-        held = z[6] if self._rescale is not None else np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])])
+        held = (self._spring_force(z) if self._rescale is not None else
+                np.array([self._rolling_force(z[:, i]) for i in range(z.shape[1])]))
         return np.where(sliding, -np.array(self._sigmas)[which] * self.scene.mu * p, held)
 
     def kinematics(self, t) -> dict:

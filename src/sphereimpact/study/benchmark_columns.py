@@ -34,7 +34,7 @@ CLOSED_FORMS = {"hertz_t_f": "s", "hertz_delta_m": "m", "hertz_force_max": "N"}
 #: order; :mod:`sphereimpact.impact.pair`), and ``reduction_gap``, what holding it fixed costs, measured: the largest
 #: difference of either body's velocities (spins times their radii) between the reduction and the planar two-body
 #: model with both centres free (:mod:`sphereimpact.impact.planar_pair`), both with the rigid tangential contact, and
-#: ``reduction_gap_spring`` the same with Mindlin's undamped spring at the row's kappa (the two-body model's compliant
-#: contact nearest the exact microslip one, which it has not); empty on a plane (the spring's also where the row's
-#: contact is rigid).
+#: ``reduction_gap_spring`` (the reference files) the same with the row's own tangential spring where the two-body
+#: model has it (the damped Mindlin variant's), else Mindlin's undamped spring at the row's kappa (the contact nearest
+#: the exact microslip one, which it has not); empty on a plane (the spring's also where the row's contact is rigid).
 STATEMENTS = {"line_turn": "rad", "reduction_gap": "m/s", "reduction_gap_spring": "m/s"}
