@@ -179,3 +179,19 @@ def test_the_fit_benchmark_gives_back_the_parameters_of_its_noise_free_curve():
     row = measure_fit("small curve", truth, {"mu": 0.2, "kappa": 1.1}, np.linspace(5.0, 60.0, 8), repeats=1)
     assert row["worst_error"] < 1e-6 and row["scenes"] == 8 and row["target_seconds"] == FIT_TARGET_SECONDS
     assert row["evaluations"] > 5 and row["throughput"] == pytest.approx(row["evaluations"] * 8 / row["seconds"])
+
+
+def test_the_data_fit_benchmark_times_the_fit_a_user_runs():
+    """``measure_data_fit`` (the row of results/bench_sweep.csv that fits measured bounces, the COR free too): the
+    fit it times is ``fit`` itself, so its evaluations are a direct fit's, and it names no parameter error (no values
+    made measured bounces)."""
+    from sphereimpact.numerics.bench_sweep import DATA_FIT_TARGET_SECONDS, measure_data_fit
+
+    truth = calibrated_ball(Measurement(0.8, 3.0), model="kelvin-voigt", mu=0.25, mass=0.145, diameter=0.063, k=6e4)
+    data = read_measured(bounces(5, n=8, truth=truth))
+    start = with_values(truth, {"mu": 0.1})
+    row = measure_data_fit("eight bounces", data, start, ["mu", "cor"], repeats=1)
+    direct = fit(data, start, ["mu", "cor"])
+    assert row["evaluations"] == direct.statistics["evaluations"] > 2 and row["scenes"] == 8
+    assert math.isnan(row["worst_error"]) and row["target_seconds"] == DATA_FIT_TARGET_SECONDS
+    assert direct.parameters["mu"].value == pytest.approx(0.25, abs=4 * direct.parameters["mu"].stderr)

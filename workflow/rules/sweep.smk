@@ -106,7 +106,9 @@ rule sweep_paths:
 
 
 rule bench_sweep:
-    """Throughput of the sweep engine against per-scene solving at equal accuracy (a benchmark)."""
+    """Throughput of the sweep engine against per-scene solving at equal accuracy, and fits (a benchmark)."""
+    input:
+        data=config["validation"]["data"],
     output:
         csv=report("results/bench_sweep.csv", caption="../report/bench_sweep.rst", category="Sweeps"),
     params:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pandas as pd
 
 from ..contact.separation import Separation
@@ -62,21 +64,33 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     profile_call(profiled).to_csv(profile_csv, **CSV)
 
 
-def write_bench_sweep(config: dict, csv_path: str) -> None:
+def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None) -> None:
     """The sweep benchmark (:func:`~sphereimpact.numerics.bench_sweep.run`) with ``bench``'s settings; with
     ``bench.fit``, also the fit of ``kharaz_fit``'s free parameters to the noise-free curve of Kharaz's ball (the
-    validation's, with ``kharaz_fit``'s tangential model) at the validation's incidences."""
-    from ..impact.ball import Ball
+    validation's, with ``kharaz_fit``'s tangential model) at the validation's incidences, and with ``data_csv`` (the
+    shipped Kharaz data) the fit of those parameters and the COR to the measured bounces, from ``kharaz_fit``'s start
+    and the measured e_n."""
+    from ..fit import read_measured, with_values
+    from ..impact.ball import Ball, Measurement, calibrated_ball
     from .validation import experiment
 
-    bench, spec = config["bench"], config["kharaz_fit"]
-    fit_of = None
+    bench, spec, section = config["bench"], config["kharaz_fit"], config["validation"]
+    fit_of = data_fit_of = None
     if bench["fit"]:
-        truth = Ball(experiment(config["validation"]).with_tangential(spec["tangential"]))
-        fit_of = (truth, {name: spec["start"][name] for name in spec["free"]},
-                  parse_range(config["validation"]["angles"]))
+        scene = experiment(section).with_tangential(spec["tangential"])
+        start = {name: spec["start"][name] for name in spec["free"]}
+        fit_of = (Ball(scene), start, parse_range(section["angles"]))
+        if data_csv is not None:  # the COR free too: the ball calibrated to the measured e_n, as a user's would be
+            free = [*spec["free"], *(["cor"] if "cor" not in spec["free"] else [])]
+            ball = calibrated_ball(Measurement(section["cor"], section["speed"]), source="Kharaz et al. (2001)",
+                                   **{name: getattr(scene, name) for name in (
+                                       "mass", "diameter", "inertia_factor", "mu", "model", "modulus", "tangential",
+                                       "kappa")})
+            data_fit_of = (f"fit of {', '.join(free)} to {Path(data_csv).name}'s measured bounces ({scene.model}, "
+                           f"{scene.tangential})", read_measured(data_csv, source=Path(data_csv).name),
+                           with_values(ball, start), free)
     bench_sweep(csv_path, repeats=bench["repeats"], sample=bench["sample"], lanes=bench["lanes"],
-                million=bench["million"], laws=bench["laws"], fit_of=fit_of)
+                million=bench["million"], laws=bench["laws"], fit_of=fit_of, data_fit_of=data_fit_of)
 
 
 def write_stability(config: dict, csv_path: str, study: str | None = None) -> None:

@@ -126,14 +126,17 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     many = text_table(("sweep", "scenes", "time", "impacts/s", "speed-up", "error, engine", "error, script",
                    "target", "time, every output", "every / fast"), rows)
     fit_rows = [(r.sweep, f"{r.scenes:,}", _seconds(r.seconds), f"{int(r.evaluations)}", f"{r.throughput:.3g}",
-                 f"{r.worst_error:.1e}", f"under {_seconds(r.target_seconds)}") for r in fits.itertuples()]
+                 "—" if pd.isna(r.worst_error) else f"{r.worst_error:.1e}", f"under {_seconds(r.target_seconds)}")
+                for r in fits.itertuples()]
     fitting = ([
         "Fitting (`results/bench_sweep.csv`): `sphereimpact.fit.fit` of the free parameters, from the start of "
         "`kharaz_fit` in the config, to the noise-free e_t, spin and rebound angle of Kharaz's ball (the "
-        "validation's, e_n given) at the validation's incidences, each bounce solved by `simulate`; timed as "
+        "validation's, e_n given) at the validation's incidences, and to the shipped measured bounces with the COR "
+        "free too (the ball calibrated to the measured e_n), each bounce solved by `simulate`; timed as "
         f"the median of {int(fits['repeats'].iloc[0]) if len(fits) else 0} complete fits, each solving its "
-        "bounces' normal motions afresh (once per fit: they do not depend on μ or κ). Error: the fitted "
-        "parameters' largest relative difference from those that made the curve.",
+        "bounces' normal motions afresh (once per fit where the COR is given: they do not depend on μ or κ; at "
+        "every evaluation that moves the COR). Error: the fitted parameters' largest relative difference from "
+        "those that made the curve (none made the measured bounces).",
         text_table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
                fit_rows)] if fit_rows else [])
     repeats = int(sweeps["repeats"].iloc[0])
