@@ -157,7 +157,7 @@ class PlanarPairMotion(SegmentedMotion):
 
     def _dashpot(self, delta):
         """The tangential dashpot's c_t = root_m sqrt(k_t) [N s/m] at compression(s) delta (0 without one)."""
-        return self._root_m * np.sqrt(self._stiffness(delta)) if self._root_m else 0.0 * np.asarray(delta, float)
+        return self._root_m * np.sqrt(self._stiffness(delta)) if self._root_m else 0.0
 
     def _spring_force(self, z):
         """A sticking spring's force on the ball [N] at state(s) z: the spring's less the dashpot's, F_s - c_t s."""

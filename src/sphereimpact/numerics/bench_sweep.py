@@ -174,16 +174,23 @@ def measure_fit(name: str, truth: Ball, start: dict, incidences, repeats: int = 
                           "e_t": [b.e_t for b in bounces],
                           "abs_omega_f": [abs(b.omega_f) for b in bounces],
                           "rebound_angle": [b.rebound_angle for b in bounces]})
-    measured, ball, free = read_measured(table, source=name), with_values(truth, start), list(start)
-    results = []
+    free = list(start)
     # the truth's own curve: its ball is the benchmark's, described or not
-    seconds = interleaved_seconds({"fit": lambda: results.append(fit(measured, ball, free, chapter_ball=True))},
+    row, result = _timed_fit(name, read_measured(table, source=name), with_values(truth, start), free, repeats,
+                             FIT_TARGET_SECONDS, chapter_ball=True)
+    return row | {"worst_error": max(abs(result.parameters[n].value / getattr(scene, n) - 1.0) for n in free)}
+
+
+def _timed_fit(name: str, measured, ball, free: list, repeats: int, target: float, **options) -> tuple:
+    """(the row, the last result) of ``repeats`` complete fits of ``free`` to ``measured`` from ``ball``, timed by the
+    benchmarks' protocol (:func:`~.timing.interleaved_seconds`): the fit rows' shared part, ``worst_error`` empty."""
+    results = []
+    seconds = interleaved_seconds({"fit": lambda: results.append(fit(measured, ball, free, **options))},
                                   repeats)["fit"]
-    result = results[-1]
-    worst = max(abs(result.parameters[n].value / getattr(scene, n) - 1.0) for n in free)
-    evaluations = result.statistics["evaluations"]
-    return {"sweep": name, "scenes": len(table), "seconds": seconds, "throughput": evaluations * len(table) / seconds,
-            "worst_error": worst, "repeats": repeats, "evaluations": evaluations, "target_seconds": FIT_TARGET_SECONDS}
+    evaluations, bounces = results[-1].statistics["evaluations"], len(measured.bounces)
+    return ({"sweep": name, "scenes": bounces, "seconds": seconds, "throughput": evaluations * bounces / seconds,
+             "worst_error": math.nan, "repeats": repeats, "evaluations": evaluations, "target_seconds": target},
+            results[-1])
 
 
 def measure_data_fit(name: str, measured, ball, free: list, repeats: int = 3) -> dict:
@@ -195,12 +202,7 @@ def measure_data_fit(name: str, measured, ball, free: list, repeats: int = 3) ->
     :data:`DATA_FIT_TARGET_SECONDS`.
     """
     log.info("sweep bench: %s (%d bounces)", name, len(measured.bounces))
-    results = []
-    seconds = interleaved_seconds({"fit": lambda: results.append(fit(measured, ball, free))}, repeats)["fit"]
-    evaluations = results[-1].statistics["evaluations"]
-    return {"sweep": name, "scenes": len(measured.bounces), "seconds": seconds,
-            "throughput": evaluations * len(measured.bounces) / seconds, "worst_error": math.nan, "repeats": repeats,
-            "evaluations": evaluations, "target_seconds": DATA_FIT_TARGET_SECONDS}
+    return _timed_fit(name, measured, ball, free, repeats, DATA_FIT_TARGET_SECONDS)[0]
 
 
 def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True,
