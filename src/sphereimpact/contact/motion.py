@@ -8,6 +8,7 @@ builds its motion on one, whoever solved it.
 from __future__ import annotations
 
 import copy
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,6 +17,45 @@ from ..ode.dense import is_instant
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene
+
+
+@dataclass(frozen=True)
+class KernelState:
+    """A solved normal motion as compiled code reads it (:mod:`sphereimpact.contact.tangential.stick_kernel`): its
+    dense output's arrays, evaluated there with the arithmetic of its Python evaluator, and the law's compiled force.
+
+    Attributes
+    ----------
+    kind : int
+        ``stick_kernel.TAYLOR`` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx``
+        and ``cy`` their coefficients) or ``stick_kernel.DOP853`` (``knots`` the step boundaries, ``starts`` and
+        ``sizes`` the steps' starts and sizes, ``f`` their interpolants' rows in reverse order, ``y_old`` their start
+        states); the arrays a kind does not use are empty.
+    w, d_scale, v : float
+        The dimensionless time's rate [1/s] and the state's scales [m], [m/s].
+    force, params
+        The law's compiled force kernel (checked against its scalar formula) and its parameters.
+    """
+
+    kind: int
+    knots: np.ndarray
+    starts: np.ndarray
+    sizes: np.ndarray
+    cx: np.ndarray
+    cy: np.ndarray
+    f: np.ndarray
+    y_old: np.ndarray
+    w: float
+    d_scale: float
+    v: float
+    force: object
+    params: np.ndarray
+
+    def arrays(self) -> tuple:
+        """The dense output as the compiled code takes it: (kind, knots, starts, sizes, cx, cy, f, y_old, w,
+        d_scale, v)."""
+        return (self.kind, self.knots, self.starts, self.sizes, self.cx, self.cy, self.f, self.y_old, self.w,
+                self.d_scale, self.v)
 
 
 class NormalMotion:
@@ -35,6 +75,11 @@ class NormalMotion:
     def state(self, t):
         """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]."""
         raise NotImplementedError
+
+    def kernel_state(self) -> KernelState | None:
+        """This motion as compiled code reads it, when this process integrates compiled and the motion's dense output
+        and law have compiled forms; else None (the caller then computes in Python, to the same bits)."""
+        return None
 
     def force(self, t):
         """Normal force P(t) [N] during contact, t in [0, t_f].

@@ -32,16 +32,16 @@ def load_compiled() -> None:
     importlib.import_module(_TAYLOR_MODULE)
 
 
-#: The package's kernels in two groups of about equal compile time, each compiled in one process of
-#: :func:`compile_all` when two compile at once on a fresh machine: DOP853's loop and the laws' forces it calls, and
-#: the Taylor method's loop, the laws' series and the microslip march.
-GROUPS = ("dop853", "taylor")
+#: The package's kernels in groups, each compiled in one process of :func:`compile_all` when they compile at once on a
+#: fresh machine: DOP853's loop and the laws' forces it calls; the Taylor method's loop, the laws' series and the
+#: microslip march; the compliant tangential contact's stick phase (its compile time: ``results/bench.csv``).
+GROUPS = ("dop853", "taylor", "stick")
 
 
 def compile_all(group: str | None = None) -> None:
     """Compile every kernel of the package (or load it from numba's disk cache), or those of one of :data:`GROUPS`:
-    both integrators' loops, every built-in law's force and series kernels, the microslip march's (what a fresh
-    machine compiles once; a process otherwise compiles each on its first use)."""
+    both integrators' loops, every built-in law's force and series kernels, the microslip march's and the stick
+    phase's (what a fresh machine compiles once; a process otherwise compiles each on its first use)."""
     import importlib
 
     from ..contact.laws import LAWS
@@ -60,6 +60,8 @@ def compile_all(group: str | None = None) -> None:
             if law.series_kernel is not None:
                 law.series_kernel.load(series=True)
         microslip_march.compile_all()
+    if group in (None, "stick"):
+        importlib.import_module("sphereimpact.contact.tangential.stick_kernel")
 
 
 def compiled_now() -> bool:

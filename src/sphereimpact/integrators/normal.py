@@ -22,7 +22,7 @@ import numpy as np
 
 from ..ode import series
 from ..ode.dense import StackedDOP853, fast_solution, is_instant
-from ..contact.motion import NormalMotion
+from ..contact.motion import KernelState, NormalMotion
 from ..errors import ImpactError
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
 from .event_kinds import EventKind
@@ -196,12 +196,40 @@ class _DimensionlessNormal(NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
 
+    def kernel_state(self):
+        law = self.scene.law
+        if law.kernel is None or law.scalar is None or not isinstance(self._sol, (StackedDOP853, series.TaylorDense)):
+            return None
+        from . import compiled as rule
+
+        return self.kept("kernel state", lambda: _kernel_state(self)) if rule.compiled_now() else None
+
     def state(self, t):
         if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
             x, y = self._sol.single(float(t) * self._w)
             return x * self._d_scale, y * self._v
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
+
+
+def _kernel_state(motion: _DimensionlessNormal) -> KernelState:
+    """``motion``'s :class:`~sphereimpact.contact.motion.KernelState`: its dense output's arrays and its law's checked
+    kernel."""
+    from ..contact.tangential.stick_kernel import DOP853, TAYLOR
+    from .compiled import checked_kernel
+
+    sol, scene, none = motion._sol, motion.scene, np.empty(0)
+    if isinstance(sol, StackedDOP853):
+        kind, knots, starts, sizes = DOP853, sol.ts, sol.t_old, sol.h
+        cx = cy = np.empty((0, 0))
+        f, y_old = np.ascontiguousarray(sol.f[:, ::-1]), np.ascontiguousarray(sol.y_old)
+    else:
+        (starts, knots, cx, cy), kind, sizes = sol.pieces(), TAYLOR, none
+        f, y_old = np.empty((0, 7, 2)), np.empty((0, 2))
+    return KernelState(kind, np.ascontiguousarray(knots, dtype=float), np.ascontiguousarray(starts, dtype=float),
+                       np.ascontiguousarray(sizes, dtype=float), cx, cy, f, y_old, float(motion._w),
+                       float(motion._d_scale), float(motion._v), checked_kernel(scene, (motion._d_scale, motion._v)),
+                       np.array(scene.law.kernel.parameters(scene), dtype=float))
 
 
 class _RightHandSide:

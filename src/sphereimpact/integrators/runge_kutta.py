@@ -51,10 +51,7 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
     rhs.spend(nfev if status != kernel.BUDGET else rhs.left + 1)
     if status == kernel.OVERFLOW:
         raise OverflowError("the contact force left the finite numbers")
-    messages = {kernel.TERMINAL: "A termination event occurred.",
-                kernel.FINISHED: "The solver successfully reached the end of the integration interval.",
-                kernel.STEP_TOO_SMALL: "Required step size is less than spacing between numbers."}
-    return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), messages[status],
+    return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), dop853.MESSAGES[int(status)],
                           dict(zip(map(tuple, where.tolist()), roots.tolist())))
 
 

@@ -35,6 +35,10 @@ SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # scipy's RungeKutta step contr
 EPS = np.finfo(float).eps
 #: Most iterations of Brent's method locating one event's root on a step's interpolant (it needs far fewer).
 ROOT_ITERATIONS = 100
+#: solve_ivp's message for each status: a terminal event, the span's end, a step below 10 ulp of t.
+MESSAGES = {1: "A termination event occurred.",
+            0: "The solver successfully reached the end of the integration interval.",
+            -1: "Required step size is less than spacing between numbers."}
 
 
 def _dense_rows(matrix, lengths) -> list:
@@ -160,14 +164,14 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
     comps = range(n)
     while status is None:
         if t == t_bound:  # scipy's solver reports 'finished' once t reaches the bound
-            status, message = 0, "The solver successfully reached the end of the integration interval."
+            status, message = 0, MESSAGES[0]
             break
         min_step = 10 * abs(math.nextafter(t, math.inf) - t)
         h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
         rejected = False
         while True:
             if h_abs < min_step:
-                status, message = -1, "Required step size is less than spacing between numbers."
+                status, message = -1, MESSAGES[-1]
                 break
             t_new = t + h_abs
             if t_new - t_bound > 0:
@@ -218,7 +222,7 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
             g_new = [float(e(t, y)) for e in events]
             gs.append(g_new)
             if any(terminal[i] and _crossed(a, b, directions[i]) for i, (a, b) in enumerate(zip(g, g_new))):
-                status, message = 1, "A termination event occurred."
+                status, message = 1, MESSAGES[1]
             g = g_new
     return located(events, np.array(ts), np.array(ys), np.array(coefficients).reshape(len(coefficients), 7, n),
                    np.array(gs).reshape(len(gs), len(events)), nfev, status, message)

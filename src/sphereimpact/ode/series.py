@@ -103,6 +103,11 @@ class TaylorDense:
     def steps(self) -> int:
         return self._last + 1
 
+    def pieces(self) -> tuple:
+        """(starts, ends, cx, cy): each step's start and end, and its coefficients of x and y (steps, order + 1), as
+        float arrays: what :meth:`single` reads, for compiled code that evaluates the same polynomials."""
+        return np.array(self._starts, dtype=float), np.array(self._ends, dtype=float), self._cx, self._cy
+
     def single(self, tau: float) -> list:
         """[x, y] at one instant, in floats (an instant on a step boundary takes the earlier step)."""
         i = min(bisect.bisect_left(self._ends, tau), self._last)

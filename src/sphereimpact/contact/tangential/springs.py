@@ -302,8 +302,10 @@ class CompliantTangential:
         for event in (upper, lower):
             event.terminal, event.direction = True, -1
         span = (p.t0 * w, t_f * w)
-        sol = dop853.solve(rhs, span, [p.force0 / fs, 0.0, 0.0], opts.rtol, opts.atol, events=(upper, lower),
-                           max_step=(span[1] - span[0]) / STICK_STEPS)
+        z0, max_step = [p.force0 / fs, 0.0, 0.0], (span[1] - span[0]) / STICK_STEPS
+        sol = self._compiled_stick(slip0, p.t0, span, z0, max_step, (upper, lower))
+        if sol is None:
+            sol = dop853.solve(rhs, span, z0, opts.rtol, opts.atol, events=(upper, lower), max_step=max_step)
         if sol.status == -1:
             raise ImpactError(f"tangential stick phase: solver failed: {sol.message}")
         p = replace(p, solution=sol.sol)
@@ -321,6 +323,28 @@ class CompliantTangential:
         if force == 0.0:  # the cap closed to zero with F: slip goes the contact point's way
             sigma = 1.0 if v - omega * s.radius >= 0 else -1.0
         return done, CompliantPhase(SLIDING, t_switch, t_f, v, omega, x, sigma=sigma)
+
+    def _compiled_stick(self, slip0: float, t0: float, span, z0, max_step: float, events):
+        """A stick phase's DOP853 run compiled (:func:`.stick_kernel.stick`): the Python run's steps, events and dense
+        output to the bit.  None where the normal motion has no compiled form (a process that integrates in Python
+        floats, a closed form, a scipy method) or an event's root had no bracket on its step: the Python run then
+        runs (and raises there as it should)."""
+        state = self.normal.kernel_state()
+        if state is None:
+            return None
+        from . import stick_kernel as kernel
+
+        s, n = self.scene, self._n
+        spring = np.array([self._w, s.kappa, float(s.k), n * s.k, n, self._root_m, slip0, s.g_tangent, t0,
+                           slip_per_impulse(s.mass, s.inertia_factor), self._js, self._fs, s.mu], dtype=float)
+        ts, ys, coefficients, g, nfev, status, roots, where = kernel.stick(
+            state.arrays(), state.force, state.params, spring, RESCALE.index(self._rescale), float(span[0]),
+            float(span[1]), np.array(z0, dtype=float), float(self._options.rtol), float(self._options.atol),
+            float(max_step))
+        if status == kernel.NO_ROOT:
+            return None
+        return dop853.located(events, ts, ys, coefficients, g, int(nfev), int(status), dop853.MESSAGES[int(status)],
+                              dict(zip(map(tuple, where.tolist()), roots.tolist())))
 
     def _stick_force(self, p: CompliantPhase, t):
         """F [N] of a sticking phase at t: the spring's force less the dashpot's."""

@@ -1,0 +1,316 @@
+"""A compliant tangential contact's stick phase, compiled: the DOP853 run of :class:`~.springs.CompliantTangential`.
+
+While the contact sticks, (F_s, J_t, K_t) is integrated on the solved normal motion by DOP853 in plain floats
+(:func:`sphereimpact.ode.dop853.solve`) until |F| reaches mu P+.  In Python that run costs a few milliseconds a phase,
+most of it calls: the right-hand side reads the normal motion's dense output and the law's force at every stage.
+:func:`stick` is the same run compiled by numba for one signature: the normal motion enters as its dense output's
+arrays (:class:`~sphereimpact.contact.motion.KernelState`: a Taylor method's series or a DOP853 interpolant, each
+evaluated with the arithmetic of its Python evaluator), the law's force as its compiled kernel by function pointer,
+so one compiled loop serves every law and tangential model and numba caches it on disk once.  The loop is
+:func:`~sphereimpact.ode.dop853.solve`'s, step for step and sum for sum (scipy's tableau, step control and event
+rule; the roots by the same Brent search on the same interpolant), and the right-hand side and the events are the
+stick phase's Python functions' arithmetic in their order, so the run is the Python run to the bit
+(tests/test_stick_kernel.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numba import types
+
+from ...ode import dop853
+from ...ode.dense import interpolant_pair
+from ...ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
+from ...ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
+from ...ode.roots import NO_BRACKET, bracketed_root
+from ..laws.kernels import SIGNATURE
+
+#: The dense outputs a normal motion hands the kernel (:attr:`KernelState.kind`): a Taylor method's series, a DOP853
+#: interpolant.
+TAYLOR, DOP853 = 0, 1
+#: The history rules (``springs.RESCALE``, in its order) as integers.
+NEVER, UNLOADING, ALWAYS = 0, 1, 2
+#: Statuses: an event ended the run, the span's end reached, the step fell below 10 ulp of t (``dop853.solve``'s
+#: 1, 0, -1), and an event whose root had no bracket on its step's interpolant (``dop853.solve`` raises there).
+TERMINAL, FINISHED, STEP_TOO_SMALL, NO_ROOT = 1, 0, -1, -2
+
+_COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
+_F, _I = types.float64, types.int64
+_ARRAY, _MATRIX, _CUBE = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
+#: The normal motion's arrays (:meth:`~sphereimpact.contact.motion.KernelState.arrays`).
+_NORMAL = types.Tuple((_I, _ARRAY, _ARRAY, _ARRAY, _MATRIX, _MATRIX, _CUBE, _MATRIX, _F, _F, _F))
+_SIGNATURE = types.Tuple((_ARRAY, _MATRIX, _CUBE, _MATRIX, _I, _I, _ARRAY, types.int64[:, ::1]))(
+    _NORMAL, types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _I, _F, _F, _ARRAY, _F, _F, _F)
+_EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
+_A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
+_N = 3  # the state: F_s / fs, J_t / js, K_t w / js
+
+_crossed = numba.njit(**_COMPILE)(dop853._crossed)
+_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
+
+
+@numba.njit(**_COMPILE)
+def _horner(row, s):
+    """``series.horner`` of one row of Taylor coefficients."""
+    value = 0.0
+    for i in range(row.size - 1, -1, -1):
+        value = value * s + row[i]
+    return value
+
+
+@numba.njit(**_COMPILE)
+def _normal_state(normal, t):
+    """(delta [m], delta_dot [m/s]) at t [s]: the normal motion's ``state`` at one instant (its dense output's
+    ``single``, then scaled).  ``normal``: (kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v)."""
+    kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v = normal
+    tau = t * w
+    if kind == TAYLOR:  # TaylorDense.single: knots are the steps' ends
+        i = min(np.searchsorted(knots, tau), starts.size - 1)
+        s = tau - starts[i]
+        x, y = _horner(cx[i], s), _horner(cy[i], s)
+    else:  # StackedDOP853.single: knots are the step boundaries, f each step's rows in reverse order
+        i = min(max(np.searchsorted(knots, tau) - 1, 0), sizes.size - 1)
+        x, y = _interpolant_pair(f[i], (tau - starts[i]) / sizes[i], y_old[i, 0], y_old[i, 1])
+    return x * d_scale, y * v
+
+
+@numba.njit(**_COMPILE)
+def _stiffness(spring, delta):
+    """k_t [N/m] at compression delta: kappa times the normal spring's tangent stiffness (``spring_stiffness``)."""
+    kappa, k, nk, n = spring[1], spring[2], spring[3], spring[4]
+    return kappa * (k if n == 1.0 else nk * max(delta, 0.0) ** (n - 1.0))
+
+
+@numba.njit(**_COMPILE)
+def _slip(spring, t, impulse):
+    """The contact point's slip velocity [m/s] at t [s] with the scaled tangential impulse ``impulse``."""
+    slip0, g_t, t0, inverse_mass, js = spring[6], spring[7], spring[8], spring[9], spring[10]
+    return slip0 + g_t * (t - t0) + inverse_mass * impulse * js
+
+
+@numba.njit(**_COMPILE)
+def _rhs(args, tau, z0, z1, out):
+    """The stick phase's right-hand side at (tau, z) into ``out`` (``CompliantTangential._run``'s ``rhs``)."""
+    normal, force, params, spring, rescale = args
+    w, n, root_m, fs = spring[0], spring[4], spring[5], spring[11]
+    t = tau / w
+    delta, delta_dot = _normal_state(normal, t)
+    k_t = _stiffness(spring, delta)
+    slip = _slip(spring, t, z1)
+    total = z0 - root_m * math.sqrt(k_t) * slip / fs if root_m else z0
+    rho = 0.0  # springs.history_rate
+    if not (rescale == NEVER or delta <= 0 or (delta_dot >= 0 and rescale == UNLOADING)):
+        rho = (n - 1.0) * delta_dot / delta
+    out[0] = (-k_t * slip + rho * z0 * fs) / (w * fs)
+    out[1] = total
+    out[2] = z1
+
+
+@numba.njit(**_COMPILE)
+def _event(which, args, tau, z0, z1):
+    """The stick phase's event ``which`` at (tau, z): 0 is F reaching +mu P+, 1 is F reaching -mu P+ (``upper``
+    and ``lower``)."""
+    normal, force, params, spring, rescale = args
+    w, root_m, fs, mu = spring[0], spring[5], spring[11], spring[12]
+    t = tau / w
+    delta, delta_dot = _normal_state(normal, t)
+    p = force(delta, delta_dot, params)
+    cap = mu * (p if p >= 0.0 or p != p else 0.0)  # np.maximum(P, 0): NaN stays NaN
+    total = z0
+    if root_m:  # the dashpot's share, as ``dashpot(t)`` and ``total`` compute it
+        slip = _slip(spring, t, z1)
+        total = z0 - root_m * np.sqrt(_stiffness(spring, _normal_state(normal, t)[0])) * slip / fs
+    return cap / fs - total if which == 0 else cap / fs + total
+
+
+@numba.njit(**_COMPILE)
+def _event_at(tau, args):
+    """An event's value at tau inside one step: the step's interpolant there (``ode.dense.horner_dop853`` for three
+    components), then the event.  ``args``: (which, the run's args, the step's rows of F in reverse order, its start,
+    its size, its start state)."""
+    which, run, rows, t0, h, y0 = args
+    x = (tau - t0) / h
+    rest = 1 - x
+    a = b = c = 0.0
+    for i in range(rows.shape[0]):
+        factor = x if i % 2 == 0 else rest
+        a, b, c = (a + rows[i, 0]) * factor, (b + rows[i, 1]) * factor, (c + rows[i, 2]) * factor
+    return _event(which, run, tau, a + y0[0], b + y0[1])
+
+
+@numba.njit(**_COMPILE)
+def _rms3(a, b, c):
+    return math.sqrt((0.0 + a * a + b * b + c * c) / 3)
+
+
+@numba.njit(**_COMPILE)
+def _grow(array, size):
+    """``array`` (C-contiguous) with its first axis doubled, its first ``size`` entries kept: element by element, which
+    numba compiles in a fraction of the time a slice assignment takes."""
+    bigger = np.empty((2 * array.shape[0],) + array.shape[1:])
+    flat, old = bigger.reshape(bigger.size), array.reshape(array.size)
+    for i in range(size * (array.size // max(array.shape[0], 1))):
+        flat[i] = old[i]
+    return bigger
+
+
+@numba.njit(**_COMPILE)
+def _stage(k, h, y, weights, used, comp):
+    """y[comp] + h * (the first ``used`` weights dotted with the stages' component ``comp``), summed left to right."""
+    total = 0.0
+    for j in range(used):
+        total += weights[j] * k[j, comp]
+    return y[comp] + h * total
+
+
+@numba.njit(_SIGNATURE, **_COMPILE)
+def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, max_step):
+    """Integrate one stick phase from (t0, z0) towards t_bound [tau] with DOP853 until an event ends it.
+
+    Parameters
+    ----------
+    normal : tuple
+        The normal motion's dense output (:meth:`~sphereimpact.contact.motion.KernelState.arrays`).
+    force, params : kernel, array
+        The law's compiled force P(delta, delta_dot, params) [N] and its parameters.
+    spring : array (13,)
+        w [1/s], kappa [-], k [N/m^n], n k, n [-], root_m [sqrt(kg)] (0: no dashpot), the slip s0 [m/s] at the
+        phase's start t0 [s], g_t [m/s^2], t0, 1/m* [1/kg] (slip per impulse), js [N s], fs [N], mu [-].
+    rescale : int
+        The history rule (:data:`NEVER`, :data:`UNLOADING`, :data:`ALWAYS`).
+    t0, t_bound, z0, rtol, atol, max_step
+        As :func:`sphereimpact.ode.dop853.solve` takes them (first step: scipy's estimate).
+
+    Returns
+    -------
+    ts, ys, coefficients, g, nfev, status, roots, where
+        As :func:`sphereimpact.integrators.dop853_kernel.integrate` returns them, for the two events.
+    """
+    a, b, e3, e5, a_extra, c_extra, d, c_stage, stages = _A, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _C, _STAGES
+    extra, m = c_extra.size, 2
+    args = (normal, force, params, spring, rescale)
+    capacity = 64
+    ts, ys = np.empty(capacity), np.empty((capacity, _N))
+    coefficients, g = np.empty((capacity, 7, _N)), np.empty((capacity, m))
+    k = np.empty((stages + 1 + extra, _N))
+    f, f_new, stage, y_new = np.empty(_N), np.empty(_N), np.empty(_N), np.empty(_N)
+    t, y = t0, z0.copy()
+    _rhs(args, t, y[0], y[1], f)
+    nfev = 1
+    interval = abs(t_bound - t0)
+    if interval == 0.0:  # dop853._initial_step
+        h_abs = 0.0
+    else:
+        s0, s1, s2 = atol + abs(y[0]) * rtol, atol + abs(y[1]) * rtol, atol + abs(y[2]) * rtol
+        d0, d1 = _rms3(y[0] / s0, y[1] / s1, y[2] / s2), _rms3(f[0] / s0, f[1] / s1, f[2] / s2)
+        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+        h0 = min(h0, interval)
+        _rhs(args, t0 + h0, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
+        nfev += 1
+        d2 = _rms3((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1, (stage[2] - f[2]) / s2) / h0
+        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -_EXPONENT
+        h_abs = min(min(min(100 * h0, h1), interval), max_step)
+    ts[0] = t
+    for comp in range(_N):
+        ys[0, comp] = y[comp]
+    for j in range(m):
+        g[0, j] = _event(j, args, t, y[0], y[1])
+    steps, status = 0, 2
+    while status == 2:
+        if t == t_bound:
+            status = FINISHED
+            break
+        min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+        h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
+        rejected = False
+        h = 0.0
+        while True:
+            if h_abs < min_step:
+                status = STEP_TOO_SMALL
+                break
+            t_new = t + h_abs
+            if t_new - t_bound > 0:
+                t_new = t_bound
+            h = t_new - t
+            h_abs = abs(h)
+            for comp in range(_N):
+                k[0, comp] = f[comp]
+            for s in range(1, stages):
+                for comp in range(_N):
+                    stage[comp] = _stage(k, h, y, a[s], s, comp)
+                _rhs(args, t + c_stage[s] * h, stage[0], stage[1], k[s])
+            for comp in range(_N):
+                y_new[comp] = _stage(k, h, y, b, stages, comp)
+            _rhs(args, t + h, y_new[0], y_new[1], f_new)
+            for comp in range(_N):
+                k[stages, comp] = f_new[comp]
+            nfev += stages
+            sum5, sum3 = 0.0, 0.0
+            for comp in range(_N):
+                scale = atol + max(abs(y[comp]), abs(y_new[comp])) * rtol
+                total5, total3 = 0.0, 0.0
+                for j in range(stages + 1):
+                    total5 += e5[j] * k[j, comp]
+                for j in range(stages + 1):
+                    total3 += e3[j] * k[j, comp]
+                error5, error3 = total5 / scale, total3 / scale
+                sum5 += error5 * error5
+                sum3 += error3 * error3
+            error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / math.sqrt((sum5 + 0.01 * sum3) * _N)
+            if error < 1:
+                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** _EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            h_abs *= max(MIN_FACTOR, SAFETY * error ** _EXPONENT)
+            rejected = True
+        if status != 2:
+            break
+        for i in range(extra):  # the step's dense output: three more stages
+            for comp in range(_N):
+                stage[comp] = _stage(k, h, y, a_extra[i], stages + 1 + i, comp)
+            _rhs(args, t + c_extra[i] * h, stage[0], stage[1], k[stages + 1 + i])
+        nfev += extra
+        if steps + 2 > ts.size:
+            ts, ys, coefficients, g = (_grow(ts, steps + 1), _grow(ys, steps + 1), _grow(coefficients, steps),
+                                       _grow(g, steps + 1))
+        row = coefficients[steps]
+        for comp in range(_N):
+            change = y_new[comp] - y[comp]
+            row[0, comp] = change
+            row[1, comp] = h * f[comp] - change
+            row[2, comp] = 2 * change - h * (f_new[comp] + f[comp])
+            for i in range(d.shape[0]):
+                total = 0.0
+                for j in range(d.shape[1]):
+                    total += d[i, j] * k[j, comp]
+                row[3 + i, comp] = h * total
+        t = t_new
+        for comp in range(_N):
+            y[comp], f[comp] = y_new[comp], f_new[comp]
+        steps += 1
+        ts[steps] = t
+        for comp in range(_N):
+            ys[steps, comp] = y[comp]
+        for j in range(m):
+            g[steps, j] = _event(j, args, t, y[0], y[1])
+            if _crossed(g[steps - 1, j], g[steps, j], -1):
+                status = TERMINAL
+    roots, where, count = np.empty(steps * m), np.empty((steps * m, 2), dtype=np.int64), 0
+    for s in range(steps):
+        for j in range(m):
+            if _crossed(g[s, j], g[s + 1, j], -1):
+                root, found, _ = _root(_event_at, (j, args, coefficients[s][::-1], ts[s], ts[s + 1] - ts[s], ys[s]),
+                                       ts[s], ts[s + 1], 4 * EPS, 4 * EPS, ROOT_ITERATIONS)
+                if found == NO_BRACKET:
+                    status = NO_ROOT
+                roots[count] = root
+                where[count, 0], where[count, 1] = s, j
+                count += 1
+    return (ts[:steps + 1], ys[:steps + 1], coefficients[:steps], g[:steps + 1], nfev, status, roots[:count],
+            where[:count])

@@ -1,0 +1,69 @@
+"""The compiled stick phase of the compliant tangential contacts (:mod:`sphereimpact.contact.tangential.stick_kernel`)
+against the Python-float run it replaces: the same steps, events and dense output to the bit, on random scenes of the
+consistency test's domain (every spring, with and without the dashpot, on Taylor and DOP853 normal motions)."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from sphereimpact import SolverOptions, simulate
+from sphereimpact.errors import BeyondRadiusWarning, EnergyGainWarning
+from sphereimpact.integrators import normal as normal_module
+from sphereimpact.integrators.compiled import load_compiled
+from sphereimpact.numerics.consistency import random_scenes
+from sphereimpact.sweep.scenes import scene_of, scene_table
+
+
+def _compliant_scenes(n: int, seed: int) -> list:
+    """The first ``n`` scenes with a compliant spring among the consistency test's random scenes of ``seed``."""
+    scenes = []
+    for row in scene_table(random_scenes(40 * n, seed=seed)).to_dict("records"):
+        if row["tangential"] in ("linear", "mindlin", "mindlin-displacement"):
+            scenes.append(scene_of(row))
+        if len(scenes) == n:
+            return scenes
+    raise AssertionError("too few compliant scenes drawn")
+
+
+def _solve(scenes, options, compiled: bool, monkeypatch) -> list:
+    """Each scene simulated, its stick phases compiled or (``compiled`` False) in Python floats; refused ones None."""
+    load_compiled()  # the normal motions expose their compiled form only in a process that integrates compiled
+    if not compiled:
+        monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+    outcomes = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BeyondRadiusWarning)
+        warnings.simplefilter("ignore", EnergyGainWarning)
+        for scene in scenes:
+            try:
+                outcomes.append(simulate(scene, options))
+            except Exception as err:  # noqa: BLE001  (compared below: both runs refuse alike)
+                outcomes.append(f"{type(err).__name__}: {err}")
+    monkeypatch.undo()
+    return outcomes
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypatch):
+    scenes = _compliant_scenes(70, seed=11)
+    options = SolverOptions(method=method)
+    python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
+    sticks = kinds = 0
+    for scene, a, b in zip(scenes, python, compiled):
+        if isinstance(a, str):
+            assert a == b, scene
+            continue
+        assert {k: v for k, v in a.to_dict().items() if k != "wall_time"} == pytest.approx(
+            {k: v for k, v in b.to_dict().items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True), scene
+        if a.motion.tangential is None:
+            continue
+        for pa, pb in zip(a.motion.tangential.phases, b.motion.tangential.phases, strict=True):
+            assert (pa.mode, pa.t0, pa.t1, pa.v0, pa.omega0, pa.sigma) == (pb.mode, pb.t0, pb.t1, pb.v0, pb.omega0,
+                                                                         pb.sigma)
+            if pa.solution is not None:
+                sticks += 1
+                assert np.array_equal(pa.solution.ts, pb.solution.ts)
+                assert np.array_equal(pa.solution.f, pb.solution.f)
+        kinds += b.motion.normal.kernel_state() is not None
+    assert sticks >= 30 and kinds >= 30  # the compiled path was taken, on many stick phases
