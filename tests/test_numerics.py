@@ -9,7 +9,8 @@ import pytest
 from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.numerics.ablation import ablation
 from sphereimpact.numerics.bench import speedups
-from sphereimpact.numerics.reference import reference, relative_errors, worst_error
+from sphereimpact.numerics.reference import (reference, relative_errors, stored_references, worst_error,
+                                             write_references)
 from sphereimpact.numerics.workprecision import METHODS, TARGET, choose_default, work_precision
 
 CHAPTER = {f"{a}deg-{m}": Scene(angle=a, model=m) for a in (0.0, 60.0) for m in ("modified", "kelvin-voigt")}
@@ -217,3 +218,25 @@ def test_the_stability_studies_one_job_each_merge_into_the_table_of_all_at_once(
     assert pd.read_csv(tmp_path / "whole.csv")["study"].unique().tolist() == ["past-separation", "onset"]
     with pytest.raises(ValueError, match=r"stability study 'grip' is not one of numerics.stability"):
         write_stability(config, tmp_path / "grip.csv", "grip")
+
+
+def test_stored_references_are_the_computed_ones_to_the_bit(tmp_path, monkeypatch):
+    """The timed studies' references, computed in a job of their own and read back (rule numerics_references): every
+    output, the bound and the method equal reference()'s (wall_time aside); a scene the file lacks is computed."""
+    stored = [Scene(angle=60.0), Scene(angle=30.0, model="kelvin-voigt"), Scene(model="hertz", modulus=1e8)]
+    path = tmp_path / "references.json"
+    write_references(stored, path)
+    with stored_references(path):
+        read = [reference(scene) for scene in stored]
+        import sphereimpact.numerics.reference as module
+
+        monkeypatch.setattr(module, "outputs_from_normal", lambda *args: pytest.fail("recomputed a stored reference"))
+        assert reference(stored[0]).outputs == read[0].outputs
+        monkeypatch.undo()
+        other = reference(Scene(angle=45.0, model="kelvin-voigt"))  # not in the file: computed
+    assert other.how == "closed form"
+    for scene, got in zip(stored, read):
+        want = reference(scene)
+        assert (got.bound, got.how) == (want.bound, want.how)
+        assert {k: v for k, v in got.outputs.items() if k != "wall_time"} == pytest.approx(
+            {k: v for k, v in want.outputs.items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True)

@@ -1,8 +1,29 @@
 # Accuracy against speed: work-precision, where methods fail, model ablation (timings vary run to run).
 
 
+rule numerics_references:
+    """The reference solutions of the timed studies (work-precision, stiffness), computed beside other jobs so that
+    the timed ones, which run alone, spend their time timing."""
+    output:
+        json="results/numerics/references.json",
+    params:
+        code=code("workflow/scripts/numerics_references.py"),
+        config=params_for("numerics_references"),
+    priority: 1  # early: two timed jobs wait for it
+    benchmark:
+        "results/benchmarks/numerics/numerics_references.tsv"
+    log:
+        "logs/numerics_references.log",
+    conda:
+        ENV
+    script:
+        "../scripts/numerics_references.py"
+
+
 rule work_precision:
     """Every solve_ivp method x body x tolerance (plus the closed form) against reference solutions."""
+    input:
+        references="results/numerics/references.json",
     output:
         csv=report("results/work_precision.csv", caption="../report/work_precision.rst", category="Numerics"),
     params:
@@ -41,7 +62,9 @@ rule bench:
 
 rule stability_study:
     """One failure mode measured for every method beside the package's default path; the stiffness study, whose
-    times the table reports, runs alone."""
+    times the table reports, runs alone, on references computed before it."""
+    input:
+        references=lambda wildcards: "results/numerics/references.json" if wildcards.study == "stiffness" else [],
     output:
         csv=temp("results/stability/{study}.csv"),
     params:

@@ -14,8 +14,10 @@ delta_dot(t_f) exactly: the tangential outputs by the impulse algebra
 
 from __future__ import annotations
 
+import json
 import math
-
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 from ..impact.scene import Scene, SolverOptions
@@ -119,11 +121,52 @@ def taylor_normal(scene: Scene, digits: int) -> tuple[float, float, float, float
         return float(tau_m / w), float(x_m * v / w), float(tau_f / w), float(y_f * v)
 
 
+#: The references read from a file inside :func:`stored_references`, by scene (:func:`_key`); None outside.
+_STORED: ContextVar[dict | None] = ContextVar("stored references", default=None)
+
+
+def _key(scene: Scene) -> str:
+    """The scene as a stored reference names it: its repr, every input to the last digit."""
+    return repr(scene)
+
+
+def write_references(scenes, path: str) -> None:
+    """:func:`reference` of each of ``scenes`` into the JSON file ``path`` (each scene's repr beside its reference;
+    floats written to the last bit), for :func:`stored_references`: a timed study reads its references there, so the
+    job that must run alone does not spend its time computing them."""
+    entries = []
+    for scene in scenes:
+        ref = reference(scene)
+        entries.append({"scene": _key(scene), "outputs": ref.outputs, "bound": ref.bound, "how": ref.how})
+    with open(path, "w") as out:
+        json.dump(entries, out, indent=1)
+
+
+@contextmanager
+def stored_references(path: str | None):
+    """Inside this block :func:`reference` of a scene the file ``path`` (:func:`write_references`) holds returns it
+    as stored (the same outputs to the bit); any other scene is computed.  ``path`` None: nothing stored."""
+    stored = {}
+    if path is not None:
+        with open(path) as file:
+            stored = {entry["scene"]: Reference(entry["outputs"], entry["bound"], entry["how"])
+                      for entry in json.load(file)}
+    token = _STORED.set(stored)
+    try:
+        yield
+    finally:
+        _STORED.reset(token)
+
+
 def reference(scene: Scene) -> Reference:
     """The reference outputs of ``scene``: the law's closed form where it declares one (kelvin-voigt),
     Taylor at :data:`FINE_DIGITS` bounded by :data:`COARSE_DIGITS` (modified), or for any other law scipy's
     DOP853 at rtol 1e-13, bounded by its distance from rtol 1e-12 (a second implementation beside the
-    package's DOP853-scalar, not an exact one)."""
+    package's DOP853-scalar, not an exact one); inside :func:`stored_references`, the stored one where the file has
+    the scene."""
+    stored = (_STORED.get() or {}).get(_key(scene))
+    if stored is not None:
+        return stored
     if scene.law.closed_form is not None:
         out = simulate(scene, SolverOptions(method="closed")).to_dict()
         return Reference(out, 4 * 2.2e-16, "closed form")

@@ -68,12 +68,18 @@ def _package_point(study, scene, ref, method, x_name, x, rtol=1e-8, variant="pac
     return _row(study, variant, method, x_name, x, worst_error(out.to_dict(), ref, scene), out.nfev, seconds)
 
 
-def stiffness(base: Scene, methods=METHODS) -> list[dict]:
-    """Cost against damping ratio (b varied) and against stiffness k (b fixed), ``base``'s law, force criterion."""
-    rows = []
+def stiffness_scenes(base: Scene) -> list[tuple]:
+    """The stiffness study's points: (x_name, x, scene) with the damping ratio varied (b) and the stiffness k (b
+    fixed), ``base``'s law."""
     sweeps = [("zeta", z, base.with_(b=z * 2 * math.sqrt(base.k * base.mass))) for z in (0.05, 0.5, 1, 5, 20, 100)]
-    sweeps += [("k [N/m]", k, base.with_(k=k)) for k in (1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9)]
-    for x_name, x, scene in sweeps:
+    return sweeps + [("k [N/m]", k, base.with_(k=k)) for k in (1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9)]
+
+
+def stiffness(base: Scene, methods=METHODS) -> list[dict]:
+    """Cost against damping ratio (b varied) and against stiffness k (b fixed), ``base``'s law, force criterion
+    (:func:`stiffness_scenes`)."""
+    rows = []
+    for x_name, x, scene in stiffness_scenes(base):
         ref = reference(scene).outputs
         for method in methods:
             rows.append(_package_point("stiffness", scene, ref, method, x_name, x, timed=True))

@@ -13,7 +13,8 @@ from ..numerics.bench_sweep import run as bench_sweep
 from ..numerics.bench import (bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages,
                                startup_bench)
 from ..parsing import parse_range
-from ..numerics.stability import stability
+from ..numerics.reference import stored_references, write_references
+from ..numerics.stability import stability, stiffness_scenes
 from ..numerics.workprecision import work_precision
 from .config import scene_for
 from .replication import load_published
@@ -35,10 +36,23 @@ def domain_cases(config: dict, models=("modified", "kelvin-voigt")) -> dict:
             for model in models for name, changes in config["numerics"].get("domain", {}).items()}
 
 
-def write_work_precision(config: dict, csv_path: str) -> None:
+def write_numerics_references(config: dict, json_path: str) -> None:
+    """The reference solutions the timed numerical studies compare with (the work-precision cases', and the
+    stiffness study's points where ``numerics.stability`` has it), into ``json_path``
+    (:func:`~sphereimpact.numerics.reference.write_references`): computed in a job of their own, so that the timed jobs,
+    which run alone, spend their time timing."""
+    scenes = list((chapter_cases(config) | domain_cases(config)).values())
+    if "stiffness" in config["numerics"]["stability"]:
+        scenes += [scene for _, _, scene in stiffness_scenes(_stability_ball(config))]
+    write_references(scenes, json_path)
+
+
+def write_work_precision(config: dict, csv_path: str, references: str | None = None) -> None:
+    """The work-precision table; ``references`` the file of :func:`write_numerics_references` (else computed)."""
     numerics = config["numerics"]
-    frame = work_precision(chapter_cases(config) | domain_cases(config), numerics["tolerances"],
-                           numerics["methods"], numerics["cost_cap"])
+    with stored_references(references):
+        frame = work_precision(chapter_cases(config) | domain_cases(config), numerics["tolerances"],
+                               numerics["methods"], numerics["cost_cap"])
     frame["case"] = frame["case"].str.split("/").str[0]
     frame.to_csv(csv_path, **CSV)
 
@@ -93,15 +107,21 @@ def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None) 
                 million=bench["million"], laws=bench["laws"], fit_of=fit_of, data_fit_of=data_fit_of)
 
 
-def write_stability(config: dict, csv_path: str, study: str | None = None) -> None:
+def _stability_ball(config: dict):
+    """The failure-mode studies' scene: the first configured case's ball under eq. 4.2, force criterion."""
+    return scene_for(config, next(iter(config["cases"])), "modified", Separation.FORCE)
+
+
+def write_stability(config: dict, csv_path: str, study: str | None = None, references: str | None = None) -> None:
     """The failure-mode studies on the first configured case's ball (each study sets its own angle): those of
-    ``numerics.stability``, or ``study`` alone (the pipeline runs each in its own job, the timed one alone)."""
-    base = scene_for(config, next(iter(config["cases"])), "modified", Separation.FORCE)
+    ``numerics.stability``, or ``study`` alone (the pipeline runs each in its own job, the timed one alone);
+    ``references`` the file of :func:`write_numerics_references` (else computed)."""
     numerics = config["numerics"]
     if study is not None and study not in numerics["stability"]:
         raise ValueError(f"stability study {study!r} is not one of numerics.stability {numerics['stability']}")
     studies = numerics["stability"] if study is None else [study]
-    stability(base, studies, numerics["methods"]).to_csv(csv_path, **CSV)
+    with stored_references(references):
+        stability(_stability_ball(config), studies, numerics["methods"]).to_csv(csv_path, **CSV)
 
 
 def merge_stability(parts: list[str], csv_path: str) -> None:
@@ -145,7 +165,8 @@ def write_microslip_resolution(config: dict, csv_path: str) -> None:
     table.to_csv(csv_path, **CSV)
 
 
-def write_study(rule: str, config: dict, csv_path: str, published: str | None = None) -> None:
+def write_study(rule: str, config: dict, csv_path: str, published: str | None = None,
+                references: str | None = None) -> None:
     """The study of workflow rule ``rule`` (``work_precision``, ``ablation`` or ``microslip_resolution``; the
     stability studies: :func:`write_stability`)."""
     if rule == "microslip_resolution":
@@ -153,6 +174,6 @@ def write_study(rule: str, config: dict, csv_path: str, published: str | None = 
     elif rule == "ablation":
         write_ablation(config, published, csv_path)
     elif rule == "work_precision":
-        write_work_precision(config, csv_path)
+        write_work_precision(config, csv_path, references)
     else:
         raise ValueError(f"no numerical study for rule {rule!r}")

@@ -37,6 +37,7 @@ RULE_KEYS = {
     "work_precision": (*_SCENE, "cases", "primary", "numerics.methods", "numerics.tolerances",
                        "numerics.cost_cap", "numerics.domain"),
     "stability": (*_SCENE, "numerics.methods", "numerics.stability"),
+    "numerics_references": (*_SCENE, "cases", "primary", "numerics.domain", "numerics.stability"),
     "ablation": (*_SCENE, "cases", "primary"),
     "microslip_resolution": ("numerics.microslip", "validation", "bench.repeats"),
     "sweep_shard": (*_SCENE, "primary", "sweep.angle", "sweep.speed", "sweep.target"),
