@@ -47,8 +47,8 @@ FIGURE_TOLERANCE = 2.0
 #: share the machine, since its timings are not read.
 TIMED_RULES = ("work_precision", "stability_study", "bench", "bench_sweep", "microslip_resolution", "sweep_paths")
 #: Rules whose jobs are benchmarks or heavy studies.
-HEAVY = ("work_precision", "stability_study", "stability", "bench", "bench_sweep", "ablation", "sweep_shard",
-         "microslip_resolution", "sweep_paths")
+HEAVY = ("work_precision", "numerics_references", "stability_study", "stability", "bench", "bench_sweep", "ablation",
+         "sweep_shard", "microslip_resolution", "sweep_paths")
 
 
 def planned(run) -> dict:
