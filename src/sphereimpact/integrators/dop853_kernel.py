@@ -28,7 +28,7 @@ from numba import types
 from ..contact.laws.kernels import SIGNATURE
 from ..ode import dop853
 from ..ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
-from ..ode.dense import interpolant_pair
+from ..ode.dense import grown, interpolant_pair
 from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ..ode.roots import bracketed_root
 from .event_kinds import EventKind
@@ -79,6 +79,7 @@ _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _eve
 
 
 _interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+_grown = numba.njit(**_COMPILE)(grown)
 
 
 @numba.njit(**_COMPILE)
@@ -94,14 +95,6 @@ def _event_at(t, args):
 @numba.njit(**_COMPILE)
 def _rms(a, b):
     return np.sqrt((0.0 + a * a + b * b) / 2.0)
-
-
-@numba.njit(**_COMPILE)
-def _grow(array, size):
-    """``array`` with its first axis doubled, its first ``size`` entries kept."""
-    bigger = np.empty((2 * array.shape[0],) + array.shape[1:])
-    bigger[:size] = array[:size]
-    return bigger
 
 
 @numba.njit(_SIGNATURE, **_COMPILE)
@@ -241,8 +234,9 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
             status = OVERFLOW
             break
         if steps + 2 > ts.size:
-            ts, ys, coefficients, g = (_grow(ts, steps + 1), _grow(ys, steps + 1), _grow(coefficients, steps),
-                                       _grow(g, steps + 1))
+            room = 2 * ts.size
+            ts, ys, coefficients, g = (_grown(ts, steps + 1, room), _grown(ys, steps + 1, room),
+                                       _grown(coefficients, steps, room), _grown(g, steps + 1, room))
         row = coefficients[steps]
         for comp in range(2):
             change = y_new[comp] - y[comp]

@@ -21,6 +21,7 @@ from numba import types
 from ..contact.laws.kernels import SERIES_SIGNATURE, SIGNATURE
 from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 from ..ode import series
+from ..ode.dense import grown
 from ..ode.roots import BRENT_ITERATIONS, NO_BRACKET, bracketed_root
 
 #: Statuses: separation found, the horizon reached without it, the step budget spent, coefficients not finite,
@@ -82,18 +83,7 @@ def _event_root(kind, xs, ys, edge, force, params, d_scale, v, pulls, h):
 _step_size = numba.njit(**_COMPILE)(series.step_size)  # that very function compiled
 
 
-@numba.njit(**_COMPILE)
-def _grown(array, size, capacity):
-    bigger = np.empty(capacity)
-    bigger[:size] = array[:size]
-    return bigger
-
-
-@numba.njit(**_COMPILE)
-def _grown_rows(array, size, capacity):
-    bigger = np.empty((capacity, array.shape[1]))
-    bigger[:size] = array[:size]
-    return bigger
+_grown = numba.njit(**_COMPILE)(grown)
 
 
 @numba.njit(_SIGNATURE, **_COMPILE)
@@ -145,7 +135,7 @@ def solve(series_kernel, force, numbers, params, gamma, tol, end, lam, max_step,
         if steps == capacity:
             capacity *= 2
             starts, ends = _grown(starts, steps, capacity), _grown(ends, steps, capacity)
-            cx, cy = _grown_rows(cx, steps, capacity), _grown_rows(cy, steps, capacity)
+            cx, cy = _grown(cx, steps, capacity), _grown(cy, steps, capacity)
         starts[steps] = tau
         cx[steps], cy[steps] = xs, ys
         if math.isnan(tau_m) and y > 0.0 >= y_end:

@@ -59,6 +59,17 @@ def interpolant_pair(rows, x: float, first: float, second: float) -> tuple[float
     return a + first, b + second
 
 
+def grown(array, size: int, capacity: int):
+    """``array`` (C-contiguous) with its first axis ``capacity`` long and its first ``size`` entries kept: the per-step
+    arrays of a compiled integration loop outgrowing their room.  Element by element, in plain code that numba compiles
+    for each loop in a fraction of the time a slice assignment takes (seconds on every fresh machine)."""
+    bigger = np.empty((capacity,) + array.shape[1:])
+    flat, old = bigger.reshape(bigger.size), array.reshape(array.size)
+    for i in range(size * (array.size // max(array.shape[0], 1))):
+        flat[i] = old[i]
+    return bigger
+
+
 class StackedDOP853:
     """A DOP853 dense output over ascending steps, evaluated like OdeSolution (see module docstring).
 
