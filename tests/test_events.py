@@ -24,7 +24,7 @@ FUNCTIONS = {
 def test_minimise_takes_scipys_steps(name, xatol):
     f, a, b = FUNCTIONS[name]
     ours, theirs = [], []
-    x, fx = minimise(lambda t: ours.append(t) or f(t), a, b, xatol)
+    x, fx = minimise(lambda t, _: ours.append(t) or f(t), None, a, b, xatol)
     res = minimize_scalar(lambda t: theirs.append(float(t)) or f(t), bounds=(a, b), method="bounded",
                           options={"xatol": xatol})
     assert ours == theirs and x == float(res.x) and fx == float(res.fun)
@@ -32,7 +32,7 @@ def test_minimise_takes_scipys_steps(name, xatol):
 
 def test_minimise_stops_after_maxfun_evaluations_as_scipy_does():
     ours, theirs = [], []
-    minimise(lambda t: ours.append(t) or math.sin(1 / (t + 1e-3)), 0.0, 1.0, 1e-300, maxfun=5)
+    minimise(lambda t, _: ours.append(t) or math.sin(1 / (t + 1e-3)), None, 0.0, 1.0, 1e-300, maxfun=5)
     minimize_scalar(lambda t: theirs.append(float(t)) or math.sin(1 / (t + 1e-3)), bounds=(0.0, 1.0),
                     method="bounded", options={"xatol": 1e-300, "maxiter": 5})
     assert len(ours) == 5 and ours == theirs

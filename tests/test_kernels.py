@@ -285,5 +285,5 @@ def test_a_series_kernel_that_is_not_the_series_is_refused_by_name(monkeypatch):
 
 
 def test_compiling_the_kernels_by_group_refuses_a_group_it_does_not_have():
-    with pytest.raises(ValueError, match="group must be one of dop853, taylor, stick, or None for every kernel; got 'numpy'"):
+    with pytest.raises(ValueError, match="group must be one of dop853, taylor, contact, or None for every kernel; got 'numpy'"):
         compiled_rule.compile_all("numpy")

@@ -14,21 +14,27 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..ode.dense import is_instant
+from ..ode.events import extremes
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene
 
 
+#: The dense outputs a normal motion hands compiled code (:attr:`KernelState.kind`): a Taylor method's series, a DOP853
+#: interpolant.
+TAYLOR, DOP853 = 0, 1
+
+
 @dataclass(frozen=True)
 class KernelState:
-    """A solved normal motion as compiled code reads it (:mod:`sphereimpact.contact.tangential.stick_kernel`): its
-    dense output's arrays, evaluated there with the arithmetic of its Python evaluator, and the law's compiled force.
+    """A solved normal motion as compiled code reads it (:mod:`sphereimpact.contact.normal_kernel`): its dense output's
+    arrays, evaluated there with the arithmetic of its Python evaluator, and the law's compiled force.
 
     Attributes
     ----------
     kind : int
-        ``stick_kernel.TAYLOR`` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx``
-        and ``cy`` their coefficients) or ``stick_kernel.DOP853`` (``knots`` the step boundaries, ``starts`` and
+        :data:`TAYLOR` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx`` and
+        ``cy`` their coefficients) or :data:`DOP853` (``knots`` the step boundaries, ``starts`` and
         ``sizes`` the steps' starts and sizes, ``f`` their interpolants' rows in reverse order, ``y_old`` their start
         states); the arrays a kind does not use are empty.
     w, d_scale, v : float
@@ -93,6 +99,22 @@ class NormalMotion:
             delta, delta_dot = self.state(t)
             return scalar(float(delta), float(delta_dot), self.scene)
         return self.scene.stage_force(*self.state(t))
+
+    def force_extremes(self) -> tuple[float, float]:
+        """The normal force's smallest and largest values [N] over the contact: ``force(t)`` sampled on ``grid``
+        (which brackets every extremum), each extremum then refined (:func:`sphereimpact.ode.events.extremes`);
+        compiled (:func:`.normal_kernel.force_extremes`, the same answer to the bit) where :meth:`kernel_state` has
+        the motion.  Computed once, and kept with the motion and its copies for other scenes (:meth:`kept`)."""
+        return self.kept("force extremes", self._force_extremes)
+
+    def _force_extremes(self) -> tuple[float, float]:
+        state = self.kernel_state()
+        if state is not None:
+            from .normal_kernel import force_extremes
+
+            low, high = force_extremes(state.arrays(), state.force, state.params, np.asarray(self.grid, dtype=float))
+            return float(low), float(high)
+        return extremes(self.force, self.grid)
 
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""

@@ -13,7 +13,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..ode.events import extremum
 from .declarations import (NUMERIC_OUTPUTS, OUTPUT_KEYS, OUTPUT_UNITS, PARTNER_OUTPUTS,  # noqa: F401 (re-exported:
                            SCALAR_OUTPUTS, SOLVER_KEYS)                                # declared once there)
 from .scene import Scene
@@ -29,13 +28,6 @@ HISTORY_COLUMNS = {
     "u_t": "m", "u_n": "m", "vc_t": "m/s", "vc_n": "m/s", "omega": "rad/s", "ve_t": "m/s", "ve_n": "m/s",
     "X": "m", "Y": "m", "VX": "m/s", "VY": "m/s",
 }
-
-
-def force_extremes(force, grid) -> tuple[float, float]:
-    """The smallest and largest normal force [N] over the contact: ``force(t)`` sampled on ``grid`` (which
-    brackets every extremum), each extremum then refined."""
-    forces = force(grid)
-    return extremum(force, grid, "min", forces)[1], extremum(force, grid, "max", forces)[1]
 
 
 @dataclass(frozen=True)
@@ -234,7 +226,8 @@ class Outcome:
         """Read the outputs off a solved contact motion (reduced or planar), through :func:`outputs`.
 
         ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``, ``switches``,
-        ``grid``, ``stats``, ``force(t)``, ``force_extremes()`` (:func:`force_extremes`) and ``kinematics(t)``.
+        ``grid``, ``stats``, ``force(t)``, ``force_extremes()`` (the normal force's least and greatest values [N])
+        and ``kinematics(t)``.
         """
         s = motion.scene
         both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call: [0] at t_m, [1] at t_f

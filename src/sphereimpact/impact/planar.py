@@ -24,7 +24,7 @@ from scipy.integrate import solve_ivp
 from ..errors import ImpactError
 from ..integrators.normal import check_rebound, horizon, no_separation_message, separation_function, substep_grid
 from ..integrators import ivp_method
-from .outcome import force_extremes
+from ..ode.events import extremes
 from .scene import Scene, SolverOptions
 from ..contact.tangential import MAX_PHASES, Regime, phase_index
 from ..contact.tangential.rigid import RIGID
@@ -122,8 +122,9 @@ class SegmentedMotion:
         return self._contact(self._state(t))[2]
 
     def force_extremes(self) -> tuple[float, float]:
-        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`)."""
-        return force_extremes(self.force, self.grid)
+        """The normal force's smallest and largest values [N] over the contact (sampled on ``grid``, then refined:
+        :func:`~sphereimpact.ode.events.extremes`)."""
+        return extremes(self.force, self.grid)
 
 
 class PlanarMotion(SegmentedMotion):

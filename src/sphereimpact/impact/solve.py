@@ -25,7 +25,7 @@ from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
-from .outcome import Outcome, force_extremes, gains_energy
+from .outcome import Outcome, gains_energy
 from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS, Regime
@@ -102,10 +102,9 @@ class ReducedMotion:
         return self.normal.force(t)
 
     def force_extremes(self) -> tuple[float, float]:
-        """The normal force's smallest and largest values [N] (:func:`~.outcome.force_extremes`), kept with the
-        normal motion that sets them."""
-        normal = self.normal
-        return normal.kept("force extremes", lambda: force_extremes(normal.force, normal.grid))
+        """The normal force's smallest and largest values [N], the normal motion's
+        (:meth:`~sphereimpact.contact.motion.NormalMotion.force_extremes`)."""
+        return self.normal.force_extremes()
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""

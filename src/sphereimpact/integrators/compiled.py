@@ -34,14 +34,15 @@ def load_compiled() -> None:
 
 #: The package's kernels in groups, each compiled in one process of :func:`compile_all` when they compile at once on a
 #: fresh machine: DOP853's loop and the laws' forces it calls; the Taylor method's loop, the laws' series and the
-#: microslip march; the compliant tangential contact's stick phase (its compile time: ``results/bench.csv``).
-GROUPS = ("dop853", "taylor", "stick")
+#: microslip march; the contact layer's kernels on a solved normal motion (the force's extremes, the compliant
+#: tangential contact's stick phase).  Their compile time: ``results/bench.csv``.
+GROUPS = ("dop853", "taylor", "contact")
 
 
 def compile_all(group: str | None = None) -> None:
     """Compile every kernel of the package (or load it from numba's disk cache), or those of one of :data:`GROUPS`:
-    both integrators' loops, every built-in law's force and series kernels, the microslip march's and the stick
-    phase's (what a fresh machine compiles once; a process otherwise compiles each on its first use)."""
+    both integrators' loops, every built-in law's force and series kernels, the microslip march's, the force extremes'
+    and the stick phase's (what a fresh machine compiles once; a process otherwise compiles each on its first use)."""
     import importlib
 
     from ..contact.laws import LAWS
@@ -60,7 +61,8 @@ def compile_all(group: str | None = None) -> None:
             if law.series_kernel is not None:
                 law.series_kernel.load(series=True)
         microslip_march.compile_all()
-    if group in (None, "stick"):
+    if group in (None, "contact"):
+        importlib.import_module("sphereimpact.contact.normal_kernel")
         importlib.import_module("sphereimpact.contact.tangential.stick_kernel")
 
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..ode import series
 from ..ode.dense import StackedDOP853, fast_solution, is_instant
-from ..contact.motion import KernelState, NormalMotion
+from ..contact.motion import DOP853, TAYLOR, KernelState, NormalMotion
 from ..errors import ImpactError
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
 from .event_kinds import EventKind
@@ -215,7 +215,6 @@ class _DimensionlessNormal(NormalMotion):
 def _kernel_state(motion: _DimensionlessNormal) -> KernelState:
     """``motion``'s :class:`~sphereimpact.contact.motion.KernelState`: its dense output's arrays and its law's checked
     kernel."""
-    from ..contact.tangential.stick_kernel import DOP853, TAYLOR
     from .compiled import checked_kernel
 
     sol, scene, none = motion._sol, motion.scene, np.empty(0)

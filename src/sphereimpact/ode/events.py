@@ -88,14 +88,16 @@ def first_root(f, grid, direction: int = 0, after: float | None = None) -> float
     return found[0] if found else None
 
 
-def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
-    """Global ``'min'`` or ``'max'`` of ``f`` over ``[grid[0], grid[-1]]``.
+def extremes(f, grid) -> tuple[float, float]:
+    """The smallest and largest values of ``f`` over ``[grid[0], grid[-1]]`` (:func:`extremum` of each, ``f`` sampled on
+    the grid once)."""
+    values = f(grid)
+    return extremum(f, grid, "min", values)[1], extremum(f, grid, "max", values)[1]
 
-    The best sample is refined by a bounded Brent search between its neighbours, and so is an end interval
-    whose value just inside its end point is better than both of its samples, for then it has an extremum
-    inside that no sample shows (the brief pull before delta returns to 0 hid behind the end point's value);
-    the end points are candidates too.
-    ``values``, if given, is f on the grid (computed once for both extremes).
+
+def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
+    """Global ``'min'`` or ``'max'`` of ``f`` over ``[grid[0], grid[-1]]`` (:func:`refined_minimum` of ``f`` or of
+    ``-f``).  ``values``, if given, is f on the grid (computed once for both extremes).
 
     Returns
     -------
@@ -104,38 +106,68 @@ def extremum(f, grid, kind: str, values=None) -> tuple[float, float]:
     grid = np.asarray(grid, dtype=float)
     sgn = 1.0 if kind == "min" else -1.0
     values = sgn * np.asarray(f(grid) if values is None else values, dtype=float)
+    g = _scalar(f)
+    best_t, best_v = refined_minimum(_signed, (g, sgn), grid, values, minimise)
+    return best_t, sgn * best_v
+
+
+def _signed(t: float, args) -> float:
+    g, sgn = args
+    return sgn * g(t)
+
+
+def refined_minimum(g, args, grid, values, search) -> tuple[float, float]:
+    """The least value of ``g(t, args)`` over ``[grid[0], grid[-1]]``, and where: ``values`` is g on the grid, ``search``
+    :func:`minimise` (or it compiled).
+
+    The best sample is refined by a bounded Brent search between its neighbours (``search``), and so is an end
+    interval whose value just inside its end point is below both of its samples, for then it has a minimum inside
+    that no sample shows (the brief pull before delta returns to 0 hid behind the end point's value); the end points
+    are candidates too.  Plain arithmetic on floats and arrays, so that numba compiles this very function for the
+    compiled force extremes (:mod:`sphereimpact.contact.normal_kernel`) and :func:`extremum` runs it as Python.
+
+    Returns
+    -------
+    (t, value) : tuple of float
+    """
     i = int(np.argmin(values))
     best_t, best_v = float(grid[i]), float(values[i])
-    if len(grid) > 1:
-        g = _scalar(f)
-        last = len(grid) - 1
-        spans = {(i - 1, i + 1)} if 0 < i < last else set()
-        for end, inner, span in ((0, 1, (0, 1)), (last, last - 1, (last - 1, last))):
-            near = float(grid[end]) + 1e-3 * (float(grid[inner]) - float(grid[end]))
-            if sgn * g(near) < min(values[end], values[inner]):  # below both ends of the interval: one inside
-                spans.add(span)
-        for low, high in sorted(spans):
-            t, value = minimise(lambda t: sgn * g(t), float(grid[low]), float(grid[high]),
-                                1e-14 * max(float(grid[-1]), 1e-300))
-            if value < best_v:
-                best_t, best_v = t, value
-    return best_t, sgn * best_v
+    last = len(grid) - 1
+    if last < 1:
+        return best_t, best_v
+    # the spans to search, in ascending order: the first interval, the best sample's neighbours, the last interval
+    lows, highs, count = [0, 0, 0], [0, 0, 0], 0
+    near = float(grid[0]) + 1e-3 * (float(grid[1]) - float(grid[0]))
+    if g(near, args) < min(values[0], values[1]):  # below both ends of the interval: one inside
+        lows[count], highs[count], count = 0, 1, count + 1
+    if 0 < i < last:
+        lows[count], highs[count], count = i - 1, i + 1, count + 1
+    near = float(grid[last]) + 1e-3 * (float(grid[last - 1]) - float(grid[last]))
+    if g(near, args) < min(values[last], values[last - 1]) and not (last == 1 and count):  # (0, 1) once
+        lows[count], highs[count], count = last - 1, last, count + 1
+    xatol = 1e-14 * max(float(grid[last]), 1e-300)
+    for k in range(count):
+        t, value = search(g, args, float(grid[lows[k]]), float(grid[highs[k]]), xatol, 500)
+        if value < best_v:
+            best_t, best_v = t, value
+    return best_t, best_v
 
 
 _GOLDEN = 0.5 * (3.0 - math.sqrt(5.0))
 _SQRT_EPS = math.sqrt(2.2e-16)  # scipy's
 
 
-def minimise(g, a: float, b: float, xatol: float, maxfun: int = 500) -> tuple[float, float]:
-    """(x, g(x)) at a minimum of g on [a, b]: Brent's method (golden section with parabolic steps; Brent,
+def minimise(g, args, a: float, b: float, xatol: float, maxfun: int = 500) -> tuple[float, float]:
+    """(x, g(x, args)) at a minimum of g on [a, b]: Brent's method (golden section with parabolic steps; Brent,
     *Algorithms for Minimization without Derivatives*, 1973, ch. 5), in plain floats.
 
     The algorithm of scipy's ``minimize_scalar(method='bounded')``, step for step (the same points, tests
     and stopping rule: tests/test_events.py finds the same evaluations and answer), without its per-call
-    overhead, which on one impact's peak force cost more than the eight evaluations it needs.
+    overhead, which on one impact's peak force cost more than the eight evaluations it needs.  Plain arithmetic,
+    so that numba compiles it too (:func:`refined_minimum`).
     """
     x = w = v = a + _GOLDEN * (b - a)
-    fx = fw = fv = g(x)
+    fx = fw = fv = g(x, args)
     d = e = 0.0
     for _ in range(maxfun - 1):  # maxfun evaluations at most
         middle = 0.5 * (a + b)
@@ -161,7 +193,7 @@ def minimise(g, a: float, b: float, xatol: float, maxfun: int = 500) -> tuple[fl
             e = (b if x < middle else a) - x
             d = _GOLDEN * e
         u = x + (d if abs(d) >= tol else tol if d == 0 else math.copysign(tol, d))
-        fu = g(u)
+        fu = g(u, args)
         if fu <= fx:
             if u >= x:
                 a = x

@@ -432,19 +432,17 @@ def dimensionless_motion(scene: Scene, options: SolverOptions, extremes: bool = 
     single-impact path's normal motion (``options.method`` as ``simulate`` resolves it); with ``extremes``,
     p_max and p_min (the force's extremes over m v_n w); with ``levels`` (of j = J+ / (m v_n)), tau_g, the
     instants J+ reaches them; with ``asked``, its extremes and grip profile (:class:`Asked`)."""
-    from ..ode.events import extremum
-
     normal = shared_normal_motion(scene, options)  # inside a fit, solved once for every evaluation
     w, v, m = scene.frequency, scene.v_normal, scene.mass
     impulse = PositiveImpulse(normal)
     out = {"tau_m": normal.t_m * w, "x_m": normal.delta_m * w / v, "tau_f": normal.t_f * w,
            "y_f": float(normal.state(normal.t_f)[1]) / v, "j_p": float(impulse(normal.t_f)) / (m * v)}
     if extremes or (asked is not None and asked.extremes):
-        forces = normal.force(normal.grid)
+        ends = normal.force(normal.grid[[0, -1]])
         scale = m * v * w
-        out["p_max"] = extremum(normal.force, normal.grid, "max", forces)[1] / scale
-        out["p_min"] = extremum(normal.force, normal.grid, "min", forces)[1] / scale
-        out["p_ends"] = min(forces[0], forces[-1]) / scale  # the least force at an end of the contact
+        low, high = normal.force_extremes()
+        out["p_max"], out["p_min"] = high / scale, low / scale
+        out["p_ends"] = min(ends[0], ends[-1]) / scale  # the least force at an end of the contact
     if levels is not None:
         out["tau_g"] = impulse.instants(np.asarray(levels, dtype=float) * (m * v)) * w
     if asked is not None and asked.grip:

@@ -4,13 +4,13 @@ While the contact sticks, (F_s, J_t, K_t) is integrated on the solved normal mot
 (:func:`sphereimpact.ode.dop853.solve`) until |F| reaches mu P+.  In Python that run costs a few milliseconds a phase,
 most of it calls: the right-hand side reads the normal motion's dense output and the law's force at every stage.
 :func:`stick` is the same run compiled by numba for one signature: the normal motion enters as its dense output's
-arrays (:class:`~sphereimpact.contact.motion.KernelState`: a Taylor method's series or a DOP853 interpolant, each
-evaluated with the arithmetic of its Python evaluator), the law's force as its compiled kernel by function pointer,
+arrays (:class:`~sphereimpact.contact.motion.KernelState`, read by :func:`~..normal_kernel.normal_state` with the
+arithmetic of its Python evaluator), the law's force as its compiled kernel by function pointer,
 so one compiled loop serves every law and tangential model and numba caches it on disk once.  The loop is
 :func:`~sphereimpact.ode.dop853.solve`'s, step for step and sum for sum (scipy's tableau, step control and event
 rule; the roots by the same Brent search on the same interpolant), and the right-hand side and the events are the
 stick phase's Python functions' arithmetic in their order, so the run is the Python run to the bit
-(tests/test_stick_kernel.py).
+(tests/test_contact_kernels.py).
 """
 
 from __future__ import annotations
@@ -27,10 +27,8 @@ from ...ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, 
 from ...ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ...ode.roots import NO_BRACKET, bracketed_root
 from ..laws.kernels import SIGNATURE
+from ..normal_kernel import ARRAY, CUBE, MATRIX, NORMAL, normal_state
 
-#: The dense outputs a normal motion hands the kernel (:attr:`KernelState.kind`): a Taylor method's series, a DOP853
-#: interpolant.
-TAYLOR, DOP853 = 0, 1
 #: The history rules (``springs.RESCALE``, in its order) as integers.
 NEVER, UNLOADING, ALWAYS = 0, 1, 2
 #: Statuses: an event ended the run, the span's end reached, the step fell below 10 ulp of t (``dop853.solve``'s
@@ -39,11 +37,8 @@ TERMINAL, FINISHED, STEP_TOO_SMALL, NO_ROOT = 1, 0, -1, -2
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64
-_ARRAY, _MATRIX, _CUBE = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
-#: The normal motion's arrays (:meth:`~sphereimpact.contact.motion.KernelState.arrays`).
-_NORMAL = types.Tuple((_I, _ARRAY, _ARRAY, _ARRAY, _MATRIX, _MATRIX, _CUBE, _MATRIX, _F, _F, _F))
-_SIGNATURE = types.Tuple((_ARRAY, _MATRIX, _CUBE, _MATRIX, _I, _I, _ARRAY, types.int64[:, ::1]))(
-    _NORMAL, types.FunctionType(SIGNATURE), _ARRAY, _ARRAY, _I, _F, _F, _ARRAY, _F, _F, _F)
+_SIGNATURE = types.Tuple((ARRAY, MATRIX, CUBE, MATRIX, _I, _I, ARRAY, types.int64[:, ::1]))(
+    NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, _I, _F, _F, ARRAY, _F, _F, _F)
 _EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
 _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 _N = 3  # the state: F_s / fs, J_t / js, K_t w / js
@@ -52,31 +47,6 @@ _crossed = numba.njit(**_COMPILE)(dop853._crossed)
 _interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
 _grown = numba.njit(**_COMPILE)(grown)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
-
-
-@numba.njit(**_COMPILE)
-def _horner(row, s):
-    """``series.horner`` of one row of Taylor coefficients."""
-    value = 0.0
-    for i in range(row.size - 1, -1, -1):
-        value = value * s + row[i]
-    return value
-
-
-@numba.njit(**_COMPILE)
-def _normal_state(normal, t):
-    """(delta [m], delta_dot [m/s]) at t [s]: the normal motion's ``state`` at one instant (its dense output's
-    ``single``, then scaled).  ``normal``: (kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v)."""
-    kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v = normal
-    tau = t * w
-    if kind == TAYLOR:  # TaylorDense.single: knots are the steps' ends
-        i = min(np.searchsorted(knots, tau), starts.size - 1)
-        s = tau - starts[i]
-        x, y = _horner(cx[i], s), _horner(cy[i], s)
-    else:  # StackedDOP853.single: knots are the step boundaries, f each step's rows in reverse order
-        i = min(max(np.searchsorted(knots, tau) - 1, 0), sizes.size - 1)
-        x, y = _interpolant_pair(f[i], (tau - starts[i]) / sizes[i], y_old[i, 0], y_old[i, 1])
-    return x * d_scale, y * v
 
 
 @numba.njit(**_COMPILE)
@@ -99,7 +69,7 @@ def _rhs(args, tau, z0, z1, out):
     normal, force, params, spring, rescale = args
     w, n, root_m, fs = spring[0], spring[4], spring[5], spring[11]
     t = tau / w
-    delta, delta_dot = _normal_state(normal, t)
+    delta, delta_dot = normal_state(normal, t)
     k_t = _stiffness(spring, delta)
     slip = _slip(spring, t, z1)
     total = z0 - root_m * math.sqrt(k_t) * slip / fs if root_m else z0
@@ -118,13 +88,13 @@ def _event(which, args, tau, z0, z1):
     normal, force, params, spring, rescale = args
     w, root_m, fs, mu = spring[0], spring[5], spring[11], spring[12]
     t = tau / w
-    delta, delta_dot = _normal_state(normal, t)
+    delta, delta_dot = normal_state(normal, t)
     p = force(delta, delta_dot, params)
     cap = mu * (p if p >= 0.0 or p != p else 0.0)  # np.maximum(P, 0): NaN stays NaN
     total = z0
     if root_m:  # the dashpot's share, as ``dashpot(t)`` and ``total`` compute it
         slip = _slip(spring, t, z1)
-        total = z0 - root_m * np.sqrt(_stiffness(spring, _normal_state(normal, t)[0])) * slip / fs
+        total = z0 - root_m * np.sqrt(_stiffness(spring, normal_state(normal, t)[0])) * slip / fs
     return cap / fs - total if which == 0 else cap / fs + total
 
 

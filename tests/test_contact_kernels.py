@@ -1,6 +1,7 @@
-"""The compiled stick phase of the compliant tangential contacts (:mod:`sphereimpact.contact.tangential.stick_kernel`)
-against the Python-float run it replaces: the same steps, events and dense output to the bit, on random scenes of the
-consistency test's domain (every spring, with and without the dashpot, on Taylor and DOP853 normal motions)."""
+"""The contact layer's compiled kernels against the Python-float code they replace, to the bit, on random scenes of the
+consistency test's domain: the normal force's extremes (:mod:`sphereimpact.contact.normal_kernel`) on every law, and
+the compliant springs' stick phase (:mod:`sphereimpact.contact.tangential.stick_kernel`: the same steps, events and
+dense output; every spring, with and without the dashpot), on Taylor and DOP853 normal motions."""
 
 import warnings
 
@@ -15,11 +16,11 @@ from sphereimpact.numerics.consistency import random_scenes
 from sphereimpact.sweep.scenes import scene_of, scene_table
 
 
-def _compliant_scenes(n: int, seed: int) -> list:
-    """The first ``n`` scenes with a compliant spring among the consistency test's random scenes of ``seed``."""
+def _scenes(n: int, seed: int, tangentials=("linear", "mindlin", "mindlin-displacement")) -> list:
+    """The first ``n`` scenes with one of ``tangentials`` among the consistency test's random scenes of ``seed``."""
     scenes = []
     for row in scene_table(random_scenes(40 * n, seed=seed)).to_dict("records"):
-        if row["tangential"] in ("linear", "mindlin", "mindlin-displacement"):
+        if row["tangential"] in tangentials:
             scenes.append(scene_of(row))
         if len(scenes) == n:
             return scenes
@@ -44,9 +45,15 @@ def _solve(scenes, options, compiled: bool, monkeypatch) -> list:
     return outcomes
 
 
+def _same_outputs(a, b) -> bool:
+    """Every output of two outcomes equal to the bit (NaN equal to NaN), but the wall time."""
+    return {k: v for k, v in a.to_dict().items() if k != "wall_time"} == pytest.approx(
+        {k: v for k, v in b.to_dict().items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True)
+
+
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypatch):
-    scenes = _compliant_scenes(70, seed=11)
+    scenes = _scenes(70, seed=11)
     options = SolverOptions(method=method)
     python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
     sticks = kinds = 0
@@ -54,8 +61,7 @@ def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypat
         if isinstance(a, str):
             assert a == b, scene
             continue
-        assert {k: v for k, v in a.to_dict().items() if k != "wall_time"} == pytest.approx(
-            {k: v for k, v in b.to_dict().items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True), scene
+        assert _same_outputs(a, b), scene
         if a.motion.tangential is None:
             continue
         for pa, pb in zip(a.motion.tangential.phases, b.motion.tangential.phases, strict=True):
@@ -67,3 +73,20 @@ def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypat
                 assert np.array_equal(pa.solution.f, pb.solution.f)
         kinds += b.motion.normal.kernel_state() is not None
     assert sticks >= 30 and kinds >= 30  # the compiled path was taken, on many stick phases
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monkeypatch):
+    scenes = _scenes(150, seed=12, tangentials=("rigid", "microslip"))
+    options = SolverOptions(method=method)
+    python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
+    laws, taken = set(), 0
+    for scene, a, b in zip(scenes, python, compiled):
+        if isinstance(a, str):
+            assert a == b, scene
+            continue
+        assert (a.force_min, a.force_max) == (b.force_min, b.force_max), scene
+        assert _same_outputs(a, b), scene
+        laws.add(scene.model)
+        taken += b.motion.normal.kernel_state() is not None
+    assert taken >= 100 and len(laws) >= 4  # the compiled path, on most laws

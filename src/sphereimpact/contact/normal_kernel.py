@@ -1,0 +1,77 @@
+"""A solved normal motion read in compiled code: its state at an instant, and its force's extremes.
+
+A normal motion hands compiled code its dense output as arrays (:class:`~.motion.KernelState`); :func:`normal_state`
+evaluates them with the arithmetic of the Python evaluator (``TaylorDense.single``, ``StackedDOP853.single``) and
+the kernels of the contact layer build on it (:mod:`.tangential.stick_kernel`).  :func:`force_extremes` is
+:meth:`.motion.NormalMotion.force_extremes` compiled: the force sampled on the motion's grid by the law's compiled
+kernel and refined by the very functions the Python path runs (``ode.events.refined_minimum`` and ``minimise``),
+so its answer is the Python one to the bit (tests/test_contact_kernels.py).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+from numba import types
+
+from ..ode.dense import interpolant_pair
+from ..ode.events import minimise, refined_minimum
+from .laws.kernels import SIGNATURE
+from .motion import TAYLOR
+
+_COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
+_F, _I = types.float64, types.int64
+ARRAY, MATRIX, CUBE = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
+#: The numba type of a normal motion's arrays (:meth:`~.motion.KernelState.arrays`).
+NORMAL = types.Tuple((_I, ARRAY, ARRAY, ARRAY, MATRIX, MATRIX, CUBE, MATRIX, _F, _F, _F))
+
+_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+_minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
+_refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
+
+
+@numba.njit(**_COMPILE)
+def _horner(row, s):
+    """``series.horner`` of one row of Taylor coefficients."""
+    value = 0.0
+    for i in range(row.size - 1, -1, -1):
+        value = value * s + row[i]
+    return value
+
+
+@numba.njit(**_COMPILE)
+def normal_state(normal, t):
+    """(delta [m], delta_dot [m/s]) at t [s]: the normal motion's ``state`` at one instant (its dense output's
+    ``single``, then scaled).  ``normal``: :meth:`~.motion.KernelState.arrays`."""
+    kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v = normal
+    tau = t * w
+    if kind == TAYLOR:  # TaylorDense.single: knots are the steps' ends
+        i = min(np.searchsorted(knots, tau), starts.size - 1)
+        s = tau - starts[i]
+        x, y = _horner(cx[i], s), _horner(cy[i], s)
+    else:  # StackedDOP853.single: knots are the step boundaries, f each step's rows in reverse order
+        i = min(max(np.searchsorted(knots, tau) - 1, 0), sizes.size - 1)
+        x, y = _interpolant_pair(f[i], (tau - starts[i]) / sizes[i], y_old[i, 0], y_old[i, 1])
+    return x * d_scale, y * v
+
+
+@numba.njit(**_COMPILE)
+def _signed_force(t, args):
+    """sgn P(t) [N]: the force at t by the law's kernel, signed so that its least value is the sought extreme."""
+    normal, force, params, sgn = args
+    delta, delta_dot = normal_state(normal, t)
+    return sgn * force(delta, delta_dot, params)
+
+
+@numba.njit(types.UniTuple(_F, 2)(NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY), **_COMPILE)
+def force_extremes(normal, force, params, grid):
+    """The normal force's smallest and largest values [N] over the contact (:meth:`.motion.NormalMotion.force_extremes`
+    compiled): ``normal`` the motion's arrays, ``force`` and ``params`` the law's compiled kernel and its parameters,
+    ``grid`` the motion's sample instants [s]."""
+    forces = np.empty(grid.size)
+    for k in range(grid.size):
+        delta, delta_dot = normal_state(normal, grid[k])
+        forces[k] = force(delta, delta_dot, params)
+    low = _refined_minimum(_signed_force, (normal, force, params, 1.0), grid, forces, _minimise)[1]
+    high = _refined_minimum(_signed_force, (normal, force, params, -1.0), grid, -forces, _minimise)[1]
+    return low, -high
