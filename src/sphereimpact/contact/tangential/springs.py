@@ -45,7 +45,7 @@ solved normal motion, and only while the contact sticks: J_t is the tangential i
 integral, from which v_t, omega and x_t follow exactly.  Sliding phases are closed-form in the normal
 impulse, as in the rigid model.  Stick and slip switch at roots located on the dense output, never by
 sign() or tanh in a right-hand side: sticking ends when |F| reaches mu P+ (an event of the DOP853-scalar
-integration, :mod:`sphereimpact.ode.dop853`); sliding
+integration, :mod:`sphereimpact.ode.dop853`, compiled in :mod:`.stick_kernel` to the same bits); sliding
 ends when the stick rule would no longer push |F| past the moving cap, i.e. when
 
     g = sigma s - (d(mu P+)/dt - rho mu P+) / k_t
