@@ -20,11 +20,6 @@ if TYPE_CHECKING:
     from ..impact.scene import Scene
 
 
-#: The dense outputs a normal motion hands compiled code (:attr:`KernelState.kind`): a Taylor method's series, a DOP853
-#: interpolant.
-TAYLOR, DOP853 = 0, 1
-
-
 @dataclass(frozen=True)
 class KernelState:
     """A solved normal motion as compiled code reads it (:mod:`sphereimpact.contact.normal_kernel`): its dense output's
@@ -33,8 +28,8 @@ class KernelState:
     Attributes
     ----------
     kind : int
-        :data:`TAYLOR` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx`` and
-        ``cy`` their coefficients) or :data:`DOP853` (``knots`` the step boundaries, ``starts`` and
+        ``ode.dense.TAYLOR`` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx``
+        and ``cy`` their coefficients) or ``ode.dense.DOP853`` (``knots`` the step boundaries, ``starts`` and
         ``sizes`` the steps' starts and sizes, ``f`` their interpolants' rows in reverse order, ``y_old`` their start
         states); the arrays a kind does not use are empty.
     w, d_scale, v : float

@@ -14,10 +14,9 @@ import numba
 import numpy as np
 from numba import types
 
-from ..ode.dense import interpolant_pair
+from ..ode.dense import TAYLOR, interpolant_pair
 from ..ode.events import minimise, refined_minimum
 from .laws.kernels import SIGNATURE
-from .motion import TAYLOR
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64

@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..ode import series
-from ..ode.dense import StackedDOP853, fast_solution, is_instant
-from ..contact.motion import DOP853, TAYLOR, KernelState, NormalMotion
+from ..ode.dense import DOP853, TAYLOR, StackedDOP853, fast_solution, is_instant
+from ..contact.motion import KernelState, NormalMotion
 from ..errors import ImpactError
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
 from .event_kinds import EventKind

@@ -24,6 +24,9 @@ import numpy as np
 
 #: Up to this many instants an array is evaluated instant by instant (same values, bit for bit).
 SMALL = 4
+#: The dense outputs compiled code reads as arrays (``contact.motion.KernelState.kind``): a Taylor method's series
+#: (``series.TaylorDense``), a DOP853 interpolant (:class:`StackedDOP853`).
+TAYLOR, DOP853 = 0, 1
 
 
 def is_instant(t) -> bool:
