@@ -16,6 +16,7 @@ from numba import types
 
 from ..ode.dense import TAYLOR, interpolant_pair
 from ..ode.events import minimise, refined_minimum
+from ..ode.series import horner
 from .laws.kernels import SIGNATURE
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
@@ -29,13 +30,7 @@ _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the fu
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
 
 
-@numba.njit(**_COMPILE)
-def _horner(row, s):
-    """``series.horner`` of one row of Taylor coefficients."""
-    value = 0.0
-    for i in range(row.size - 1, -1, -1):
-        value = value * s + row[i]
-    return value
+_horner = numba.njit(**_COMPILE)(horner)
 
 
 @numba.njit(**_COMPILE)

@@ -40,13 +40,7 @@ _SIGNATURE = _RESULT(types.FunctionType(SERIES_SIGNATURE), types.FunctionType(SI
 _ROOT_TOL = 4 * series.EPS  # series._root's relative tolerance
 
 
-@numba.njit(**_COMPILE)
-def _horner(row, s):
-    """``series.horner`` of one row of coefficients."""
-    value = 0.0
-    for i in range(row.size - 1, -1, -1):
-        value = value * s + row[i]
-    return value
+_horner = numba.njit(**_COMPILE)(series.horner)
 
 
 @numba.njit(**_COMPILE)

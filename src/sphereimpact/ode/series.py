@@ -51,10 +51,12 @@ def order_for(tol: float) -> int:
 
 
 def horner(coefficients, s: float) -> float:
-    """sum_k c_k s^k by Horner's rule, in floats."""
+    """sum_k c_k s^k by Horner's rule, in floats: a list or an array of coefficients, index by index in plain code that
+    the compiled loops compile too (:mod:`sphereimpact.integrators.taylor_kernel`,
+    :mod:`sphereimpact.contact.normal_kernel`)."""
     value = 0.0
-    for c in reversed(coefficients):
-        value = value * s + c
+    for i in range(len(coefficients) - 1, -1, -1):
+        value = value * s + coefficients[i]
     return value
 
 

@@ -1,8 +1,8 @@
 """A compliant tangential contact's stick phase, compiled: the DOP853 run of :class:`~.springs.CompliantTangential`.
 
 While the contact sticks, (F_s, J_t, K_t) is integrated on the solved normal motion by DOP853 in plain floats
-(:func:`sphereimpact.ode.dop853.solve`) until |F| reaches mu P+.  In Python that run costs a few milliseconds a phase,
-most of it calls: the right-hand side reads the normal motion's dense output and the law's force at every stage.
+(:func:`sphereimpact.ode.dop853.solve`) until |F| reaches mu P+: in Python most of a compliant impact's cost, and most
+of that calls, for the right-hand side reads the normal motion's dense output and the law's force at every stage.
 :func:`stick` is the same run compiled by numba for one signature: the normal motion enters as its dense output's
 arrays (:class:`~sphereimpact.contact.motion.KernelState`, read by :func:`~..normal_kernel.normal_state` with the
 arithmetic of its Python evaluator), the law's force as its compiled kernel by function pointer,
@@ -22,7 +22,7 @@ import numpy as np
 from numba import types
 
 from ...ode import dop853
-from ...ode.dense import grown, interpolant_pair
+from ...ode.dense import grown
 from ...ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
 from ...ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ...ode.roots import NO_BRACKET, bracketed_root
@@ -44,7 +44,6 @@ _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 _N = 3  # the state: F_s / fs, J_t / js, K_t w / js
 
 _crossed = numba.njit(**_COMPILE)(dop853._crossed)
-_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
 _grown = numba.njit(**_COMPILE)(grown)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
