@@ -27,19 +27,17 @@ from numba import types
 
 from ..contact.laws.kernels import SIGNATURE
 from ..ode import dop853
-from ..ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
+from ..ode.dop853 import (BUDGET, EPS, EXPONENT, OVERFLOW, ROOT_ITERATIONS, STEP_TOO_SMALL,  # noqa: F401 (the
+                          STEPPED, tableau)                                                  # statuses re-exported)
 from ..ode.dense import grown, interpolant_pair
-from ..ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
 from ..ode.roots import bracketed_root
 from .event_kinds import EventKind
 
 #: The events' codes (:class:`.event_kinds.EventKind`), as plain integers for the compiled code.
 MAX_COMPRESSION, PENETRATION, FORCE, BAND = (int(kind) for kind in EventKind)
-#: Statuses: a terminal event fell through zero in the last step, the span's end reached, the step fell
-#: below 10 ulp of t, the right-hand side's budget spent, the force left the finite numbers.
-TERMINAL, FINISHED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 1, 0, -1, -2, -3
-#: The step-size exponent, -1 / (the error estimator's order + 1), as the Python DOP853's.
-_EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
+#: Statuses: a terminal event fell through zero in the last step, the span's end reached; or (``ode.dop853.advance``'s)
+#: the step fell below 10 ulp of t, the right-hand side's budget spent, the force left the finite numbers.
+TERMINAL, FINISHED = 1, 0
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F = types.float64
@@ -53,10 +51,12 @@ _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 
 
 @numba.njit(**_COMPILE)
-def _rhs(force, params, scales, x, y, out):
-    """(x', y') into ``out``; returns False when the force is not finite.  scales = (d, v, p, gamma)."""
-    p = force(x * scales[0], y * scales[1], params)
-    out[0] = y
+def _rhs(args, t, state, out):
+    """(x', y') at the dimensionless state (x, y) into ``out`` (autonomous: t unused); returns False when the force is
+    not finite.  ``args``: the force kernel's parameters, scales = (d, v, p, gamma) and the kernel."""
+    params, scales, force = args
+    p = force(state[0] * scales[0], state[1] * scales[1], params)
+    out[0] = state[1]
     out[1] = -p / scales[2] + scales[3]
     return np.isfinite(p)
 
@@ -75,6 +75,8 @@ def _event(kind, force, params, scales, lam, band, x, y):
 
 
 _crossed = numba.njit(**_COMPILE)(dop853._crossed)
+_advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
+_dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
@@ -129,16 +131,15 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         every event on every step across which it changed sign in its direction (r,), with that step and event's
         index (r, 2), in the steps' order.
     """
-    # the right-hand side is autonomous: the stages' times (C, C_EXTRA) are not needed
-    a, b, e3, e5, a_extra, d, stages, extra = _A, _B, _E3, _E5, _A_EXTRA, _D, _STAGES, _C_EXTRA.size
-    m = kinds.size
+    tab, extra, m = (_A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES), _C_EXTRA.size, kinds.size
+    args = (params, scales, force)  # not the kernel first: numba would try a tuple of functions, and warn
     capacity = 64
     ts, ys = np.empty(capacity), np.empty((capacity, 2))
     coefficients, g = np.empty((capacity, 7, 2)), np.empty((capacity, m))
-    k = np.empty((stages + 1 + extra, 2))
+    k = np.empty((_STAGES + 1 + extra, 2))
     f, f_new, stage, y_new = np.empty(2), np.empty(2), np.empty(2), np.empty(2)
     t, y = t0, z0.copy()
-    finite = _rhs(force, params, scales, y[0], y[1], f)
+    finite = _rhs(args, t, y, f)
     nfev = 1
     ts[0], ys[0, 0], ys[0, 1] = t, y[0], y[1]
     for j in range(m):
@@ -155,99 +156,30 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         d0, d1 = _rms(y[0] / s0, y[1] / s1), _rms(f[0] / s0, f[1] / s1)
         h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
         h0 = min(h0, interval)
-        _rhs(force, params, scales, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
+        y_new[0], y_new[1] = y[0] + h0 * f[0], y[1] + h0 * f[1]
+        _rhs(args, t0 + h0, y_new, stage)
         nfev += 1
         d2 = _rms((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1) / h0
-        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -_EXPONENT
+        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -EXPONENT
         h_abs = min(100 * h0, h1, interval, max_step)
-    steps, status = 0, 2
-    while status == 2:
+    steps, status = 0, STEPPED
+    while status == STEPPED:
         if t == t_bound:
             status = FINISHED
             break
-        min_step = 10 * abs(np.nextafter(t, np.inf) - t)
-        h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
-        rejected = False
-        h = 0.0
-        while True:
-            if h_abs < min_step:
-                status = STEP_TOO_SMALL
-                break
-            if nfev + stages + extra > max_nfev:
-                status = BUDGET
-                break
-            t_new = t + h_abs
-            if t_new - t_bound > 0:
-                t_new = t_bound
-            h = t_new - t
-            h_abs = abs(h)
-            k[0, 0], k[0, 1] = f[0], f[1]
-            for s in range(1, stages):
-                for comp in range(2):
-                    total = 0.0
-                    for j in range(s):
-                        total += a[s, j] * k[j, comp]
-                    stage[comp] = y[comp] + h * total
-                finite &= _rhs(force, params, scales, stage[0], stage[1], k[s])
-            for comp in range(2):
-                total = 0.0
-                for j in range(stages):
-                    total += b[j] * k[j, comp]
-                y_new[comp] = y[comp] + h * total
-            finite &= _rhs(force, params, scales, y_new[0], y_new[1], f_new)
-            k[stages, 0], k[stages, 1] = f_new[0], f_new[1]
-            nfev += stages
-            if not finite:
-                status = OVERFLOW
-                break
-            sum5, sum3 = 0.0, 0.0
-            for comp in range(2):
-                scale = atol + max(abs(y[comp]), abs(y_new[comp])) * rtol
-                total5, total3 = 0.0, 0.0
-                for j in range(stages + 1):
-                    total5 += e5[j] * k[j, comp]
-                for j in range(stages + 1):
-                    total3 += e3[j] * k[j, comp]
-                error5, error3 = total5 / scale, total3 / scale
-                sum5 += error5 * error5
-                sum3 += error3 * error3
-            error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / np.sqrt((sum5 + 0.01 * sum3) * 2)
-            if error < 1:
-                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** _EXPONENT)
-                if rejected:
-                    factor = min(1.0, factor)
-                h_abs *= factor
-                break
-            h_abs *= max(MIN_FACTOR, SAFETY * error ** _EXPONENT)
-            rejected = True
-        if status != 2:
-            break
-        for i in range(extra):  # the step's dense output: three more stages, as DOP853._dense_output_impl
-            for comp in range(2):
-                total = 0.0
-                for j in range(stages + 1 + i):
-                    total += a_extra[i, j] * k[j, comp]
-                stage[comp] = y[comp] + h * total
-            finite &= _rhs(force, params, scales, stage[0], stage[1], k[stages + 1 + i])
-        nfev += extra
-        if not finite:
-            status = OVERFLOW
+        status, t_new, h, h_abs, nfev = _advance(_rhs, args, t, y, f, h_abs, t_bound, max_step, rtol, atol, tab, k,
+                                                 stage, y_new, f_new, nfev, max_nfev)
+        if status != STEPPED:
             break
         if steps + 2 > ts.size:
             room = 2 * ts.size
             ts, ys, coefficients, g = (_grown(ts, steps + 1, room), _grown(ys, steps + 1, room),
                                        _grown(coefficients, steps, room), _grown(g, steps + 1, room))
-        row = coefficients[steps]
-        for comp in range(2):
-            change = y_new[comp] - y[comp]
-            row[0, comp] = change
-            row[1, comp] = h * f[comp] - change
-            row[2, comp] = 2 * change - h * (f_new[comp] + f[comp])
-            for i in range(d.shape[0]):
-                total = 0.0
-                for j in range(d.shape[1]):
-                    total += d[i, j] * k[j, comp]
-                row[3 + i, comp] = h * total
+        finite = _dense_rows(_rhs, args, t, y, f, y_new, f_new, h, tab, k, stage, coefficients[steps])
+        nfev += extra
+        if not finite:
+            status = OVERFLOW
+            break
         t = t_new
         y[0], y[1], f[0], f[1] = y_new[0], y_new[1], f_new[0], f_new[1]
         steps += 1

@@ -29,9 +29,12 @@ from operator import mul
 
 import numpy as np
 from .dense import StackedDOP853, horner_dop853
+from .dop853_tableau import ERROR_ESTIMATOR_ORDER
 from .roots import brent
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # scipy's RungeKutta step control
+#: The step-size exponent, -1 / (the error estimator's order + 1), as scipy's.
+EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
 EPS = np.finfo(float).eps
 #: Most iterations of Brent's method locating one event's root on a step's interpolant (it needs far fewer).
 ROOT_ITERATIONS = 100
@@ -47,16 +50,15 @@ def _dense_rows(matrix, lengths) -> list:
     return [[float(a) for a in row[:length]] for row, length in zip(np.atleast_2d(matrix), lengths)]
 
 
-_STAGES = _EXPONENT = _A = _C = _B = _E3 = _E5 = _EXTRA = _A_EXTRA = _C_EXTRA = _D = None
+_STAGES = _A = _C = _B = _E3 = _E5 = _EXTRA = _A_EXTRA = _C_EXTRA = _D = None
 
 
 def _load_tableau() -> None:
     """DOP853's tableau (:mod:`.dop853_tableau`) as float rows, on the first solve."""
-    global _STAGES, _EXPONENT, _A, _C, _B, _E3, _E5, _EXTRA, _A_EXTRA, _C_EXTRA, _D
+    global _STAGES, _A, _C, _B, _E3, _E5, _EXTRA, _A_EXTRA, _C_EXTRA, _D
     from . import dop853_tableau as T
 
     _STAGES = T.N_STAGES
-    _EXPONENT = -1.0 / (T.ERROR_ESTIMATOR_ORDER + 1)
     _A = _dense_rows(T.A, range(_STAGES))  # stage s: sum over j < s of A[s, j] K_j
     _C = [float(c) for c in T.C]
     _B = _dense_rows(T.B, [_STAGES])[0]
@@ -112,7 +114,7 @@ def _initial_step(fun, t0, y0, f0, t_bound, max_step, rtol, atol) -> tuple[float
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** -_EXPONENT  # 1 / (error_estimator_order + 1), as scipy
+        h1 = (0.01 / max(d1, d2)) ** -EXPONENT  # 1 / (error_estimator_order + 1), as scipy
     return min(100 * h0, h1, interval, max_step), 1
 
 
@@ -195,12 +197,12 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
             e5, e3 = sum(e * e for e in err5), sum(e * e for e in err3)  # x * x: inf on overflow, as numpy
             error = 0.0 if e5 == 0 and e3 == 0 else h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)
             if error < 1:
-                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** _EXPONENT)
+                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** EXPONENT)
                 if rejected:
                     factor = min(1.0, factor)
                 h_abs *= factor
                 break
-            h_abs *= max(MIN_FACTOR, SAFETY * error ** _EXPONENT)
+            h_abs *= max(MIN_FACTOR, SAFETY * error ** EXPONENT)
             rejected = True
         if status is not None:
             break
@@ -226,6 +228,110 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
             g = g_new
     return located(events, np.array(ts), np.array(ys), np.array(coefficients).reshape(len(coefficients), 7, n),
                    np.array(gs).reshape(len(gs), len(events)), nfev, status, message)
+
+
+#: :func:`advance`'s statuses beside a step taken (:data:`STEPPED`): the step fell below 10 ulp of t (solve's -1), the
+#: right-hand side's budget would be spent, a right-hand side value left the finite numbers.
+STEPPED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 2, -1, -2, -3
+
+
+def advance(rhs, args, t, y, f, h_abs, t_bound, max_step, rtol, atol, tab, k, stage, y_new, f_new, nfev, max_nfev):
+    """One accepted step of :func:`solve`'s loop from (t, y), f = y' there, for the compiled loops: scipy's step
+    control (the step clamped to [10 ulp of t, ``max_step``] and to ``t_bound``, tried and shrunk until its error
+    estimate is below 1, no growth right after a rejection) and DOP853's stages, every sum in :func:`solve`'s order.
+    Plain code on float arrays, which numba compiles into each loop
+    (:mod:`sphereimpact.integrators.dop853_kernel`, :mod:`sphereimpact.contact.tangential.stick_kernel`).
+
+    ``rhs(args, t, state, out)`` writes y' into ``out`` and returns whether it is finite; ``tab`` is
+    :func:`tableau`'s tuple; ``k`` (stages + 4, n) receives the stages, ``y_new`` and ``f_new`` the step's end.
+
+    Returns
+    -------
+    status, t_new, h, h_abs, nfev
+        :data:`STEPPED` (or why not), the step's end and size, the size to try next, the evaluations made so far.
+    """
+    a, c, b, e3, e5, c_extra, stages = tab[0], tab[1], tab[2], tab[3], tab[4], tab[6], tab[8]
+    n, extra = y.size, c_extra.size
+    min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+    h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
+    rejected = False
+    while True:
+        if h_abs < min_step:
+            return STEP_TOO_SMALL, t, 0.0, h_abs, nfev
+        if nfev + stages + extra > max_nfev:
+            return BUDGET, t, 0.0, h_abs, nfev
+        t_new = t + h_abs
+        if t_new - t_bound > 0:
+            t_new = t_bound
+        h = t_new - t
+        h_abs = abs(h)
+        for comp in range(n):
+            k[0, comp] = f[comp]
+        finite = True
+        for s in range(1, stages):
+            for comp in range(n):
+                total = 0.0
+                for j in range(s):
+                    total += a[s, j] * k[j, comp]
+                stage[comp] = y[comp] + h * total
+            finite &= rhs(args, t + c[s] * h, stage, k[s])
+        for comp in range(n):
+            total = 0.0
+            for j in range(stages):
+                total += b[j] * k[j, comp]
+            y_new[comp] = y[comp] + h * total
+        finite &= rhs(args, t + h, y_new, f_new)
+        for comp in range(n):
+            k[stages, comp] = f_new[comp]
+        nfev += stages
+        if not finite:
+            return OVERFLOW, t, h, h_abs, nfev
+        sum5, sum3 = 0.0, 0.0
+        for comp in range(n):
+            scale = atol + max(abs(y[comp]), abs(y_new[comp])) * rtol
+            total5, total3 = 0.0, 0.0
+            for j in range(stages + 1):
+                total5 += e5[j] * k[j, comp]
+            for j in range(stages + 1):
+                total3 += e3[j] * k[j, comp]
+            error5, error3 = total5 / scale, total3 / scale
+            sum5 += error5 * error5
+            sum3 += error3 * error3
+        error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / math.sqrt((sum5 + 0.01 * sum3) * n)
+        if error < 1:
+            factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** EXPONENT)
+            if rejected:
+                factor = min(1.0, factor)
+            return STEPPED, t_new, h, h_abs * factor, nfev
+        h_abs *= max(MIN_FACTOR, SAFETY * error ** EXPONENT)
+        rejected = True
+
+
+def dense_rows(rhs, args, t, y, f, y_new, f_new, h, tab, k, stage, row):
+    """The three more stages of an accepted step and its interpolant's rows (scipy's F) into ``row`` (7, n), as
+    :func:`solve` computes them (``DOP853._dense_output_impl``), for the compiled loops (see :func:`advance`); returns
+    whether every right-hand side value was finite."""
+    a_extra, c_extra, d, stages = tab[5], tab[6], tab[7], tab[8]
+    n = y.size
+    finite = True
+    for i in range(c_extra.size):
+        for comp in range(n):
+            total = 0.0
+            for j in range(stages + 1 + i):
+                total += a_extra[i, j] * k[j, comp]
+            stage[comp] = y[comp] + h * total
+        finite &= rhs(args, t + c_extra[i] * h, stage, k[stages + 1 + i])
+    for comp in range(n):
+        change = y_new[comp] - y[comp]
+        row[0, comp] = change
+        row[1, comp] = h * f[comp] - change
+        row[2, comp] = 2 * change - h * (f_new[comp] + f[comp])
+        for i in range(d.shape[0]):
+            total = 0.0
+            for j in range(d.shape[1]):
+                total += d[i, j] * k[j, comp]
+            row[3 + i, comp] = h * total
+    return finite
 
 
 def _crossed(before, after, direction):

@@ -23,28 +23,30 @@ from numba import types
 
 from ...ode import dop853
 from ...ode.dense import grown
-from ...ode.dop853 import EPS, MAX_FACTOR, MIN_FACTOR, ROOT_ITERATIONS, SAFETY, tableau
-from ...ode.dop853_tableau import ERROR_ESTIMATOR_ORDER
+from ...ode.dop853 import EPS, EXPONENT, ROOT_ITERATIONS, STEPPED, tableau
 from ...ode.roots import NO_BRACKET, bracketed_root
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, CUBE, MATRIX, NORMAL, normal_state
 
 #: The history rules (``springs.RESCALE``, in its order) as integers.
 NEVER, UNLOADING, ALWAYS = 0, 1, 2
-#: Statuses: an event ended the run, the span's end reached, the step fell below 10 ulp of t (``dop853.solve``'s
-#: 1, 0, -1), and an event whose root had no bracket on its step's interpolant (``dop853.solve`` raises there).
-TERMINAL, FINISHED, STEP_TOO_SMALL, NO_ROOT = 1, 0, -1, -2
+#: Statuses: an event ended the run, the span's end reached (``dop853.solve``'s 1 and 0, and its -1,
+#: ``STEP_TOO_SMALL``), and an event whose root had no bracket on its step's interpolant (``dop853.solve`` raises there).
+TERMINAL, FINISHED, NO_ROOT = 1, 0, -4
+#: The stick phase has no budget of right-hand-side evaluations (as its Python run).
+_NO_BUDGET = np.iinfo(np.int64).max
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64
 _SIGNATURE = types.Tuple((ARRAY, MATRIX, CUBE, MATRIX, _I, _I, ARRAY, types.int64[:, ::1]))(
     NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, _I, _F, _F, ARRAY, _F, _F, _F)
-_EXPONENT = -1.0 / (ERROR_ESTIMATOR_ORDER + 1)
 _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 _N = 3  # the state: F_s / fs, J_t / js, K_t w / js
 
 _crossed = numba.njit(**_COMPILE)(dop853._crossed)
 _grown = numba.njit(**_COMPILE)(grown)
+_advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
+_dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
@@ -63,9 +65,11 @@ def _slip(spring, t, impulse):
 
 
 @numba.njit(**_COMPILE)
-def _rhs(args, tau, z0, z1, out):
-    """The stick phase's right-hand side at (tau, z) into ``out`` (``CompliantTangential._run``'s ``rhs``)."""
+def _rhs(args, tau, z, out):
+    """The stick phase's right-hand side at (tau, z) into ``out`` (``CompliantTangential._run``'s ``rhs``); True (its
+    values stay finite where the normal force does)."""
     normal, force, params, spring, rescale = args
+    z0, z1 = z[0], z[1]
     w, n, root_m, fs = spring[0], spring[4], spring[5], spring[11]
     t = tau / w
     delta, delta_dot = normal_state(normal, t)
@@ -78,6 +82,7 @@ def _rhs(args, tau, z0, z1, out):
     out[0] = (-k_t * slip + rho * z0 * fs) / (w * fs)
     out[1] = total
     out[2] = z1
+    return True
 
 
 @numba.njit(**_COMPILE)
@@ -117,15 +122,6 @@ def _rms3(a, b, c):
     return math.sqrt((0.0 + a * a + b * b + c * c) / 3)
 
 
-@numba.njit(**_COMPILE)
-def _stage(k, h, y, weights, used, comp):
-    """y[comp] + h * (the first ``used`` weights dotted with the stages' component ``comp``), summed left to right."""
-    total = 0.0
-    for j in range(used):
-        total += weights[j] * k[j, comp]
-    return y[comp] + h * total
-
-
 @numba.njit(_SIGNATURE, **_COMPILE)
 def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, max_step):
     """Integrate one stick phase from (t0, z0) towards t_bound [tau] with DOP853 until an event ends it.
@@ -149,16 +145,15 @@ def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, m
     ts, ys, coefficients, g, nfev, status, roots, where
         As :func:`sphereimpact.integrators.dop853_kernel.integrate` returns them, for the two events.
     """
-    a, b, e3, e5, a_extra, c_extra, d, c_stage, stages = _A, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _C, _STAGES
-    extra, m = c_extra.size, 2
+    tab, extra, m = (_A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES), _C_EXTRA.size, 2
     args = (normal, force, params, spring, rescale)
     capacity = 64
     ts, ys = np.empty(capacity), np.empty((capacity, _N))
     coefficients, g = np.empty((capacity, 7, _N)), np.empty((capacity, m))
-    k = np.empty((stages + 1 + extra, _N))
+    k = np.empty((_STAGES + 1 + extra, _N))
     f, f_new, stage, y_new = np.empty(_N), np.empty(_N), np.empty(_N), np.empty(_N)
     t, y = t0, z0.copy()
-    _rhs(args, t, y[0], y[1], f)
+    _rhs(args, t, y, f)
     nfev = 1
     interval = abs(t_bound - t0)
     if interval == 0.0:  # dop853._initial_step
@@ -168,88 +163,33 @@ def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, m
         d0, d1 = _rms3(y[0] / s0, y[1] / s1, y[2] / s2), _rms3(f[0] / s0, f[1] / s1, f[2] / s2)
         h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
         h0 = min(h0, interval)
-        _rhs(args, t0 + h0, y[0] + h0 * f[0], y[1] + h0 * f[1], stage)
+        for comp in range(_N):
+            y_new[comp] = y[comp] + h0 * f[comp]
+        _rhs(args, t0 + h0, y_new, stage)
         nfev += 1
         d2 = _rms3((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1, (stage[2] - f[2]) / s2) / h0
-        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -_EXPONENT
+        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -EXPONENT
         h_abs = min(min(min(100 * h0, h1), interval), max_step)
     ts[0] = t
     for comp in range(_N):
         ys[0, comp] = y[comp]
     for j in range(m):
         g[0, j] = _event(j, args, t, y[0], y[1])
-    steps, status = 0, 2
-    while status == 2:
+    steps, status = 0, STEPPED
+    while status == STEPPED:
         if t == t_bound:
             status = FINISHED
             break
-        min_step = 10 * abs(np.nextafter(t, np.inf) - t)
-        h_abs = max_step if h_abs > max_step else min_step if h_abs < min_step else h_abs
-        rejected = False
-        h = 0.0
-        while True:
-            if h_abs < min_step:
-                status = STEP_TOO_SMALL
-                break
-            t_new = t + h_abs
-            if t_new - t_bound > 0:
-                t_new = t_bound
-            h = t_new - t
-            h_abs = abs(h)
-            for comp in range(_N):
-                k[0, comp] = f[comp]
-            for s in range(1, stages):
-                for comp in range(_N):
-                    stage[comp] = _stage(k, h, y, a[s], s, comp)
-                _rhs(args, t + c_stage[s] * h, stage[0], stage[1], k[s])
-            for comp in range(_N):
-                y_new[comp] = _stage(k, h, y, b, stages, comp)
-            _rhs(args, t + h, y_new[0], y_new[1], f_new)
-            for comp in range(_N):
-                k[stages, comp] = f_new[comp]
-            nfev += stages
-            sum5, sum3 = 0.0, 0.0
-            for comp in range(_N):
-                scale = atol + max(abs(y[comp]), abs(y_new[comp])) * rtol
-                total5, total3 = 0.0, 0.0
-                for j in range(stages + 1):
-                    total5 += e5[j] * k[j, comp]
-                for j in range(stages + 1):
-                    total3 += e3[j] * k[j, comp]
-                error5, error3 = total5 / scale, total3 / scale
-                sum5 += error5 * error5
-                sum3 += error3 * error3
-            error = 0.0 if sum5 == 0 and sum3 == 0 else h_abs * sum5 / math.sqrt((sum5 + 0.01 * sum3) * _N)
-            if error < 1:
-                factor = MAX_FACTOR if error == 0 else min(MAX_FACTOR, SAFETY * error ** _EXPONENT)
-                if rejected:
-                    factor = min(1.0, factor)
-                h_abs *= factor
-                break
-            h_abs *= max(MIN_FACTOR, SAFETY * error ** _EXPONENT)
-            rejected = True
-        if status != 2:
+        status, t_new, h, h_abs, nfev = _advance(_rhs, args, t, y, f, h_abs, t_bound, max_step, rtol, atol, tab, k,
+                                                 stage, y_new, f_new, nfev, _NO_BUDGET)
+        if status != STEPPED:
             break
-        for i in range(extra):  # the step's dense output: three more stages
-            for comp in range(_N):
-                stage[comp] = _stage(k, h, y, a_extra[i], stages + 1 + i, comp)
-            _rhs(args, t + c_extra[i] * h, stage[0], stage[1], k[stages + 1 + i])
-        nfev += extra
         if steps + 2 > ts.size:
             room = 2 * ts.size
             ts, ys, coefficients, g = (_grown(ts, steps + 1, room), _grown(ys, steps + 1, room),
                                        _grown(coefficients, steps, room), _grown(g, steps + 1, room))
-        row = coefficients[steps]
-        for comp in range(_N):
-            change = y_new[comp] - y[comp]
-            row[0, comp] = change
-            row[1, comp] = h * f[comp] - change
-            row[2, comp] = 2 * change - h * (f_new[comp] + f[comp])
-            for i in range(d.shape[0]):
-                total = 0.0
-                for j in range(d.shape[1]):
-                    total += d[i, j] * k[j, comp]
-                row[3 + i, comp] = h * total
+        _dense_rows(_rhs, args, t, y, f, y_new, f_new, h, tab, k, stage, coefficients[steps])
+        nfev += extra
         t = t_new
         for comp in range(_N):
             y[comp], f[comp] = y_new[comp], f_new[comp]
