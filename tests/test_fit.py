@@ -181,17 +181,25 @@ def test_the_fit_benchmark_gives_back_the_parameters_of_its_noise_free_curve():
     assert row["evaluations"] > 5 and row["throughput"] == pytest.approx(row["evaluations"] * 8 / row["seconds"])
 
 
-def test_the_data_fit_benchmark_times_the_fit_a_user_runs():
+def test_the_data_fit_benchmark_times_the_fit_a_user_runs(monkeypatch):
     """``measure_data_fit`` (the row of results/bench_sweep.csv that fits measured bounces, the COR free too): the
-    fit it times is ``fit`` itself, so its evaluations are a direct fit's, and it names no parameter error (no values
-    made measured bounces)."""
-    from sphereimpact.numerics.bench_sweep import DATA_FIT_TARGET_SECONDS, measure_data_fit
+    fit it times is ``fit`` itself on the user's bounces, ball and free parameters, the row reports that fit's
+    evaluations, and it names no parameter error (no values made measured bounces)."""
+    from sphereimpact.numerics import bench_sweep
 
     truth = calibrated_ball(Measurement(0.8, 3.0), model="kelvin-voigt", mu=0.25, mass=0.145, diameter=0.063, k=6e4)
     data = read_measured(bounces(5, n=8, truth=truth))
     start = with_values(truth, {"mu": 0.1})
-    row = measure_data_fit("eight bounces", data, start, ["mu", "cor"], repeats=1)
-    direct = fit(data, start, ["mu", "cor"])
+    calls = []
+
+    def spied(*args, **options):  # the package's fit, its call and result recorded
+        calls.append((args, options, fit(*args, **options)))
+        return calls[-1][2]
+
+    monkeypatch.setattr(bench_sweep, "fit", spied)
+    row = bench_sweep.measure_data_fit("eight bounces", data, start, ["mu", "cor"], repeats=1)
+    [(args, options, direct)] = calls
+    assert args[0] is data and args[1] is start and args[2] == ["mu", "cor"] and options == {}
     assert row["evaluations"] == direct.statistics["evaluations"] > 2 and row["scenes"] == 8
-    assert math.isnan(row["worst_error"]) and row["target_seconds"] == DATA_FIT_TARGET_SECONDS
+    assert math.isnan(row["worst_error"]) and row["target_seconds"] == bench_sweep.DATA_FIT_TARGET_SECONDS
     assert direct.parameters["mu"].value == pytest.approx(0.25, abs=4 * direct.parameters["mu"].stderr)

@@ -25,12 +25,10 @@ ARRAY, MATRIX, CUBE = types.float64[::1], types.float64[:, ::1], types.float64[:
 #: The numba type of a normal motion's arrays (:meth:`~.motion.KernelState.arrays`).
 NORMAL = types.Tuple((_I, ARRAY, ARRAY, ARRAY, MATRIX, MATRIX, CUBE, MATRIX, _F, _F, _F))
 
+_horner = numba.njit(**_COMPILE)(horner)
 _interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
 _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
-
-
-_horner = numba.njit(**_COMPILE)(horner)
 
 
 @numba.njit(**_COMPILE)
