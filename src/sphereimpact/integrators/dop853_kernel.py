@@ -27,7 +27,7 @@ from numba import types
 
 from ..contact.laws.kernels import SIGNATURE
 from ..ode import dop853
-from ..ode.dop853 import (BUDGET, EPS, EXPONENT, OVERFLOW, ROOT_ITERATIONS, STEP_TOO_SMALL,  # noqa: F401 (the
+from ..ode.dop853 import (BUDGET, EPS, OVERFLOW, ROOT_ITERATIONS, STEP_TOO_SMALL,  # noqa: F401 (the
                           STEPPED, tableau)                                                  # statuses re-exported)
 from ..ode.dense import grown, interpolant_pair
 from ..ode.roots import bracketed_root
@@ -77,6 +77,7 @@ def _event(kind, force, params, scales, lam, band, x, y):
 _crossed = numba.njit(**_COMPILE)(dop853._crossed)
 _advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
 _dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
+_first_step = numba.njit(inline="always", **_COMPILE)(dop853.first_step)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
@@ -92,11 +93,6 @@ def _event_at(t, args):
     kind, force, params, scales, lam, band, rows, t0, h, x0, y0 = args
     x, y = _interpolant_pair(rows, (t - t0) / h, x0, y0)
     return _event(kind, force, params, scales, lam, band, x, y)
-
-
-@numba.njit(**_COMPILE)
-def _rms(a, b):
-    return np.sqrt((0.0 + a * a + b * b) / 2.0)
 
 
 @numba.njit(_SIGNATURE, **_COMPILE)
@@ -146,22 +142,11 @@ def integrate(force, params, scales, t0, t_bound, z0, rtol, atol, max_step, firs
         g[0, j] = _event(kinds[j], force, params, scales, lam, band, y[0], y[1])
     if not finite:
         return ts[:1], ys[:1], coefficients[:0], g[:1], nfev, OVERFLOW, np.empty(0), np.empty((0, 2), dtype=np.int64)
-    interval = abs(t_bound - t0)
     if first_step > 0.0:
         h_abs = first_step
-    elif interval == 0.0:
-        h_abs = 0.0
-    else:  # scipy's select_initial_step for the error estimator's order 7
-        s0, s1 = atol + abs(y[0]) * rtol, atol + abs(y[1]) * rtol
-        d0, d1 = _rms(y[0] / s0, y[1] / s1), _rms(f[0] / s0, f[1] / s1)
-        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
-        h0 = min(h0, interval)
-        y_new[0], y_new[1] = y[0] + h0 * f[0], y[1] + h0 * f[1]
-        _rhs(args, t0 + h0, y_new, stage)
-        nfev += 1
-        d2 = _rms((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1) / h0
-        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -EXPONENT
-        h_abs = min(100 * h0, h1, interval, max_step)
+    else:  # scipy's estimate
+        h_abs, used = _first_step(_rhs, args, t0, y, f, t_bound, max_step, rtol, atol, y_new, stage)
+        nfev += used
     steps, status = 0, STEPPED
     while status == STEPPED:
         if t == t_bound:

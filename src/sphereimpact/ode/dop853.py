@@ -235,6 +235,35 @@ def solve(fun, t_span, y0, rtol: float, atol: float, max_step: float = math.inf,
 STEPPED, STEP_TOO_SMALL, BUDGET, OVERFLOW = 2, -1, -2, -3
 
 
+def first_step(rhs, args, t0, y, f, t_bound, max_step, rtol, atol, probe, out) -> tuple[float, int]:
+    """scipy's select_initial_step for the error estimator's order 7 (:func:`_initial_step`, whose sums it takes in
+    their order) for the compiled loops (see :func:`advance`): the step to try first from (t0, y), f = y' there, and
+    the right-hand side evaluations it made (into ``out``, at ``probe``: scratch arrays of y's size)."""
+    n = y.size
+    interval = abs(t_bound - t0)
+    if interval == 0.0:
+        return 0.0, 0
+    d0 = d1 = 0.0
+    for comp in range(n):
+        scale = atol + abs(y[comp]) * rtol
+        a, b = y[comp] / scale, f[comp] / scale
+        d0 += a * a
+        d1 += b * b
+    d0, d1 = math.sqrt(d0 / n), math.sqrt(d1 / n)
+    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+    h0 = min(h0, interval)
+    for comp in range(n):
+        probe[comp] = y[comp] + h0 * f[comp]
+    rhs(args, t0 + h0, probe, out)
+    d2 = 0.0
+    for comp in range(n):
+        c = (out[comp] - f[comp]) / (atol + abs(y[comp]) * rtol)
+        d2 += c * c
+    d2 = math.sqrt(d2 / n) / h0
+    h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -EXPONENT
+    return min(min(min(100 * h0, h1), interval), max_step), 1
+
+
 def advance(rhs, args, t, y, f, h_abs, t_bound, max_step, rtol, atol, tab, k, stage, y_new, f_new, nfev, max_nfev):
     """One accepted step of :func:`solve`'s loop from (t, y), f = y' there, for the compiled loops: scipy's step
     control (the step clamped to [10 ulp of t, ``max_step``] and to ``t_bound``, tried and shrunk until its error

@@ -23,7 +23,7 @@ from numba import types
 
 from ...ode import dop853
 from ...ode.dense import grown
-from ...ode.dop853 import EPS, EXPONENT, ROOT_ITERATIONS, STEPPED, tableau
+from ...ode.dop853 import EPS, ROOT_ITERATIONS, STEPPED, tableau
 from ...ode.roots import NO_BRACKET, bracketed_root
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, CUBE, MATRIX, NORMAL, normal_state
@@ -47,6 +47,7 @@ _crossed = numba.njit(**_COMPILE)(dop853._crossed)
 _grown = numba.njit(**_COMPILE)(grown)
 _advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
 _dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
+_first_step = numba.njit(inline="always", **_COMPILE)(dop853.first_step)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
@@ -117,11 +118,6 @@ def _event_at(tau, args):
     return _event(which, run, tau, a + y0[0], b + y0[1])
 
 
-@numba.njit(**_COMPILE)
-def _rms3(a, b, c):
-    return math.sqrt((0.0 + a * a + b * b + c * c) / 3)
-
-
 @numba.njit(_SIGNATURE, **_COMPILE)
 def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, max_step):
     """Integrate one stick phase from (t0, z0) towards t_bound [tau] with DOP853 until an event ends it.
@@ -155,21 +151,8 @@ def stick(normal, force, params, spring, rescale, t0, t_bound, z0, rtol, atol, m
     t, y = t0, z0.copy()
     _rhs(args, t, y, f)
     nfev = 1
-    interval = abs(t_bound - t0)
-    if interval == 0.0:  # dop853._initial_step
-        h_abs = 0.0
-    else:
-        s0, s1, s2 = atol + abs(y[0]) * rtol, atol + abs(y[1]) * rtol, atol + abs(y[2]) * rtol
-        d0, d1 = _rms3(y[0] / s0, y[1] / s1, y[2] / s2), _rms3(f[0] / s0, f[1] / s1, f[2] / s2)
-        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
-        h0 = min(h0, interval)
-        for comp in range(_N):
-            y_new[comp] = y[comp] + h0 * f[comp]
-        _rhs(args, t0 + h0, y_new, stage)
-        nfev += 1
-        d2 = _rms3((stage[0] - f[0]) / s0, (stage[1] - f[1]) / s1, (stage[2] - f[2]) / s2) / h0
-        h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** -EXPONENT
-        h_abs = min(min(min(100 * h0, h1), interval), max_step)
+    h_abs, used = _first_step(_rhs, args, t0, y, f, t_bound, max_step, rtol, atol, y_new, stage)
+    nfev += used
     ts[0] = t
     for comp in range(_N):
         ys[0, comp] = y[comp]
