@@ -96,6 +96,22 @@ def test_speedups_at_equal_accuracy():
 # --- one regression test per failure mode: the default path does not fail on it -------------------------
 
 
+def test_a_round_over_the_budget_is_not_repeated():
+    """The benchmarks' protocol: every contender once per round, in turn; ``repeats`` rounds unless the rounds
+    take more than the budget on average (counted calls, not timings: any call takes some time)."""
+    import time
+
+    from sphereimpact.numerics.timing import interleaved_runs, interleaved_seconds
+
+    calls = {"a": [], "b": []}
+    contenders = {name: (lambda got=got: (got.append(1), time.sleep(1e-4))) for name, got in calls.items()}
+    seconds, rounds = interleaved_runs(contenders, 3, budget=math.inf)
+    assert rounds == 3 and [len(c) for c in calls.values()] == [3, 3] and min(seconds.values()) >= 1e-4
+    seconds, rounds = interleaved_runs(contenders, 3, budget=0.0)
+    assert rounds == 1 and [len(c) for c in calls.values()] == [4, 4]
+    assert set(interleaved_seconds(contenders, 2)) == {"a", "b"} and [len(c) for c in calls.values()] == [6, 6]
+
+
 def test_strongly_overdamped_contact_completes_with_every_method():
     """1. Stiffness (zeta = 100, modified law as in the study): every method finishes; delta_m and COR agree
     with Radau at rtol 1e-12 to 1e-6. t_m is ill-conditioned there (delta_dot crosses zero with slope

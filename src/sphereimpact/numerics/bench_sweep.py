@@ -11,9 +11,10 @@ is no larger than the engine's (equal accuracy, shown in the same row):
   exact microslip map (:data:`MICROSLIP_MAP`) is measured against it alone: the script has the rigid contact only.
 
 One timing protocol for all three: the median of ``repeats`` complete runs, the three timed in turn within
-each repeat (the engine builds its interpolants anew in every run; nothing is cached).  A contender that
-misses the engine's error at the tightest tolerance is flagged (``<contender>_reached`` False) and timed there; the
-ladder is walked from the loosest only for one that meets it there.
+each repeat (the engine builds its interpolants anew in every run; nothing is cached), fewer where a round
+takes more than :data:`~.timing.ROUND_BUDGET` (:func:`~.timing.interleaved_runs`; ``repeats`` is the rounds
+run).  A contender that misses the engine's error at the tightest tolerance is flagged (``<contender>_reached``
+False) and timed there; the ladder is walked from the loosest only for one that meets it there.
 Gravity-free scenes under the force criterion only (the baseline's impulse algebra assumes both).  The
 engine's speed-up is measured on :data:`~sphereimpact.sweep.engine.FAST_OUTPUTS` (every output of ``simulate``
 but t_roll and the force extremes; the script computes less still), and the engine is also timed with every
@@ -34,7 +35,7 @@ import pandas as pd
 from .bench import LAW_SCENES, TOLERANCES
 from .handwritten import handwritten
 from .reference import relative_errors
-from .timing import interleaved_seconds, steady_state
+from .timing import interleaved_runs, steady_state
 from ..fit import fit, read_measured, with_values
 from ..impact.ball import Ball
 from ..impact.scene import Scene, SolverOptions
@@ -125,11 +126,11 @@ def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contender
         {"engine_all": lambda: sweep(scenes, chapter_ball=True)} if every_output else {}) | {
         label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
         for label, solve in contenders.items()}
-    seconds = interleaved_seconds(calls, repeats)
+    seconds, rounds = interleaved_runs(calls, repeats)
     throughput = n / seconds["engine"]
     every = seconds.get("engine_all", math.nan)
     row = {"sweep": name, "scenes": n, "seconds": seconds["engine"], "throughput": throughput, "worst_error": error,
-           "repeats": repeats, "sample": len(sample), "seconds_all": every, "all_over_fast": every / seconds["engine"]}
+           "repeats": rounds, "sample": len(sample), "seconds_all": every, "all_over_fast": every / seconds["engine"]}
     for label, got in chosen.items():
         per = seconds[label] / len(sample)
         row |= {f"{label}_rtol": got["rtol"], f"{label}_error": got["error"], f"{label}_reached": got["reached"],
@@ -153,16 +154,13 @@ def guide_sweep() -> pd.DataFrame:
 #: (read as under 10 s) and "a fit of the 140-point Kharaz curve in under 10 s"; and of the compiled kernels' issue:
 #: "a fit of mu, kappa and the COR from 23 bounces under 10 s" (Kharaz's measured bounces).
 MICROSLIP_MAP_TARGET_SECONDS = FIT_TARGET_SECONDS = DATA_FIT_TARGET_SECONDS = 10.0
-#: Complete fits timed at most (a fit takes seconds and is deterministic; the engine rows take ``repeats``).
-FIT_REPEATS = 3
-
-
 def measure_fit(name: str, truth: Ball, start: dict, incidences, repeats: int = 3) -> dict:
     """One benchmark row: :func:`~sphereimpact.fit.fit` of the parameters in ``start`` (from those values) to the
     noise-free curve of ``truth``: e_t, |omega_f| and the rebound angle at each of ``incidences`` [deg], each
     bounce solved by ``simulate`` alone at its default options.
 
-    ``seconds`` is the median of ``repeats`` complete fits (each solves its bounces' normal motions afresh);
+    ``seconds`` is the median of ``repeats`` complete fits, or of fewer (:func:`~.timing.interleaved_runs`; each
+    solves its bounces' normal motions afresh);
     ``worst_error`` the largest relative difference of the fitted parameters from the values that made the curve;
     ``throughput`` the bounces the fit's model evaluations solved per second; ``target_seconds``
     :data:`FIT_TARGET_SECONDS`.
@@ -185,11 +183,12 @@ def _timed_fit(name: str, measured, ball, free: list, repeats: int, target: floa
     """(the row, the last result) of ``repeats`` complete fits of ``free`` to ``measured`` from ``ball``, timed by the
     benchmarks' protocol (:func:`~.timing.interleaved_seconds`): the fit rows' shared part, ``worst_error`` empty."""
     results = []
-    seconds = interleaved_seconds({"fit": lambda: results.append(fit(measured, ball, free, **options))},
-                                  repeats)["fit"]
+    seconds, rounds = interleaved_runs({"fit": lambda: results.append(fit(measured, ball, free, **options))},
+                                       repeats)
+    seconds = seconds["fit"]
     evaluations, bounces = results[-1].statistics["evaluations"], len(measured.bounces)
     return ({"sweep": name, "scenes": bounces, "seconds": seconds, "throughput": evaluations * bounces / seconds,
-             "worst_error": math.nan, "repeats": repeats, "evaluations": evaluations, "target_seconds": target},
+             "worst_error": math.nan, "repeats": rounds, "evaluations": evaluations, "target_seconds": target},
             results[-1])
 
 
@@ -197,9 +196,9 @@ def measure_data_fit(name: str, measured, ball, free: list, repeats: int = 3) ->
     """One benchmark row: :func:`~sphereimpact.fit.fit` of ``free`` (from ``ball``'s values) to ``measured`` bounces
     (a :class:`~sphereimpact.fit.Measured`), each bounce solved by ``simulate`` alone at its default options.
 
-    ``seconds`` is the median of ``repeats`` complete fits; ``throughput`` the bounces the fit's model evaluations
-    solved per second; ``worst_error`` empty (measured data: no values made them); ``target_seconds``
-    :data:`DATA_FIT_TARGET_SECONDS`.
+    ``seconds`` is the median of ``repeats`` complete fits, or of fewer (as :func:`measure_fit`);
+    ``throughput`` the bounces the fit's model evaluations solved per second; ``worst_error`` empty (measured data:
+    no values made them); ``target_seconds`` :data:`DATA_FIT_TARGET_SECONDS`.
     """
     log.info("sweep bench: %s (%d bounces)", name, len(measured.bounces))
     return _timed_fit(name, measured, ball, free, repeats, DATA_FIT_TARGET_SECONDS)[0]
@@ -263,9 +262,9 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         truth, start, incidences = fit_of
         rows.append(measure_fit(f"fit of {', '.join(start)} to a {len(incidences)}-incidence Kharaz curve "
                                 f"({truth.scene.model}, {truth.scene.tangential})", truth, start, incidences,
-                                min(repeats, FIT_REPEATS)))
+                                repeats))
     if data_fit_of is not None:
-        rows.append(measure_data_fit(*data_fit_of, min(repeats, FIT_REPEATS)))
+        rows.append(measure_data_fit(*data_fit_of, repeats))
     frame = pd.DataFrame(rows)
     frame.to_csv(csv_path, index=False, float_format="%.4g")
     return frame

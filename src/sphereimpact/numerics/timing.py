@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import gc
+import math
 import statistics
 import time
 
@@ -53,13 +54,30 @@ def median_seconds(call, repeats: int) -> float:
     return statistics.median(_timed(call) for _ in range(repeats))
 
 
-def interleaved_seconds(calls: dict, repeats: int) -> dict:
-    """Median wall time [s] of each of ``calls`` (name -> callable), the contenders timed in turn within each
-    repeat (protocol of :func:`median_seconds` otherwise): a slow spell of a shared machine then falls on
-    all of them alike.  Timed one after the other, simulate and the script it is compared with once came
-    out 0.94 and 1.48 of each other in two runs a minute apart."""
+#: Seconds of one round of contenders past which it is not repeated (:func:`interleaved_runs`).
+ROUND_BUDGET = 5.0
+
+
+def interleaved_runs(calls: dict, repeats: int, budget: float = ROUND_BUDGET) -> tuple[dict, int]:
+    """(name -> median wall time [s], rounds run) of ``calls`` (name -> callable), the contenders timed in turn
+    within each round (protocol of :func:`median_seconds` otherwise): a slow spell of a shared machine then
+    falls on all of them alike.  Timed one after the other, simulate and the script it is compared with once
+    came out 0.94 and 1.48 of each other in two runs a minute apart.
+
+    ``repeats`` rounds, or fewer once the rounds so far took more than ``budget`` seconds each on average: a round
+    that long is thousands of impacts (a 10^6-scene sweep, a fit) whose time a second and third round reproduce
+    within the machine's spread, so they bought nothing but minutes of the pipeline (the rows report the rounds
+    they ran)."""
     times = {name: [] for name in calls}
-    for _ in range(repeats):
+    for done in range(1, repeats + 1):
         for name, call in calls.items():
             times[name].append(_timed(call))
-    return {name: statistics.median(values) for name, values in times.items()}
+        if sum(sum(values) for values in times.values()) > budget * done:
+            break
+    return {name: statistics.median(values) for name, values in times.items()}, done
+
+
+def interleaved_seconds(calls: dict, repeats: int) -> dict:
+    """Median wall time [s] of each of ``calls`` over ``repeats`` rounds, whatever their length
+    (:func:`interleaved_runs` without its budget)."""
+    return interleaved_runs(calls, repeats, budget=math.inf)[0]

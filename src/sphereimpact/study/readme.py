@@ -28,6 +28,7 @@ import pandas as pd
 
 from ..numerics.bench import STARTUP_SCENE
 from ..numerics.reference import FINE_DIGITS
+from ..numerics.timing import ROUND_BUDGET
 from .tables import text_table
 from .workflow import job_seconds
 
@@ -133,13 +134,12 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "`kharaz_fit` in the config, to the noise-free e_t, spin and rebound angle of Kharaz's ball (the "
         "validation's, e_n given) at the validation's incidences, and to the shipped measured bounces with the COR "
         "free too (the ball calibrated to the measured e_n), each bounce solved by `simulate`; timed as "
-        f"the median of {int(fits['repeats'].iloc[0]) if len(fits) else 0} complete fits, each solving its "
+        f"{_rounds(fits['repeats'], 'fit')}, each solving its "
         "bounces' normal motions afresh (once per fit where the COR is given: they do not depend on μ or κ; at "
         "every evaluation that moves the COR). Error: the fitted parameters' largest relative difference from "
         "those that made the curve (none made the measured bounces).",
         text_table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
                fit_rows)] if fit_rows else [])
-    repeats = int(sweeps["repeats"].iloc[0])
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options (method `auto`: the law's closed "
         "form where it has one, else the Taylor method where it has a series, else DOP853-scalar, scipy's DOP853 "
@@ -163,7 +163,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         *start,
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
         f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
-        f"the median of {repeats} complete runs; speed-up = the script's time per scene × the engine's "
+        f"{_rounds(sweeps['repeats'], 'run')}; speed-up = the script's time per scene × the engine's "
         "impacts per second. The engine is timed on the outputs the script computes too (`--outputs fast`), and "
         "with every output, the default (t_roll and the force's extremes besides; not on the microslip map, whose "
         "paths compute every output anyway). The script has the rigid contact only: the exact microslip map is "
@@ -287,6 +287,18 @@ def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
         "start-up.",
         text_table(("part of the pipeline", "rules", "jobs", "time"), lines),
     ]) + "\n"
+
+
+def _rounds(counts, what: str) -> str:
+    """How a benchmark's rows were timed, from their ``repeats`` (rounds run, :func:`~..numerics.timing.interleaved_runs`):
+    "the median of 3 complete runs", with the rows that took fewer rounds named by their budget."""
+    counts = sorted({int(c) for c in counts})
+    budget = f"a round of its contenders over {ROUND_BUDGET:g} s is not repeated"
+    if counts == [1]:
+        return f"one complete {what} ({budget})"
+    if len(counts) == 1:
+        return f"the median of {counts[0]} complete {what}s"
+    return f"the median of {counts[-1]} complete {what}s ({', '.join(map(str, counts[:-1]))} where {budget})"
 
 
 def _seconds(value: float) -> str:
