@@ -256,3 +256,17 @@ def test_stored_references_are_the_computed_ones_to_the_bit(tmp_path, monkeypatc
         assert (got.bound, got.how) == (want.bound, want.how)
         assert {k: v for k, v in got.outputs.items() if k != "wall_time"} == pytest.approx(
             {k: v for k, v in want.outputs.items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True)
+
+
+def test_the_kernels_rows_are_written_for_the_bench_table_to_take_in(tmp_path, monkeypatch):
+    """Rule bench_kernels' job (beside others) writes the compilation and load rows in the bench table's columns;
+    their ratio is the compilation over the load (the seconds themselves stubbed: a fresh compile takes a minute)."""
+    from sphereimpact.numerics import bench
+    from sphereimpact.study.numerics import write_kernel_bench
+
+    monkeypatch.setattr(bench, "kernel_seconds", lambda repeats: (2.0, 0.5))
+    write_kernel_bench({"bench": {"repeats": 2}}, tmp_path / "kernels.csv")
+    rows = pd.read_csv(tmp_path / "kernels.csv").set_index("contender")
+    assert list(rows.index) == ["compile (fresh disk cache)", "load (from the disk cache)"]
+    assert (rows["scene"] == bench.KERNEL_SCENE).all() and (rows["repeats"] == 2).all()
+    assert rows.loc["compile (fresh disk cache)", "time_ratio"] == 4.0 and rows["error"].isna().all()

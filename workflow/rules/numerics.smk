@@ -20,6 +20,26 @@ rule numerics_references:
         "../scripts/numerics_references.py"
 
 
+rule bench_kernels:
+    """The compiled kernels' compilation on a fresh machine and their load from the disk cache, rows the bench table
+    takes in: fresh processes of one core each, so the job runs beside others (the timed jobs, which run alone,
+    spend their time on timings that share nothing)."""
+    output:
+        csv="results/numerics/kernels.csv",
+    params:
+        code=code("workflow/scripts/bench_kernels.py"),
+        config=params_for("bench_kernels"),
+    priority: 1  # early: the timed bench waits for it
+    benchmark:
+        "results/benchmarks/numerics/bench_kernels.tsv"
+    log:
+        "logs/bench_kernels.log",
+    conda:
+        ENV
+    script:
+        "../scripts/bench_kernels.py"
+
+
 rule work_precision:
     """Every solve_ivp method x body x tolerance (plus the closed form) against reference solutions."""
     input:
@@ -42,6 +62,8 @@ rule work_precision:
 
 rule bench:
     """simulate against a hand-written solve_ivp script, and the reduced model against the planar one."""
+    input:
+        kernels=lambda wildcards: "results/numerics/kernels.csv" if config["bench"]["kernels"] else [],
     output:
         csv=report("results/bench.csv", caption="../report/bench.rst", category="Numerics"),
         stages=report("results/bench_stages.csv", caption="../report/bench_stages.rst", category="Numerics"),

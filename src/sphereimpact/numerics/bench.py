@@ -98,16 +98,14 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
     return pd.DataFrame(rows)
 
 
-def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, kernels: bool = True) -> pd.DataFrame:
+def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
     """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact on
-    the same scene and beside its element row's march alone (the compiled kernel, on the impact's own inputs),
-    and, once per process rather than per impact and with ``kernels``, the kernels' compilation on a fresh machine
-    and their load from the disk cache (:func:`kernel_seconds`).
+    the same scene and beside its element row's march alone (the compiled kernel, on the impact's own inputs).
 
     Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
-    error against the ``reference`` resolution (cells, time steps); NaN for the march and the kernels (not an
-    answer).  ``time`` is per impact (per process for the kernels); ``time_ratio`` is over the row's comparison
-    contender (the rigid contact for the impact, the impact for the march, the load for the compilation).
+    error against the ``reference`` resolution (cells, time steps); NaN for the march (not an answer).  ``time``
+    is per impact; ``time_ratio`` is over the row's comparison contender (the rigid contact for the impact, the
+    impact for the march).
     """
     from ..contact.tangential.microslip import march, march_inputs
 
@@ -132,12 +130,22 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3, 
     rows.append(base | {"contender": f"its march alone ({row.elements} cells x {row.time_steps} steps)",
                         "error": math.nan, "time": timed["march"], "nfev": 0,
                         "time_ratio": timed["march"] / timed["microslip"]})
-    if kernels:
-        compiled, loaded = kernel_seconds(repeats)
-        once = base | {"scene": "the compiled kernels, once per process", "batch": 1, "error": math.nan, "nfev": 0}
-        rows.append(once | {"contender": "compile (fresh disk cache)", "time": compiled, "time_ratio": compiled / loaded})
-        rows.append(once | {"contender": "load (from the disk cache)", "time": loaded, "time_ratio": 1.0})
     return pd.DataFrame(rows)
+
+
+#: The scene of the kernels' rows of the bench table: per process, not per impact.
+KERNEL_SCENE = "the compiled kernels, once per process"
+
+
+def kernel_bench(repeats: int = 3) -> pd.DataFrame:
+    """The compiled kernels' cost once per process (:func:`kernel_seconds`), as rows of the bench table: their
+    compilation on a fresh machine (``time_ratio`` over the load) and their load from the disk cache; ``error``
+    NaN (not an answer).  Each is a fresh process on one core: the pipeline runs it beside other jobs."""
+    compiled, loaded = kernel_seconds(repeats)
+    once = {"scene": KERNEL_SCENE, "repeats": repeats, "batch": 1, "error": math.nan, "nfev": 0}
+    return pd.DataFrame([once | {"contender": "compile (fresh disk cache)", "time": compiled,
+                                 "time_ratio": compiled / loaded},
+                         once | {"contender": "load (from the disk cache)", "time": loaded, "time_ratio": 1.0}])
 
 
 #: A fresh process's first use of the compiled kernels: numba imported, every kernel compiled or loaded (the

@@ -10,7 +10,7 @@ from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
 from ..numerics.bench_sweep import run as bench_sweep
-from ..numerics.bench import (bench_scenes, microslip_bench, profile_call, simulate_vs_handwritten, stages,
+from ..numerics.bench import (bench_scenes, kernel_bench, microslip_bench, profile_call, simulate_vs_handwritten, stages,
                                startup_bench)
 from ..parsing import parse_range
 from ..numerics.reference import stored_references, write_references
@@ -57,10 +57,17 @@ def write_work_precision(config: dict, csv_path: str, references: str | None = N
     frame.to_csv(csv_path, **CSV)
 
 
-def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) -> None:
-    """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain;
-    where its time goes, stage by stage on each scene and function by function (a profile) on the most
-    oblique configured case under the primary law."""
+def write_kernel_bench(config: dict, csv_path: str) -> None:
+    """The compiled kernels' compilation on a fresh machine and their load (:func:`~..numerics.bench.kernel_bench`,
+    ``bench.repeats`` loads) into ``csv_path``, rows of the bench table (``write_bench`` takes them in)."""
+    kernel_bench(config["bench"]["repeats"]).to_csv(csv_path, **CSV)
+
+
+def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str, kernels_csv: str | None = None) -> None:
+    """``simulate`` against the hand-written script on the chapter's cases and scenes across the domain, with the
+    rows of ``kernels_csv`` (:func:`write_kernel_bench`) after the microslip contact's; where its time goes, stage
+    by stage on each scene and function by function (a profile) on the most oblique configured case under the
+    primary law."""
     bench = config["bench"]
     scenes = bench_scenes(chapter_cases(config), bench["domain"])
     from .validation import experiment
@@ -68,10 +75,11 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str) 
     section = config["numerics"]["microslip"]
     exact = experiment(config["validation"]).with_tangential("microslip").with_(angle=_first_oblique(section["angles"]))
     reference = (section["reference"]["elements"], section["reference"]["time_steps"])
-    microslip = microslip_bench(exact, reference, bench["repeats"], bench["kernels"])
+    microslip = microslip_bench(exact, reference, bench["repeats"])
+    kernels = [] if kernels_csv is None else [pd.read_csv(kernels_csv)]
     startup = [startup_bench(bench["repeats"])] if bench["startup"] else []
-    pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip, *startup], ignore_index=True).to_csv(
-        csv_path, **CSV)
+    pd.concat([simulate_vs_handwritten(scenes, bench["repeats"]), microslip, *kernels, *startup],
+              ignore_index=True).to_csv(csv_path, **CSV)
     stages(scenes, bench["repeats"]).to_csv(stages_csv, **CSV)
     oblique = max(config["cases"], key=lambda case: config["cases"][case].get("angle", 0.0))
     profiled = scene_for(config, oblique, config["primary"]["model"], config["primary"]["separation"])

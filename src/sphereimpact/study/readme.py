@@ -158,7 +158,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "march's, the normal motion's DOP853 and Taylor loops, the laws' forces and series, the force's extremes and "
         "the compliant springs' stick phase) on a fresh machine "
         "(numba imported, an empty disk cache) and loading them from the cache that filled, each in a fresh Python "
-        "process. Time ratio: over the rigid contact, the impact and the load.",
+        "process on one core, beside one other job of the pipeline. Time ratio: over the rigid contact, the impact and the load.",
         tangential,
         *start,
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "

@@ -48,6 +48,7 @@ RULE_KEYS = {
     "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million", "bench.laws", "bench.fit",
                     "validation", "kharaz_fit"),
     "sweep_paths": ("bench.repeats", "bench.path_sizes"),
+    "bench_kernels": ("bench.repeats",),
     "consistency": ("consistency",),
     "readme": ("primary",),
     "laws": (*_SCENE, "samples", "laws.models", "laws.cor", "laws.speed", "laws.speeds"),
