@@ -60,6 +60,8 @@ def as_number(name: str, value) -> float:
     Booleans are refused (``True`` is not a number a user means), and so is anything else, with a
     ``TypeError`` naming the parameter and the type found.
     """
+    if type(value) is float:  # the common case, answered before the abstract-class checks below
+        return value
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):

@@ -87,6 +87,12 @@ class FrozenMapping(Mapping):
     def __getitem__(self, name: str) -> float:
         return self._values[name]
 
+    def __contains__(self, name) -> bool:  # the dict's own test: Mapping's goes through __getitem__ and KeyError
+        return name in self._values
+
+    def get(self, name, default=None):
+        return self._values.get(name, default)
+
     def __iter__(self):
         return iter(self._values)
 
@@ -255,8 +261,8 @@ class Scene:
     def _hold(self, values: dict) -> None:
         """Hold the resolved ``values`` as the scene's ``parameters``, each also read as ``scene.name`` (an instance
         attribute: the force laws read them in every evaluation)."""
-        for name in [name for name in self.__dict__ if name in self.__dict__.get("parameters", ())]:
-            del self.__dict__[name]
+        for name in self.__dict__.get("parameters", ()):  # the values held before: read no longer
+            self.__dict__.pop(name, None)
         object.__setattr__(self, "parameters", FrozenMapping(values))
         self.__dict__.update(values)
 
