@@ -146,7 +146,8 @@ class NormalMotion:
         return kept[key]
 
     def forget(self) -> None:
-        """Drop what :meth:`kept` holds, so the next reads compute it again (a benchmark timing them)."""
+        """Drop what :meth:`kept` holds (and the states a dense output keeps of the single instants it was read at),
+        so the next reads compute it again (a benchmark timing them)."""
         self.__dict__.pop("_kept", None)
 
     @property

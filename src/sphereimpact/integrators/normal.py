@@ -206,8 +206,13 @@ class _DimensionlessNormal(NormalMotion):
 
     def state(self, t):
         if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
-            x, y = self._sol.single(float(t) * self._w)
-            return x * self._d_scale, y * self._v
+            t = float(t)
+            # t = 0, t_m and t_f are read many times: each state kept with the motion (NormalMotion.forget drops them)
+            known = self.__dict__.setdefault("_kept", {}).setdefault("states", {})
+            if t not in known:
+                x, y = self._sol.single(t * self._w)
+                known[t] = (x * self._d_scale, y * self._v)
+            return known[t]
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
 
