@@ -1,7 +1,8 @@
 """The contact layer's compiled kernels against the Python-float code they replace, to the bit, on random scenes of the
 consistency test's domain: the normal force's extremes (:mod:`sphereimpact.contact.normal_kernel`) on every law, and
 the compliant springs' stick phase (:mod:`sphereimpact.contact.tangential.stick_kernel`: the same steps, events and
-dense output; every spring, with and without the dashpot), on Taylor and DOP853 normal motions."""
+dense output; every spring, with and without the dashpot) and the rigid contact's grip
+(:mod:`sphereimpact.contact.tangential.rigid_kernel`), on Taylor and DOP853 normal motions."""
 
 import warnings
 
@@ -90,3 +91,25 @@ def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monk
         laws.add(scene.model)
         taken += b.motion.normal.kernel_state() is not None
     assert taken >= 100 and len(laws) >= 4  # the compiled path, on most laws
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
+    """The rigid contact's grip (:mod:`sphereimpact.contact.tangential.rigid_kernel`) on random rigid scenes (spin,
+    gravity along the flat, every law): the same phases, t_roll and outputs as the Python search."""
+    scenes = _scenes(200, seed=13, tangentials=("rigid",))
+    options = SolverOptions(method=method)
+    python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
+    grips = 0
+    for scene, a, b in zip(scenes, python, compiled):
+        if isinstance(a, str):
+            assert a == b, scene
+            continue
+        assert _same_outputs(a, b), scene
+        if a.motion.tangential is None:
+            continue
+        assert [(p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0) for p in a.motion.tangential.phases] == [
+            (p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0) for p in b.motion.tangential.phases], scene
+        grips += (b.t_roll is not None and b.t_roll > 0 and b.motion.normal.kernel_state() is not None
+                  and b.motion.tangential.jp.one_interval() is not None)
+    assert grips >= 40  # the compiled search found many grips

@@ -35,14 +35,14 @@ def load_compiled() -> None:
 #: The package's kernels in groups, each compiled in one process of :func:`compile_all` when they compile at once on a
 #: fresh machine: DOP853's loop and the laws' forces it calls; the Taylor method's loop, the laws' series and the
 #: microslip march; the contact layer's kernels on a solved normal motion (the force's extremes, the compliant
-#: tangential contact's stick phase).  Their compile time: ``results/bench.csv``.
+#: tangential contact's stick phase, the rigid contact's grip).  Their compile time: ``results/bench.csv``.
 GROUPS = ("dop853", "taylor", "contact")
 
 
 def compile_all(group: str | None = None) -> None:
     """Compile every kernel of the package (or load it from numba's disk cache), or those of one of :data:`GROUPS`:
-    both integrators' loops, every built-in law's force and series kernels, the microslip march's, the force extremes'
-    and the stick phase's (what a fresh machine compiles once; a process otherwise compiles each on its first use)."""
+    both integrators' loops, every built-in law's force and series kernels, the microslip march's, the force extremes',
+    the stick phase's and the grip's (what a fresh machine compiles once; a process otherwise compiles each on its first use)."""
     import importlib
 
     from ..contact.laws import LAWS
@@ -64,6 +64,7 @@ def compile_all(group: str | None = None) -> None:
     if group in (None, "contact"):
         importlib.import_module("sphereimpact.contact.normal_kernel")
         importlib.import_module("sphereimpact.contact.tangential.stick_kernel")
+        importlib.import_module("sphereimpact.contact.tangential.rigid_kernel")
 
 
 def compiled_now() -> bool:

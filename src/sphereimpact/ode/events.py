@@ -13,32 +13,86 @@ import math
 import numpy as np
 
 from ..errors import ImpactError  # noqa: F401  (re-exported: its home before errors.py)
-from .roots import brent
+from .roots import BRENT_ITERATIONS, ROOT, bracketed_root, brent
 
 
 def _scalar(f):
     """``f`` as a function of one float returning one float (f may return a 1-element array)."""
     def value(t):
-        v = f(t)
-        return v if type(v) is float else float(np.reshape(v, -1)[0])
+        return _value(t, f)
 
     return value
 
 
-def _refine(f, a: float, b: float) -> float:
-    """The root of ``f`` in [a, b], a sign change of its vectorised values there.  Evaluated one instant at a
-    time (the scalar path a function may take) the sign change can vanish into round-off at one end: the end
-    that is exactly zero, or else the end nearer zero, is then the root (a random scene's force, 1e-17 from 0
-    at a grid point, had Brent's method refuse the bracket)."""
-    g = _scalar(f)
-    g_a, g_b = g(a), g(b)
+def _value(t: float, f) -> float:
+    """``f(t)`` as one float (f may return a 1-element array): ``f`` as the plain root functions call it."""
+    v = f(t)
+    return v if type(v) is float else float(np.reshape(v, -1)[0])
+
+
+#: Relative tolerance of an event's refinement: a few ulp of t.
+REFINE_RTOL = 4 * float(np.finfo(float).eps)
+
+
+def refine_root(g, args, a: float, b: float, root) -> tuple:
+    """(the root of ``g(t, args)`` in [a, b], status): a sign change of its samples there, refined by Brent's method
+    (``root``: :func:`~.roots.bracketed_root`, or it compiled), status :data:`~.roots.ROOT` unless that fails.
+
+    Evaluated one instant at a time (the scalar path a function may take) the sign change can vanish into round-off
+    at one end: the end that is exactly zero, or else the end nearer zero, is then the root (a random scene's force,
+    1e-17 from 0 at a grid point, had Brent's method refuse the bracket).  Plain arithmetic on floats, as
+    :func:`roots_at`."""
+    g_a, g_b = g(a, args), g(b, args)
     if g_a == 0.0 or g_b == 0.0 or (g_a > 0) == (g_b > 0):
-        return a if g_a == 0.0 or (g_b != 0.0 and abs(g_a) < abs(g_b)) else b
-    return brent(g, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        return (a if g_a == 0.0 or (g_b != 0.0 and abs(g_a) < abs(g_b)) else b), ROOT
+    t, status, _ = root(g, args, a, b, 1e-300, REFINE_RTOL, BRENT_ITERATIONS)
+    return t, status
+
+
+def roots_at(g, args, grid, values, direction: int, found, refine, root) -> tuple:
+    """The roots of ``g(t, args)`` on ``[grid[0], grid[-1]]`` from its samples ``values`` on the grid, in time order
+    into ``found`` (room for one more than the grid's intervals): (how many, status, the bracket that failed).
+
+    Each sign change of the samples (``direction``: -1 from + to - only, +1 from - to + only, 0 both) is refined
+    (``refine``: :func:`refine_root`, or it compiled, with ``root``); a sample that is exactly zero is the root.  A
+    function that ends at (or near) zero may dip through it and back within the last interval, where no sample shows
+    it (the brief pull of a force before delta returns to 0: J+ was 1e-6 off): the value just inside the end decides.
+    Status :data:`~.roots.ROOT`, else the refinement's failure on the bracket returned.  Plain arithmetic on floats
+    and arrays, so that numba compiles this very function (:mod:`sphereimpact.contact.tangential.rigid_kernel`) and
+    :func:`roots` runs it as Python."""
+    sign = np.sign(values)
+    changes = np.flatnonzero((sign[:-1] != 0) & (sign[:-1] != sign[1:]))
+    count = 0
+    for k in range(changes.size):
+        i = changes[k]
+        if direction != 0 and direction * sign[i] > 0:  # crossing the wrong way
+            continue
+        if sign[i + 1] == 0:  # a sample that is exactly zero is the root
+            found[count] = grid[i + 1]
+        else:
+            t, status = refine(g, args, grid[i], grid[i + 1], root)
+            if status != ROOT:
+                return count, status, grid[i], grid[i + 1]
+            found[count] = t
+        count += 1
+    last = grid.size - 1
+    if last >= 1 and sign[last - 1] != 0 and (sign[last] == 0 or sign[last] == sign[last - 1]):
+        near = grid[last] - 1e-3 * (grid[last] - grid[last - 1])
+        if np.sign(g(near, args)) == -sign[last - 1] and not (direction != 0 and direction * sign[last - 1] > 0):
+            t, status = refine(g, args, grid[last - 1], near, root)
+            if status != ROOT:
+                return count, status, grid[last - 1], near
+            k = count  # into time order
+            while k > 0 and found[k - 1] > t:
+                found[k] = found[k - 1]
+                k -= 1
+            found[k] = t
+            count += 1
+    return count, ROOT, 0.0, 0.0
 
 
 def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float]:
-    """All roots of ``f`` on ``[grid[0], grid[-1]]``, in time order.
+    """All roots of ``f`` on ``[grid[0], grid[-1]]``, in time order (:func:`roots_at` on its samples).
 
     Parameters
     ----------
@@ -55,31 +109,43 @@ def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float
     -------
     list of float
         Root times [s].  A sample that is exactly zero counts as a root.
+
+    Raises
+    ------
+    ImpactError
+        ``f`` is not finite on the grid.
+    ValueError, RuntimeError
+        Brent's method refused a bracket or did not converge (:func:`~.roots.brent`'s errors).
     """
     grid = np.asarray(grid, dtype=float)
     if after is not None:
         grid = grid[grid > after]
     values = np.asarray(f(grid), dtype=float)
+    return sampled_roots(_value, f, grid, values, direction)
+
+
+def sampled_roots(g, args, grid: np.ndarray, values: np.ndarray, direction: int = 0) -> list[float]:
+    """:func:`roots_at` in Python, its failures raised (:func:`raise_failed`)."""
     if not np.all(np.isfinite(values)):
+        raise_failed(NOT_FINITE)
+    found = np.empty(grid.size + 1)
+    count, status, a, b = roots_at(g, args, grid, values, direction, found, refine_root, bracketed_root)
+    raise_failed(status, lambda t: g(t, args), a, b)
+    return found[:count].tolist()
+
+
+#: Status of a root search whose samples are not all finite (beside :func:`roots_at`'s).
+NOT_FINITE = -1
+
+
+def raise_failed(status: int, f=None, a: float = 0.0, b: float = 0.0) -> None:
+    """The error of a root search (:func:`roots_at`, or compiled code running it) that ended with ``status``:
+    ImpactError for samples that are not finite (:data:`NOT_FINITE`), :func:`~.roots.brent`'s own error for a
+    refinement of ``f`` on [a, b] that failed (it is run again, in Python, to raise it); nothing for ``ROOT``."""
+    if status == NOT_FINITE:
         raise ImpactError("event function is not finite on the solution")
-    sign = np.sign(values)
-    found = []
-    for i in np.flatnonzero((sign[:-1] != 0) & (sign[:-1] != sign[1:])):
-        s0 = sign[i]
-        if direction and direction * s0 > 0:  # crossing the wrong way
-            continue
-        if sign[i + 1] == 0:  # a sample that is exactly zero is the root
-            found.append(float(grid[i + 1]))
-        else:
-            found.append(_refine(f, grid[i], grid[i + 1]))
-    if grid.size > 1 and sign[-2] != 0 and sign[-1] in (0, sign[-2]):
-        # a function that ends at (or near) zero may dip through it and back within the last interval, where
-        # no sample shows it (the brief pull of a force before delta returns to 0: J+ was 1e-6 off): the
-        # value just inside the end decides
-        near = float(grid[-1]) - 1e-3 * (float(grid[-1]) - float(grid[-2]))
-        if np.sign(_scalar(f)(near)) == -sign[-2] and not (direction and direction * sign[-2] > 0):
-            found = sorted([*found, _refine(f, float(grid[-2]), near)])
-    return found
+    if status != ROOT:
+        brent(f, a, b, xtol=1e-300, rtol=REFINE_RTOL)
 
 
 def first_root(f, grid, direction: int = 0, after: float | None = None) -> float | None:

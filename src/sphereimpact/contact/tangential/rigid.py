@@ -21,13 +21,14 @@ the ball slips again when mu P+ falls below that.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...ode.dense import SMALL, is_instant
 from ...errors import ImpactError
-from ...ode.events import first_root, roots
+from ...ode.events import first_root, raise_failed, roots
 from ...ode.roots import falling_root
 from ..motion import NormalMotion
 from .base import TANGENTIALS, Regime, SweptTangential, TangentialModel, slip_per_impulse
@@ -163,6 +164,13 @@ class PositiveImpulse:
         gaps = self._before[1:-1] * (self._a[1:] - self._b[:-1])
         self._k_start = np.concatenate([[0.0], np.cumsum(pieces[:-1] + gaps)]) if self._a.size else np.zeros(0)
 
+    def one_interval(self) -> tuple[float, float, float] | None:
+        """(a, b, J(a)) [s, s, N s] of the one interval the force pushes over, J+ = J - J(a) on it; None for none or
+        more (the penetration criterion's force may pull between pushes)."""
+        if len(self.intervals) != 1:
+            return None
+        return (*self.intervals[0], float(self._ja[0]))
+
     def _locate(self, t):
         """Index of the last interval starting at or before each t (-1 before the first), and t clipped to it."""
         i = np.searchsorted(self._a, t, side="right") - 1
@@ -285,8 +293,7 @@ class TangentialMotion:
             if phase.mode == Regime.SLIDING and self._slides_throughout(phase):
                 t_switch = None
             elif phase.mode == Regime.SLIDING:  # sigma s falls through zero when the contact point stops slipping
-                t_switch = first_root(lambda t, p=phase, j0=self.jp(phase.t0): p.sigma * self._slip(p, t, j0),
-                                      grid, direction=-1)
+                t_switch = self._grip(phase, grid)
             elif self._hold > 0:
                 t_switch = first_root(lambda t: mu * np.maximum(normal.force(t), 0.0) - self._hold,
                                       grid, direction=-1)
@@ -306,6 +313,23 @@ class TangentialMotion:
                 raise ImpactError(f"more than {MAX_PHASES} stick-slip switches in one contact")
         self.regime = self.phases[-1].mode
         self.switches = len(self.phases) - 1
+
+    def _grip(self, p: Phase, grid: np.ndarray) -> float | None:
+        """The first instant [s] on ``grid`` where sigma times the slip of sliding phase ``p`` falls through zero, or
+        None: compiled (:func:`.rigid_kernel.grip`, the same instant to the bit) where the normal motion has a
+        :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` and its force pushes over one interval."""
+        j0 = self.jp(p.t0)
+        state, pushing = self.normal.kernel_state(), self.jp.one_interval()
+        if state is None or pushing is None:
+            return first_root(lambda t: p.sigma * self._slip(p, t, j0), grid, direction=-1)
+        from .rigid_kernel import grip
+
+        s = self.scene
+        numbers = [p.sigma, s.mu, s.mass, s.radius, s.inertia_factor, p.v0, p.omega0, p.t0, s.g_tangent, j0, *pushing,
+                   s.v_normal, s.g_normal]
+        t, status, low, high = grip(state.arrays(), np.array(numbers, dtype=float), np.asarray(grid, dtype=float))
+        raise_failed(status, lambda t: p.sigma * self._slip(p, t, j0), low, high)
+        return None if math.isnan(t) else float(t)
 
     def _slides_throughout(self, p: Phase) -> bool:
         """Whether sliding phase ``p`` lasts to t_f, decided without a search where that is exact: from t = 0

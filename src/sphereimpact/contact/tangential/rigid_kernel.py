@@ -1,0 +1,74 @@
+"""The rigid tangential contact's grip search, compiled: where a sliding phase's slip falls to zero.
+
+A sliding phase of :class:`~.rigid.TangentialMotion` ends where sigma (v_t - omega R) falls through zero, the slip read
+off the positive normal impulse J+ (:func:`~.rigid.from_impulse`): in Python a search sampled on the normal motion's
+grid and refined by Brent's method, each evaluation reading the dense output, most of a gripping impact's tangential
+cost.  :func:`grip` is that search compiled: the normal motion enters as its dense output's arrays
+(:func:`~..normal_kernel.normal_state`, the arithmetic of its Python evaluator), the slip is the Python functions'
+arithmetic in their order, and the sampling and refinement are the very functions the Python search runs
+(``ode.events.roots_at``, ``refine_root``, ``ode.roots.bracketed_root``), so its instant is the Python one to the bit
+(tests/test_contact_kernels.py).  It serves a contact whose force pushes over one interval (J+ = J - J(a) there),
+the force criterion's case; the Python search serves the others.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+from numba import types
+
+from ...ode.events import NOT_FINITE, refine_root, roots_at
+from ...ode.roots import ROOT, bracketed_root
+from ..normal_kernel import ARRAY, NORMAL, normal_state
+
+_COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
+_F, _I = types.float64, types.int64
+#: The phase's numbers in :func:`grip`'s ``phase`` array, in order.
+PHASE = ("sigma", "mu", "mass", "radius", "inertia_factor", "v0", "omega0", "t0", "g_tangent", "j0", "a", "b", "ja",
+         "v_normal", "g_normal")
+
+_roots_at = numba.njit(inline="always", **_COMPILE)(roots_at)  # inlined: the slip is passed
+_refine_root = numba.njit(inline="always", **_COMPILE)(refine_root)
+_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)
+
+
+@numba.njit(**_COMPILE)
+def _signed_slip(t, args):
+    """sigma (v_t - omega R) [m/s] at t [s] in the sliding phase: ``TangentialMotion._slip`` times sigma, with J+ the
+    one pushing interval's (``PositiveImpulse.__call__`` at one instant) and J from the momentum balance
+    (``NormalMotion.impulse``)."""
+    normal, phase = args
+    sigma, mu, mass, radius, alpha, v0, omega0, t0, g_t, j0, a, b, ja, v_n, g_n = (
+        phase[0], phase[1], phase[2], phase[3], phase[4], phase[5], phase[6], phase[7], phase[8], phase[9], phase[10],
+        phase[11], phase[12], phase[13], phase[14])
+    jp = 0.0
+    if t > a:
+        c = min(max(t, a), b)
+        jp = mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
+    dt = t - t0
+    impulse = -sigma * mu * (jp - j0)
+    v = v0 + g_t * dt + impulse / mass
+    omega = omega0 - impulse / (alpha * mass * radius)
+    return sigma * (v - omega * radius)
+
+
+@numba.njit(types.Tuple((_F, _I, _F, _F))(NORMAL, ARRAY, ARRAY), **_COMPILE)
+def grip(normal, phase, grid):
+    """(the first instant [s] the sliding phase's slip falls through zero on ``grid``, NaN if none; status; the
+    bracket that failed): ``first_root`` of the signed slip with direction -1, compiled.  ``normal``: the motion's
+    :meth:`~..motion.KernelState.arrays`; ``phase``: the numbers of :data:`PHASE`.  Status ``ode.roots.ROOT``, or
+    ``ode.events.NOT_FINITE``, or the refinement's failure (``ode.roots.NO_BRACKET``, ``LAST_ITERATE``) on the
+    bracket returned (``ode.events.raise_failed`` raises the Python search's error for each)."""
+    args = (normal, phase)
+    values = np.empty(grid.size)
+    for k in range(grid.size):
+        values[k] = _signed_slip(grid[k], args)
+    if not np.all(np.isfinite(values)):
+        return math.nan, NOT_FINITE, 0.0, 0.0
+    found = np.empty(grid.size + 1)
+    count, status, low, high = _roots_at(_signed_slip, args, grid, values, -1, found, _refine_root, _root)
+    if status != ROOT:
+        return math.nan, status, low, high
+    return (found[0] if count else math.nan), ROOT, 0.0, 0.0
