@@ -95,12 +95,13 @@ def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monk
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
-    """The rigid contact's grip (:mod:`sphereimpact.contact.tangential.rigid_kernel`) on random rigid scenes (spin,
-    gravity along the flat, every law): the same phases, t_roll and outputs as the Python search."""
+    """The rigid contact's grip (:mod:`sphereimpact.contact.tangential.rigid_kernel`) and, under the penetration
+    criterion, the force's sign changes that bound its pushes (``normal_kernel.force_roots``) on random rigid scenes
+    (spin, gravity along the flat, every law): the same pushes, phases, t_roll and outputs as the Python search."""
     scenes = _scenes(200, seed=13, tangentials=("rigid",))
     options = SolverOptions(method=method)
     python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
-    grips = 0
+    grips = pulls = 0
     for scene, a, b in zip(scenes, python, compiled):
         if isinstance(a, str):
             assert a == b, scene
@@ -110,6 +111,8 @@ def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
             continue
         assert [(p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0) for p in a.motion.tangential.phases] == [
             (p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0) for p in b.motion.tangential.phases], scene
+        assert a.motion.tangential.jp.intervals == b.motion.tangential.jp.intervals, scene
         grips += (b.t_roll is not None and b.t_roll > 0 and b.motion.normal.kernel_state() is not None
                   and b.motion.tangential.jp.one_interval() is not None)
-    assert grips >= 40  # the compiled search found many grips
+        pulls += not scene.separation.on_force and b.motion.normal.kernel_state() is not None
+    assert grips >= 40 and pulls >= 20, (grips, pulls)  # the compiled searches were taken, many times

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..ode.dense import is_instant
-from ..ode.events import extremes
+from ..ode.events import extremes, raise_failed, roots
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene
@@ -110,6 +110,21 @@ class NormalMotion:
             low, high = force_extremes(state.arrays(), state.force, state.params, np.asarray(self.grid, dtype=float))
             return float(low), float(high)
         return extremes(self.force, self.grid)
+
+    def force_roots(self) -> list[float]:
+        """The instants [s] in (0, t_f] where the normal force changes sign (:func:`~sphereimpact.ode.events.roots` of
+        :meth:`force` on ``grid``): compiled (:func:`.normal_kernel.force_roots`, the same instants to the bit) where
+        :meth:`kernel_state` has the motion."""
+        grid = np.asarray(self.grid, dtype=float)
+        grid = grid[grid > 0.0]
+        state = self.kernel_state()
+        if state is None:
+            return roots(self.force, grid)
+        from .normal_kernel import force_roots
+
+        found, status, low, high = force_roots(state.arrays(), state.force, state.params, grid)
+        raise_failed(status, self.force, low, high)
+        return found.tolist()
 
     def impulse(self, t):
         """Normal impulse J(t) = integral of P from 0 to t [N s], from the momentum balance."""

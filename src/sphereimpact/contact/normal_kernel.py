@@ -2,10 +2,11 @@
 
 A normal motion hands compiled code its dense output as arrays (:class:`~.motion.KernelState`); :func:`normal_state`
 evaluates them with the arithmetic of the Python evaluator (``TaylorDense.single``, ``StackedDOP853.single``) and
-the kernels of the contact layer build on it (:mod:`.tangential.stick_kernel`).  :func:`force_extremes` is
-:meth:`.motion.NormalMotion.force_extremes` compiled: the force sampled on the motion's grid by the law's compiled
-kernel and refined by the very functions the Python path runs (``ode.events.refined_minimum`` and ``minimise``),
-so its answer is the Python one to the bit (tests/test_contact_kernels.py).
+the kernels of the contact layer build on it (:mod:`.tangential.stick_kernel`, :mod:`.tangential.rigid_kernel`).
+:func:`force_extremes` and :func:`force_roots` are :meth:`.motion.NormalMotion.force_extremes` and
+:meth:`~.motion.NormalMotion.force_roots` compiled: the force sampled on the motion's grid by the law's compiled
+kernel and refined by the very functions the Python path runs (``ode.events.refined_minimum`` and ``minimise``;
+``roots_at`` and ``refine_root``), so their answers are the Python ones to the bit (tests/test_contact_kernels.py).
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ import numpy as np
 from numba import types
 
 from ..ode.dense import TAYLOR, interpolant_pair
-from ..ode.events import minimise, refined_minimum
+from ..ode.events import NOT_FINITE, minimise, refine_root, refined_minimum, roots_at
+from ..ode.roots import bracketed_root
 from ..ode.series import horner
 from .laws.kernels import SIGNATURE
 
@@ -29,6 +31,11 @@ _horner = numba.njit(**_COMPILE)(horner)
 _interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
 _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
+#: The event search's plain code compiled (``ode.events.roots_at``, ``refine_root``, ``ode.roots.bracketed_root``),
+#: inlined: the function searched is passed.
+roots_at_compiled = numba.njit(inline="always", **_COMPILE)(roots_at)
+refine_root_compiled = numba.njit(inline="always", **_COMPILE)(refine_root)
+bracketed_root_compiled = numba.njit(inline="always", **_COMPILE)(bracketed_root)
 
 
 @numba.njit(**_COMPILE)
@@ -67,3 +74,21 @@ def force_extremes(normal, force, params, grid):
     low = _refined_minimum(_signed_force, (normal, force, params, 1.0), grid, forces, _minimise)[1]
     high = _refined_minimum(_signed_force, (normal, force, params, -1.0), grid, -forces, _minimise)[1]
     return low, -high
+
+
+@numba.njit(types.Tuple((ARRAY, _I, _F, _F))(NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY), **_COMPILE)
+def force_roots(normal, force, params, grid):
+    """(the instants [s] on ``grid``'s span where the normal force changes sign, status, the bracket that failed):
+    ``ode.events.roots`` of :meth:`.motion.NormalMotion.force` compiled, the force sampled and refined by the law's
+    compiled kernel.  Status as ``rigid_kernel.grip``'s (``ode.events.raise_failed`` raises the Python search's
+    error for each)."""
+    forces = np.empty(grid.size)
+    for k in range(grid.size):
+        delta, delta_dot = normal_state(normal, grid[k])
+        forces[k] = force(delta, delta_dot, params)
+    if not np.all(np.isfinite(forces)):
+        return np.empty(0), NOT_FINITE, 0.0, 0.0
+    found = np.empty(grid.size + 1)
+    count, status, low, high = roots_at_compiled(_signed_force, (normal, force, params, 1.0), grid, forces, 0, found,
+                                                 refine_root_compiled, bracketed_root_compiled)
+    return found[:count].copy(), status, low, high

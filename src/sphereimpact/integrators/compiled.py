@@ -34,8 +34,8 @@ def load_compiled() -> None:
 
 #: The package's kernels in groups, each compiled in one process of :func:`compile_all` when they compile at once on a
 #: fresh machine: DOP853's loop and the laws' forces it calls; the Taylor method's loop, the laws' series and the
-#: microslip march; the contact layer's kernels on a solved normal motion (the force's extremes, the compliant
-#: tangential contact's stick phase, the rigid contact's grip).  Their compile time: ``results/bench.csv``.
+#: microslip march; the contact layer's kernels on a solved normal motion (the force's extremes and sign changes,
+#: the compliant tangential contact's stick phase, the rigid contact's grip).  Their compile time: ``results/bench.csv``.
 GROUPS = ("dop853", "taylor", "contact")
 
 

@@ -155,8 +155,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "rigid contact on the same scene (error: e_t's and spin's against the fine reference resolution) and "
         "beside its element row's march alone, the compiled kernel (numba) on the impact's own inputs: the rest "
         "of the impact is its normal motion. Once per process, not per impact: compiling the package's kernels (the "
-        "march's, the normal motion's DOP853 and Taylor loops, the laws' forces and series, the force's extremes, "
-        "the compliant springs' stick phase and the rigid contact's grip) on a fresh machine "
+        "march's, the normal motion's DOP853 and Taylor loops, the laws' forces and series, the force's extremes and "
+        "sign changes, the compliant springs' stick phase and the rigid contact's grip) on a fresh machine "
         "(numba imported, an empty disk cache) and loading them from the cache that filled, each in a fresh Python "
         "process on one core, beside one other job of the pipeline. Time ratio: over the rigid contact, the impact and the load.",
         tangential,

@@ -28,7 +28,7 @@ import numpy as np
 
 from ...ode.dense import SMALL, is_instant
 from ...errors import ImpactError
-from ...ode.events import first_root, raise_failed, roots
+from ...ode.events import first_root, raise_failed
 from ...ode.roots import falling_root
 from ..motion import NormalMotion
 from .base import TANGENTIALS, Regime, SweptTangential, TangentialModel, slip_per_impulse
@@ -148,7 +148,7 @@ class PositiveImpulse:
     def __init__(self, normal: NormalMotion):
         self._n = normal
         # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
-        inner = [] if normal.scene.separation.on_force else roots(normal.force, normal.grid, after=0.0)
+        inner = [] if normal.scene.separation.on_force else normal.force_roots()
         cuts = [0.0] + inner + [normal.t_f]
         cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
         mids = 0.5 * (cuts[:-1] + cuts[1:])

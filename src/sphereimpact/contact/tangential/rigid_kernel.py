@@ -19,19 +19,16 @@ import numba
 import numpy as np
 from numba import types
 
-from ...ode.events import NOT_FINITE, refine_root, roots_at
-from ...ode.roots import ROOT, bracketed_root
-from ..normal_kernel import ARRAY, NORMAL, normal_state
+from ...ode.events import NOT_FINITE
+from ...ode.roots import ROOT
+from ..normal_kernel import (ARRAY, NORMAL, bracketed_root_compiled, normal_state, refine_root_compiled,
+                             roots_at_compiled)
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64
 #: The phase's numbers in :func:`grip`'s ``phase`` array, in order.
 PHASE = ("sigma", "mu", "mass", "radius", "inertia_factor", "v0", "omega0", "t0", "g_tangent", "j0", "a", "b", "ja",
          "v_normal", "g_normal")
-
-_roots_at = numba.njit(inline="always", **_COMPILE)(roots_at)  # inlined: the slip is passed
-_refine_root = numba.njit(inline="always", **_COMPILE)(refine_root)
-_root = numba.njit(inline="always", **_COMPILE)(bracketed_root)
 
 
 @numba.njit(**_COMPILE)
@@ -68,7 +65,8 @@ def grip(normal, phase, grid):
     if not np.all(np.isfinite(values)):
         return math.nan, NOT_FINITE, 0.0, 0.0
     found = np.empty(grid.size + 1)
-    count, status, low, high = _roots_at(_signed_slip, args, grid, values, -1, found, _refine_root, _root)
+    count, status, low, high = roots_at_compiled(_signed_slip, args, grid, values, -1, found,
+                                                 refine_root_compiled, bracketed_root_compiled)
     if status != ROOT:
         return math.nan, status, low, high
     return (found[0] if count else math.nan), ROOT, 0.0, 0.0
