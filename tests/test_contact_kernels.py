@@ -52,17 +52,25 @@ def _same_outputs(a, b) -> bool:
         {k: v for k, v in b.to_dict().items() if k != "wall_time"}, rel=0, abs=0, nan_ok=True)
 
 
-@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
-def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypatch):
-    scenes = _scenes(70, seed=11)
+def _solved_pairs(scenes, method: str, monkeypatch) -> list:
+    """(scene, Python outcome, compiled outcome) of each scene both runs solve at ``method``, every output equal to
+    the bit; a scene refused must be refused alike by both."""
     options = SolverOptions(method=method)
     python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
-    sticks = kinds = 0
+    pairs = []
     for scene, a, b in zip(scenes, python, compiled):
         if isinstance(a, str):
             assert a == b, scene
             continue
         assert _same_outputs(a, b), scene
+        pairs.append((scene, a, b))
+    return pairs
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypatch):
+    sticks = kinds = 0
+    for scene, a, b in _solved_pairs(_scenes(70, seed=11), method, monkeypatch):
         if a.motion.tangential is None:
             continue
         for pa, pb in zip(a.motion.tangential.phases, b.motion.tangential.phases, strict=True):
@@ -78,16 +86,9 @@ def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypat
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monkeypatch):
-    scenes = _scenes(150, seed=12, tangentials=("rigid", "microslip"))
-    options = SolverOptions(method=method)
-    python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
     laws, taken = set(), 0
-    for scene, a, b in zip(scenes, python, compiled):
-        if isinstance(a, str):
-            assert a == b, scene
-            continue
+    for scene, a, b in _solved_pairs(_scenes(150, seed=12, tangentials=("rigid", "microslip")), method, monkeypatch):
         assert (a.force_min, a.force_max) == (b.force_min, b.force_max), scene
-        assert _same_outputs(a, b), scene
         laws.add(scene.model)
         taken += b.motion.normal.kernel_state() is not None
     assert taken >= 100 and len(laws) >= 4  # the compiled path, on most laws
@@ -98,15 +99,8 @@ def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
     """The rigid contact's grip (:mod:`sphereimpact.contact.tangential.rigid_kernel`) and, under the penetration
     criterion, the force's sign changes that bound its pushes (``normal_kernel.force_roots``) on random rigid scenes
     (spin, gravity along the flat, every law): the same pushes, phases, t_roll and outputs as the Python search."""
-    scenes = _scenes(200, seed=13, tangentials=("rigid",))
-    options = SolverOptions(method=method)
-    python, compiled = (_solve(scenes, options, flag, monkeypatch) for flag in (False, True))
     grips = pulls = 0
-    for scene, a, b in zip(scenes, python, compiled):
-        if isinstance(a, str):
-            assert a == b, scene
-            continue
-        assert _same_outputs(a, b), scene
+    for scene, a, b in _solved_pairs(_scenes(200, seed=13, tangentials=("rigid",)), method, monkeypatch):
         if a.motion.tangential is None:
             continue
         assert [(p.mode, p.t0, p.t1, p.v0, p.omega0, p.x0) for p in a.motion.tangential.phases] == [

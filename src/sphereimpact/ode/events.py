@@ -58,8 +58,8 @@ def roots_at(g, args, grid, values, direction: int, found, refine, root) -> tupl
     function that ends at (or near) zero may dip through it and back within the last interval, where no sample shows
     it (the brief pull of a force before delta returns to 0: J+ was 1e-6 off): the value just inside the end decides.
     Status :data:`~.roots.ROOT`, else the refinement's failure on the bracket returned.  Plain arithmetic on floats
-    and arrays, so that numba compiles this very function (:mod:`sphereimpact.contact.tangential.rigid_kernel`) and
-    :func:`roots` runs it as Python."""
+    and arrays, so that numba compiles this very function (:mod:`sphereimpact.contact.normal_kernel`, for the
+    force's sign changes and the rigid contact's grip) and :func:`roots` runs it as Python."""
     sign = np.sign(values)
     changes = np.flatnonzero((sign[:-1] != 0) & (sign[:-1] != sign[1:]))
     count = 0
