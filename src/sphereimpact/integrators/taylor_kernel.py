@@ -179,7 +179,7 @@ def solved(series_kernel, force, numbers, params, gamma: float, tol: float, end:
         raise ValueError("brent: f(a) and f(b) must be finite and of opposite signs")
     if status == ROOT_UNCONVERGED:
         raise RuntimeError(f"brent: no convergence in {BRENT_ITERATIONS} iterations")
-    dense = series.TaylorDense(starts.tolist(), ends.tolist(), cx.tolist(), cy.tolist())
+    dense = series.TaylorDense(starts, ends, cx, cy)
     return {"dense": dense, "tau_m": None if math.isnan(tau_m) else tau_m,
             "tau_f": None if math.isnan(tau_f) else tau_f, "state_f": None if math.isnan(tau_f) else [x_f, y_f],
             "order": order}

@@ -81,25 +81,33 @@ def step_size(xs, ys, tol: float) -> float:
     return h
 
 
+def _listed(values) -> list:
+    """``values`` as a list (of lists, for a 2-D array)."""
+    return values.tolist() if isinstance(values, np.ndarray) else list(values)
+
+
 class TaylorDense:
     """The polynomial pieces of a Taylor solution: state (x, y) at any tau on [ts[0], ts[-1]].
 
     Parameters
     ----------
-    starts : list of float
+    starts : list or array of float
         Each step's start tau_i (ascending).
-    ends : list of float
+    ends : list or array of float
         Each step's end (the last one may be cut at a terminal event).
-    xs, ys : list of lists
-        Each step's Taylor coefficients in powers of (tau - tau_i), as many for every step (one order).
+    xs, ys : list of lists, or arrays (steps, order + 1)
+        Each step's Taylor coefficients in powers of (tau - tau_i), as many for every step (one order).  Arrays (a
+        compiled loop's) are kept, not copied: they must not change after.
     """
 
     def __init__(self, starts, ends, xs, ys):
-        self._starts, self._xs, self._ys = list(starts), list(xs), list(ys)
-        self.ts = np.array([starts[0], *ends], dtype=float)
-        self._ends = list(ends)
-        self._last = len(starts) - 1
-        self._cx, self._cy = np.array(xs, dtype=float), np.array(ys, dtype=float)  # (steps, order + 1)
+        # lists (the Python loop's) or float arrays (the compiled loop's, kept without a copy): lists for single(),
+        # arrays for the vectorised evaluation and pieces()
+        self._starts, self._xs, self._ys, self._ends = (_listed(values) for values in (starts, xs, ys, ends))
+        self._starts_array, self._ends_array = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
+        self.ts = np.concatenate([self._starts_array[:1], self._ends_array])
+        self._last = len(self._starts) - 1
+        self._cx, self._cy = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)  # (steps, order + 1)
 
     @property
     def steps(self) -> int:
@@ -108,7 +116,7 @@ class TaylorDense:
     def pieces(self) -> tuple:
         """(starts, ends, cx, cy): each step's start and end, and its coefficients of x and y (steps, order + 1), as
         float arrays: what :meth:`single` reads, for compiled code that evaluates the same polynomials."""
-        return np.array(self._starts, dtype=float), np.array(self._ends, dtype=float), self._cx, self._cy
+        return self._starts_array, self._ends_array, self._cx, self._cy
 
     def single(self, tau: float) -> list:
         """[x, y] at one instant, in floats (an instant on a step boundary takes the earlier step)."""
