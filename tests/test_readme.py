@@ -4,6 +4,7 @@ that CI runs after the pipeline tells agreement, run-to-run timing noise and rea
 import re
 from pathlib import Path
 
+import pandas as pd
 import pytest
 import yaml
 
@@ -207,3 +208,27 @@ def test_the_first_screen_has_the_contents_and_the_quick_start():
     """A newcomer's first screen: what it is, the two commands, the contents, then the quick start."""
     lines = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()
     assert lines.index("## Contents") < 25 and lines.index("## Quick start") < 45
+
+
+def test_the_speed_blocks_text_does_not_depend_on_the_rounds_a_run_took(tmp_path):
+    """A benchmark row that took fewer rounds (its round over the budget) must not change the block's words: the
+    README check compares them exactly, so text worded from the rounds run made CI fail on a slow spell."""
+    from sphereimpact.study.readme import speed_block
+
+    single = pd.DataFrame([{"scene": "s", "contender": c, "method": "taylor", "time": 1e-3, "time_ratio": 1.0,
+                            "error": 1e-11, "rtol": 1e-10, "reached": True, "repeats": 3, "batch": 50}
+                           for c in ("simulate", "handwritten")])
+    single.to_csv(tmp_path / "bench.csv", index=False)
+    texts = []
+    for rounds in (1, 3):
+        rows = pd.DataFrame([
+            {"sweep": "grid", "scenes": 10, "seconds": 0.1, "throughput": 100.0, "worst_error": 1e-12,
+             "repeats": rounds, "sample": 5, "seconds_all": 0.2, "all_over_fast": 2.0, "target_speedup": None,
+             "speedup_over_handwritten": 9.0, "handwritten_reached": True, "handwritten_error": 1e-12,
+             "handwritten_rtol": 1e-12, "speedup_over_simulate": 5.0, "simulate_reached": True,
+             "simulate_error": 1e-12, "simulate_rtol": 1e-12, "evaluations": None, "target_seconds": None},
+            {"sweep": "fit", "scenes": 20, "seconds": 6.0, "throughput": 50.0, "worst_error": None, "repeats": rounds,
+             "evaluations": 30, "target_seconds": 10.0}])
+        rows.to_csv(tmp_path / "bench_sweep.csv", index=False)
+        texts.append(speed_block(str(tmp_path / "bench.csv"), str(tmp_path / "bench_sweep.csv")))
+    assert texts[0] == texts[1] and "or of fewer where one round" in texts[0]

@@ -81,6 +81,7 @@ def replication_block(config: dict, replication_csv: str, findings_md: str) -> s
 def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     """The single-impact and sweep speed tables against the hand-written baseline, equal accuracy shown."""
     single = pd.read_csv(bench_csv)
+    repeats = int(single["repeats"].max())  # the config's bench.repeats: every single-impact row ran that many
     rows = []
     scripted = single[single["scene"].isin(single[single["contender"] == "handwritten"]["scene"])]
     for name, part in scripted.groupby("scene", sort=False):
@@ -134,7 +135,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "`kharaz_fit` in the config, to the noise-free e_t, spin and rebound angle of Kharaz's ball (the "
         "validation's, e_n given) at the validation's incidences, and to the shipped measured bounces with the COR "
         "free too (the ball calibrated to the measured e_n), each bounce solved by `simulate`; timed as "
-        f"{_rounds(fits['repeats'], 'fit')}, each solving its "
+        f"{_rounds(repeats, 'fit')}, each solving its "
         "bounces' normal motions afresh (once per fit where the COR is given: they do not depend on μ or κ; at "
         "every evaluation that moves the COR). Error: the fitted parameters' largest relative difference from "
         "those that made the curve (none made the measured bounces).",
@@ -163,7 +164,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         *start,
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
         f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
-        f"{_rounds(sweeps['repeats'], 'run')}; speed-up = the script's time per scene × the engine's "
+        f"{_rounds(repeats, 'run')}; speed-up = the script's time per scene × the engine's "
         "impacts per second. The engine is timed on the outputs the script computes too (`--outputs fast`), and "
         "with every output, the default (t_roll and the force's extremes besides; not on the microslip map, whose "
         "paths compute every output anyway). The script has the rigid contact only: the exact microslip map is "
@@ -289,16 +290,14 @@ def runtime_block(benchmark_files, root: str = "results/benchmarks") -> str:
     ]) + "\n"
 
 
-def _rounds(counts, what: str) -> str:
-    """How a benchmark's rows were timed, from their ``repeats`` (rounds run, :func:`~..numerics.timing.interleaved_runs`):
-    "the median of 3 complete runs", with the rows that took fewer rounds named by their budget."""
-    counts = sorted({int(c) for c in counts})
-    budget = f"a round of its contenders over {ROUND_BUDGET:g} s is not repeated"
-    if counts == [1]:
-        return f"one complete {what} ({budget})"
-    if len(counts) == 1:
-        return f"the median of {counts[0]} complete {what}s"
-    return f"the median of {counts[-1]} complete {what}s ({', '.join(map(str, counts[:-1]))} where {budget})"
+def _rounds(repeats: int, what: str) -> str:
+    """How a benchmark's rows were timed (:func:`~..numerics.timing.interleaved_runs`): ``repeats`` rounds (the
+    config's ``bench.repeats``), or fewer where a round takes longer than its budget.  Worded from the setting, not
+    from the rounds a run took, so that the text is the same in every run."""
+    if repeats == 1:
+        return f"one complete {what}"
+    return (f"the median of {repeats} complete {what}s, or of fewer where one round of its contenders takes over "
+            f"{ROUND_BUDGET:g} s (each row's `repeats` says how many ran)")
 
 
 def _seconds(value: float) -> str:
