@@ -207,8 +207,7 @@ class _DimensionlessNormal(NormalMotion):
     def state(self, t):
         if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
             t = float(t)
-            # t = 0, t_m and t_f are read many times: each state kept with the motion (NormalMotion.forget drops them)
-            known = self.__dict__.setdefault("_kept", {}).setdefault("states", {})
+            known = self.kept("states", dict)  # t = 0, t_m and t_f are read many times: each state kept (see kept)
             if t not in known:
                 x, y = self._sol.single(t * self._w)
                 known[t] = (x * self._d_scale, y * self._v)
