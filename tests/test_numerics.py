@@ -1,6 +1,7 @@
 """Numerical studies: references, the default's accuracy, and one regression test per failure mode."""
 
 import math
+import os
 
 import numpy as np
 import pandas as pd
@@ -38,6 +39,24 @@ def test_taylor_reference_reproduces_the_closed_form():
     t_m, delta_m, t_f, rate = taylor_normal(scene, 25)
     exact = simulate(scene.with_(model="kelvin-voigt"), SolverOptions(method="closed"))
     assert t_f == pytest.approx(exact.t_f, rel=1e-6) and -rate / scene.v_normal == pytest.approx(exact.cor, rel=1e-6)
+
+
+def test_the_taylor_references_digits_do_not_depend_on_mpmaths_integers():
+    """environment.txt installs gmpy2, which mpmath then uses for its integers: the reference's numbers are the
+    ones mpmath's pure-Python integers give (a process told not to use gmpy2), to the bit."""
+    import subprocess
+    import sys
+
+    import mpmath
+
+    from sphereimpact.numerics.reference import COARSE_DIGITS, taylor_normal
+
+    assert mpmath.libmp.BACKEND == "gmpy"
+    script = ("import mpmath; from sphereimpact import Scene; from sphereimpact.numerics.reference import taylor_normal;"
+              f"assert mpmath.libmp.BACKEND == 'python'; print(repr(taylor_normal(Scene(angle=60.0), {COARSE_DIGITS})))")
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
+                         env=os.environ | {"MPMATH_NOGMPY": "1"})
+    assert run.stdout.strip() == repr(taylor_normal(Scene(angle=60.0), COARSE_DIGITS))
 
 
 def test_default_meets_the_target_on_every_output(references):
