@@ -30,7 +30,8 @@ import pandas as pd
 import yaml
 from IPython.display import Image, Markdown, display
 
-from sphereimpact.study.chung_ooi import load_tests, read_table
+from sphereimpact.study.chung_ooi import read_table
+from sphereimpact.study.chung_ooi_definition import load_tests
 
 config = yaml.safe_load(open("results/config.yaml"))  # the configuration the pipeline ran
 numbers = config["chung_ooi"]["tests"]

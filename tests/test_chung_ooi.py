@@ -13,8 +13,9 @@ import pytest
 from sphereimpact import simulate
 from sphereimpact.cli import run
 from sphereimpact.study import chung_ooi
-from sphereimpact.study.chung_ooi import (HERTZ_TIME, OUTPUTS, deviations, load_tests, read_table, scenes_of_test, solve,
+from sphereimpact.study.chung_ooi import (HERTZ_TIME, OUTPUTS, deviations, read_table, scenes_of_test, solve,
                                           write_table)
+from sphereimpact.study.chung_ooi_definition import load_tests
 
 #: Each test's reference, solved once for the module (the tests read them, never change them).
 reference = functools.lru_cache(maxsize=None)(chung_ooi.reference)

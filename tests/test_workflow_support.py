@@ -117,3 +117,18 @@ def test_the_config_offers_every_notebook_and_the_replication_runs_them_all():
     assert sorted(CONFIG["notebooks"]) == shipped
     rules = (ROOT / "workflow/rules/common.smk").read_text()
     assert sorted(re.findall(r'^    "(\w+)": \[', rules[rules.index("NOTEBOOKS = {"):], re.M)) == shipped
+
+
+def test_building_the_jobs_imports_no_solver():
+    """Every snakemake start (each dry run, the tests' many) reads the Snakefile: the package modules its rules
+    import give constants and checks, and must not pull in the solvers' scipy (half a second a start)."""
+    import subprocess
+    import sys
+
+    lines = [line for path in sorted((ROOT / "workflow/rules").glob("*.smk")) for line in path.read_text().splitlines()
+             if re.match(r"(from|import) sphereimpact", line)]
+    assert lines  # the scan reads the rules' own imports
+    script = "\n".join([*lines, "import sys", "print(sorted(m for m in ('scipy.integrate', 'scipy.optimize') "
+                        "if m in sys.modules))"])
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, cwd=ROOT)
+    assert run.stdout.strip() == "[]"

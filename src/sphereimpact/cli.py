@@ -901,7 +901,8 @@ def _plan(args) -> None:
 def _benchmark(args) -> None:
     """``sphereimpact benchmark``: the reference files of Chung & Ooi's tests, a code's deviation from them, or the
     DEM rules' departure from the exact contact."""
-    from .study.chung_ooi import chosen_tests, variant_tests, write_reference
+    from .study.chung_ooi import chosen_tests, write_reference
+    from .study.chung_ooi_definition import variant_tests
 
     if args.benchmark == "compare":
         from .study.dem_compare import compare, parse_tolerances

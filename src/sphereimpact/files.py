@@ -38,3 +38,11 @@ def write_text(path, text: str) -> None:
     """Write ``text`` (UTF-8) to ``path`` whole or not at all (:func:`replacing`)."""
     with replacing(path) as partial:
         Path(partial).write_text(text, encoding="utf-8")
+
+
+def load_yaml(stream):
+    """The data of a YAML text or open file, as ``yaml.safe_load`` reads it, by libyaml's parser where PyYAML was
+    built with it (the same objects, about 7x faster: the config schema is read each time a workflow starts)."""
+    import yaml
+
+    return yaml.load(stream, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # noqa: S506 (a safe loader)

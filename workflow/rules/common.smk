@@ -6,7 +6,7 @@ from snakemake.utils import validate
 from sphereimpact.figures.captions import CAPTIONS
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.fit import FIT_FILES, PLAN_FILES
-from sphereimpact.study.chung_ooi import variant_tests
+from sphereimpact.study.chung_ooi_definition import variant_tests
 from sphereimpact.study.config_check import check_config
 from sphereimpact.study.readme import TIMING_CHARTS
 from sphereimpact.study.workflow import config_subset, file_sources, source_digest

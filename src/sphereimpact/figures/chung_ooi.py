@@ -96,7 +96,8 @@ def test_figures(folder, data_csv: str, outputs, curves_csv=None) -> None:
     curves."""
     from pathlib import Path
 
-    from ..study.chung_ooi import VARIED, load_tests, published_points, read_curves, read_table
+    from ..study.chung_ooi import VARIED, published_points, read_curves, read_table
+    from ..study.chung_ooi_definition import load_tests
 
     _, tests = load_tests()
     rules = read_table(Path(folder) / "dem_rules.csv")

@@ -1,7 +1,7 @@
 """Chung & Ooi's eight DEM benchmark tests (Granular Matter 13, 2011, 643-656), with exact references.
 
-The tests' inputs, each number with its source, are :data:`DEFINITION`.  Each test is a list of scenes, one per
-case (material and varied input); its reference is this project's exact solution of the same contact: elastic
+The tests' inputs, each number with its source, are :data:`~.chung_ooi_definition.DEFINITION`.  Each test is a list
+of scenes, one per case (material and varied input); its reference is this project's exact solution of the same contact: elastic
 Hertz (tests 1, 2, 5) or Hunt-Crossley damping set so that each row's normal COR is the test's (3, 4, 6, 7, 8),
 and the exact elastic microslip contact of Cattaneo and Mindlin for the tangential motion (tests 4-8).  Where
 e < 1 the reference is exact for that model, whose tangential contact is undamped; DEM codes damp their
@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import yaml
 
 from ..contact.laws import LAWS
 from ..errors import UnitWarning
@@ -32,12 +31,11 @@ from ..impact.calibrate import calibrate
 from ..impact.planar_pair import serves
 from ..impact.scene import Scene
 from ..impact.solve import simulate, simulate_many
+from .chung_ooi_definition import DEFINITION, listed, load_tests, variant_tests
 from .benchmark_columns import CLOSED_FORMS, INPUTS, OUTCOME_OUTPUTS, OUTPUTS, STATEMENTS
 from .dem_compare import read_with_units, rule_verdicts
 from .tables import text_table
 
-#: The tests' inputs and their sources.
-DEFINITION = Path(__file__).with_name("chung_ooi.yaml")
 #: The exact tangential contact: elastic microslip (checked against Cattaneo-Mindlin and Maw's gross-slip line).
 EXACT = "microslip"
 #: The simplified tangential rules DEM codes use, solved beside the exact contact (``linear``: with the linear
@@ -57,23 +55,6 @@ DAMPED_LAWS = ("hunt-crossley", "linear-hunt-crossley", "kelvin-voigt", "modifie
 #: delta_m, 2 delta_m / v int_0^1 (1 - x^(5/2))^(-1/2) dx = (4/5) B(2/5, 1/2) delta_m / v (Johnson, Contact Mechanics,
 #: 1985, sec. 11.4), with delta_m = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5): 2.868...
 HERTZ_TIME = 0.8 * math.sqrt(math.pi) * math.gamma(0.4) / math.gamma(0.9) * (15.0 / 16.0) ** 0.4
-def load_tests(path=DEFINITION) -> tuple[dict, dict]:
-    """The materials and the tests of a definition file (:data:`DEFINITION` by default)."""
-    definition = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    return definition["materials"], {int(number): test for number, test in definition["tests"].items()}
-
-
-def _values(test: dict, name: str) -> list:
-    value = test.get(name)
-    return [] if value is None else list(value) if isinstance(value, list) else [value]
-
-
-def variant_tests(numbers, path=DEFINITION) -> list[int]:
-    """Those of ``numbers`` whose reference has a ``damped-mindlin`` variant: oblique, with a COR below 1."""
-    _, tests = load_tests(path)
-    return [n for n in numbers if n >= 4 and min(_values(tests[n], "cor")) < 1.0]
-
-
 def parse_rule(rule: str) -> tuple[str, bool]:
     """A rule of :data:`DEM_RULES` (or any model's name, ``+dashpot`` or not) as (tangential model, with the dashpot
     set from the COR)."""
@@ -85,18 +66,18 @@ def parse_rule(rule: str) -> tuple[str, bool]:
 
 def _approaches(test: dict) -> list[dict]:
     """The varied input of a test as Scene approach fields (speed, incidence, spin) and the COR, one per row."""
-    cors = _values(test, "cor")
+    cors = listed(test, "cor")
     if "incidence" in test:
-        return [dict(speed=test["speed"], incidence=float(a), cor=cors[0]) for a in _values(test, "incidence")]
+        return [dict(speed=test["speed"], incidence=float(a), cor=cors[0]) for a in listed(test, "incidence")]
     v_n = test["normal_speed"]
     if "surface_speed" in test:  # the spin alone makes the contact point slip at omega R
         return [dict(speed=v_n, incidence=0.0, spin=-s / test["radius"], cor=cors[0])
-                for s in _values(test, "surface_speed")]
+                for s in listed(test, "surface_speed")]
     if "tangential_speed" in test:
         return [dict(speed=math.hypot(v_n, v_t), incidence=math.degrees(math.atan2(v_t, v_n)), cor=cors[0])
-                for v_t in _values(test, "tangential_speed")]
+                for v_t in listed(test, "tangential_speed")]
     if "spin" in test:
-        return [dict(speed=v_n, incidence=0.0, spin=float(w), cor=cors[0]) for w in _values(test, "spin")]
+        return [dict(speed=v_n, incidence=0.0, spin=float(w), cor=cors[0]) for w in listed(test, "spin")]
     return [dict(speed=v_n, incidence=0.0, cor=c) for c in cors]
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import plugins
+from ..files import load_yaml
 from ..contact.laws import LAWS
 from .config import with_defaults
 from .own import CHAPTER
@@ -31,10 +32,9 @@ def config_errors(config: dict, schema_path: str) -> list[str]:
     ``map_speed`` on the speed grid.
     """
     import jsonschema
-    import yaml
 
     with open(schema_path) as handle:
-        schema = yaml.safe_load(handle)
+        schema = load_yaml(handle)
     validator = jsonschema.Draft202012Validator(schema)
     lines = [f"config key {key}: {value!r} is not a finite number" for key, value in _non_finite(config)]
     for error in sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path))):

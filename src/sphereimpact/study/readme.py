@@ -26,8 +26,6 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..numerics.bench import STARTUP_SCENE
-from ..numerics.reference import FINE_DIGITS
 from ..numerics.timing import ROUND_BUDGET
 from .tables import text_table
 from .workflow import job_seconds
@@ -80,6 +78,9 @@ def replication_block(config: dict, replication_csv: str, findings_md: str) -> s
 
 def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     """The single-impact and sweep speed tables against the hand-written baseline, equal accuracy shown."""
+    from ..numerics.bench import STARTUP_SCENE  # here: a workflow reading this module's constants need not
+    from ..numerics.reference import FINE_DIGITS  # import the solvers
+
     single = pd.read_csv(bench_csv)
     repeats = int(single["repeats"].max())  # the config's bench.repeats: every single-impact row ran that many
     rows = []
