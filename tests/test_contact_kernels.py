@@ -110,3 +110,33 @@ def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
                   and b.motion.tangential.jp.one_interval() is not None)
         pulls += not scene.separation.on_force and b.motion.normal.kernel_state() is not None
     assert grips >= 40 and pulls >= 20, (grips, pulls)  # the compiled searches were taken, many times
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_grip_instants_are_the_python_ones_to_the_bit(method, monkeypatch):
+    """The sweep's grip instants (``PositiveImpulse.instants``: J+ on the grid and Newton's iteration, compiled by
+    :func:`~sphereimpact.contact.tangential.rigid_kernel.reached`) on the normal motions of random rigid scenes, at
+    random levels, 0, J+(t_f), beyond it and a tiny one: the Python search's instants to the bit."""
+    from sphereimpact.contact.tangential import PositiveImpulse
+    from sphereimpact.impact.solve import shared_normal_motion
+
+    load_compiled()
+    rng = np.random.default_rng(5)
+    served = 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BeyondRadiusWarning)
+        for scene in _scenes(150, seed=17, tangentials=("rigid",)):
+            try:
+                normal = shared_normal_motion(scene, SolverOptions(method=method))
+            except Exception:  # noqa: BLE001  (a scene simulate refuses has no motion to search)
+                continue
+            impulse = PositiveImpulse(normal)
+            top = float(impulse(normal.t_f))
+            levels = np.concatenate([rng.uniform(0.0, top, 6), [0.0, top, 1.1 * top, 1e-9 * top]])
+            served += impulse._compiled() is not None
+            compiled = impulse.instants(levels)
+            monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+            python = PositiveImpulse(normal).instants(levels)
+            monkeypatch.undo()
+            assert compiled.tolist() == python.tolist(), scene
+    assert served >= 100, served  # the compiled search was taken, many times

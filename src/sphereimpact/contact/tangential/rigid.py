@@ -202,11 +202,19 @@ class PositiveImpulse:
     def instants(self, impulses) -> np.ndarray:
         """The first instants [s] at which J+ reaches each of ``impulses`` [N s] (0 for 0; t_f for an impulse
         J+ never reaches): bracketed on the solver's grid (J+ never decreases), then Newton's method on
-        dJ+/dt = P+, kept inside the bracket (:func:`sphereimpact.ode.roots.falling_root`)."""
+        dJ+/dt = P+, kept inside the bracket (:func:`sphereimpact.ode.roots.falling_root`); compiled
+        (:func:`.rigid_kernel.reached`) where the normal motion has a
+        :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` and its force pushes over one interval."""
         normal = self._n
         impulses = np.asarray(impulses, dtype=float)
         times = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
-        on_grid = self(times)
+        compiled = self._compiled()
+        if compiled is None:
+            on_grid = self(times)
+        else:
+            from .rigid_kernel import positive_impulses, reached
+
+            on_grid = positive_impulses(compiled[0], compiled[3], times)
         upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, times.size - 1)
         low, high = times[upper - 1], times[upper]
         gap_low, gap_high = impulses - on_grid[upper - 1], impulses - on_grid[upper]
@@ -217,9 +225,24 @@ class PositiveImpulse:
             start = self._first_guess(times, on_grid, impulses[i], upper[i])
             # J+ is read off the motion's state, m (v0 - v): its round-off, a few ulp of m v0, ends the search
             f_tol = 8.0 * np.finfo(float).eps * normal.scene.mass * normal.scene.v_normal
-            t[i] = falling_root(lambda s: (impulses[i] - self(s), -np.maximum(normal.force(s), 0.0)), low[i],
-                                high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
+            if compiled is None:
+                t[i] = falling_root(lambda s: (impulses[i] - self(s), -np.maximum(normal.force(s), 0.0)), low[i],
+                                    high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
+            else:
+                t[i] = reached(*compiled, impulses[i], low[i], high[i], start, f_tol)
         return np.where(impulses <= 0, 0.0, t)
+
+    def _compiled(self) -> tuple | None:
+        """(the normal motion's arrays, its law's compiled force kernel and parameters, the numbers of the one pushing
+        interval) as :mod:`.rigid_kernel` takes them, or None where the motion has no
+        :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` or the force pushes over more than one
+        interval (the Python search then serves, to the same bits)."""
+        state, pushing = self._n.kernel_state(), self.one_interval()
+        if state is None or pushing is None:
+            return None
+        scene = self._n.scene
+        numbers = np.array([*pushing, scene.mass, scene.v_normal, scene.g_normal], dtype=float)
+        return state.arrays(), state.force, state.params, numbers
 
     def _first_guess(self, times, on_grid, impulses, upper) -> np.ndarray:
         """Where J+ reaches each impulse, to start Newton from: the secant of its grid interval, but in the

@@ -1,4 +1,5 @@
-"""The rigid tangential contact's grip search, compiled: where a sliding phase's slip falls to zero.
+"""The rigid tangential contact's grip searches, compiled: where a sliding phase's slip falls to zero, and where the
+positive normal impulse J+ reaches given levels (a sweep's grip instants).
 
 A sliding phase of :class:`~.rigid.TangentialMotion` ends where sigma (v_t - omega R) falls through zero, the slip read
 off the positive normal impulse J+ (:func:`~.rigid.from_impulse`): in Python a search sampled on the normal motion's
@@ -8,7 +9,8 @@ cost.  :func:`grip` is that search compiled: the normal motion enters as its den
 arithmetic in their order, and the sampling and refinement are the very functions the Python search runs
 (``ode.events.roots_at``, ``refine_root``, ``ode.roots.bracketed_root``), so its instant is the Python one to the bit
 (tests/test_contact_kernels.py).  It serves a contact whose force pushes over one interval (J+ = J - J(a) there),
-the force criterion's case; the Python search serves the others.
+the force criterion's case; the Python search serves the others.  :func:`reached` is
+``PositiveImpulse.instants``' Newton iteration (``ode.roots.newton_lanes``) compiled on the same terms.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ import numpy as np
 from numba import types
 
 from ...ode.events import NOT_FINITE
-from ...ode.roots import ROOT
+from ...ode.roots import ROOT, newton_lanes
+from ..laws.kernels import SIGNATURE
 from ..normal_kernel import (ARRAY, NORMAL, bracketed_root_compiled, normal_state, refine_root_compiled,
                              roots_at_compiled)
 
@@ -70,3 +73,51 @@ def grip(normal, phase, grid):
     if status != ROOT:
         return math.nan, status, low, high
     return (found[0] if count else math.nan), ROOT, 0.0, 0.0
+
+
+_newton_lanes = numba.njit(inline="always", **_COMPILE)(newton_lanes)  # inlined: the function it searches is passed
+
+
+@numba.njit(**_COMPILE)
+def _positive_impulse(normal, pushing, t):
+    """J+(t) [N s]: ``PositiveImpulse.__call__`` on an array, for one pushing interval (0 before it, J(c) - J(a) with c
+    = t clipped to it, J from the momentum balance, ``NormalMotion.impulse``).  ``pushing``: as :func:`reached`'s."""
+    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
+    if t < a:
+        return 0.0
+    c = min(max(t, a), b)
+    return 0.0 + mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
+
+
+@numba.njit(ARRAY(NORMAL, ARRAY, ARRAY), **_COMPILE)
+def positive_impulses(normal, pushing, times):
+    """J+ [N s] at each of ``times`` [s] (``PositiveImpulse.__call__`` on the array, compiled; arguments as
+    :func:`reached`'s)."""
+    out = np.empty(times.size)
+    for k in range(times.size):
+        out[k] = _positive_impulse(normal, pushing, times[k])
+    return out
+
+
+@numba.njit(**_COMPILE)
+def _impulse_gap(s, args):
+    """(level - J+(s), -max(P(s), 0)) of each lane: ``PositiveImpulse.instants``' Newton function, with P the law's
+    compiled kernel at s."""
+    normal, force, params, pushing, levels = args
+    f, df = np.empty(s.size), np.empty(s.size)
+    for k in range(s.size):
+        f[k] = levels[k] - _positive_impulse(normal, pushing, s[k])
+        delta, delta_dot = normal_state(normal, s[k])
+        p = force(delta, delta_dot, params)
+        df[k] = -(p if p >= 0.0 or p != p else 0.0)  # -np.maximum(P, 0): NaN stays NaN
+    return f, df
+
+
+@numba.njit(ARRAY(NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, ARRAY, ARRAY, ARRAY, ARRAY, _F), **_COMPILE)
+def reached(normal, force, params, pushing, levels, low, high, start, f_tol):
+    """The instants [s] at which J+ reaches each of ``levels`` [N s], each bracketed by ``low`` and ``high`` and
+    started from ``start``: ``PositiveImpulse.instants``' Newton iteration compiled.  ``normal``: the motion's
+    :meth:`~..motion.KernelState.arrays`; ``force`` and ``params``: the law's compiled kernel and its parameters;
+    ``pushing``: the one pushing interval's a, b [s] and J(a) [N s], then m [kg], v_n [m/s], g_n [m/s^2]; ``f_tol``
+    [N s]: as ``ode.roots.falling_root``'s."""
+    return _newton_lanes(_impulse_gap, (normal, force, params, pushing, levels), low, high, start, 0.0, f_tol)
