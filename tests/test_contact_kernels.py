@@ -114,9 +114,10 @@ def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_grip_instants_are_the_python_ones_to_the_bit(method, monkeypatch):
-    """The sweep's grip instants (``PositiveImpulse.instants``: J+ on the grid and Newton's iteration, compiled by
-    :func:`~sphereimpact.contact.tangential.rigid_kernel.reached`) on the normal motions of random rigid scenes, at
-    random levels, 0, J+(t_f), beyond it and a tiny one: the Python search's instants to the bit."""
+    """The sweep's grip instants (``PositiveImpulse.instants``, with J+ on the grid and the function of its Newton
+    iteration compiled: :mod:`sphereimpact.contact.tangential.rigid_kernel`'s ``positive_impulses`` and
+    ``impulse_gaps``) on the normal motions of random rigid scenes, at random levels, 0, J+(t_f), beyond it and a
+    tiny one: the Python search's instants to the bit."""
     from sphereimpact.contact.tangential import PositiveImpulse
     from sphereimpact.impact.solve import shared_normal_motion
 

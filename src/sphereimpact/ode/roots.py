@@ -113,27 +113,17 @@ def falling_root(function, a, b, f_a, f_b, offset=0.0, start=None, f_tol=0.0):
     Newton from ``start`` (default: the secant point); a step leaving the bracket bisects instead; a lane stops
     once its update is below SETTLED x its time ``offset`` + s (``offset``: where s = 0 lies on the lane's
     clock; round-off of f near 1 ulp would otherwise keep it moving), or once |f| <= ``f_tol`` (f's own
-    round-off, where f' is small enough that it moves s by more).  The iteration is :func:`newton_lanes`.
+    round-off, where f' is small enough that it moves s by more).
     """
     if start is None:
         with np.errstate(divide="ignore", invalid="ignore"):
             start = np.where(f_a - f_b > 0, a + (b - a) * f_a / (f_a - f_b), b)
-    return newton_lanes(_called, function, a, b, start, offset, f_tol)
-
-
-def _called(s, function):
-    return function(s)
-
-
-def newton_lanes(function, args, a, b, start, offset, f_tol):
-    """:func:`falling_root`'s iteration from ``start``, on ``function(s, args)`` -> (f, f'): plain array code, which
-    :func:`falling_root` runs as Python and numba compiles as it is (``contact.tangential.rigid_kernel``, the rigid
-    contact's grip instants on a compiled normal motion)."""
     s = np.clip(start, a, b)
     for _ in range(ROOT_ITERATIONS):
-        f, df = function(s, args)
+        f, df = function(s)
         a, b = np.where(f > 0, s, a), np.where(f < 0, s, b)
-        step = s - f / np.where(df != 0.0, df, np.nan)  # f' = 0: no Newton step (NaN), a bisection, as f / 0 gave
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = s - f / df
         new = np.where((step >= a) & (step <= b), step, 0.5 * (a + b))
         settled = (np.abs(f) <= f_tol) | (np.abs(new - s) <= SETTLED * np.maximum(offset + np.abs(s), 1e-300))
         s = np.where(settled, s, new)

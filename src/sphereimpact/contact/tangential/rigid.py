@@ -202,8 +202,8 @@ class PositiveImpulse:
     def instants(self, impulses) -> np.ndarray:
         """The first instants [s] at which J+ reaches each of ``impulses`` [N s] (0 for 0; t_f for an impulse
         J+ never reaches): bracketed on the solver's grid (J+ never decreases), then Newton's method on
-        dJ+/dt = P+, kept inside the bracket (:func:`sphereimpact.ode.roots.falling_root`); compiled
-        (:func:`.rigid_kernel.reached`) where the normal motion has a
+        dJ+/dt = P+, kept inside the bracket (:func:`sphereimpact.ode.roots.falling_root`); J+ and P+ compiled
+        (:func:`.rigid_kernel.positive_impulses`, :func:`~.rigid_kernel.impulse_gaps`) where the normal motion has a
         :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` and its force pushes over one interval."""
         normal = self._n
         impulses = np.asarray(impulses, dtype=float)
@@ -212,7 +212,7 @@ class PositiveImpulse:
         if compiled is None:
             on_grid = self(times)
         else:
-            from .rigid_kernel import positive_impulses, reached
+            from .rigid_kernel import impulse_gaps, positive_impulses
 
             on_grid = positive_impulses(compiled[0], compiled[3], times)
         upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, times.size - 1)
@@ -225,11 +225,10 @@ class PositiveImpulse:
             start = self._first_guess(times, on_grid, impulses[i], upper[i])
             # J+ is read off the motion's state, m (v0 - v): its round-off, a few ulp of m v0, ends the search
             f_tol = 8.0 * np.finfo(float).eps * normal.scene.mass * normal.scene.v_normal
-            if compiled is None:
-                t[i] = falling_root(lambda s: (impulses[i] - self(s), -np.maximum(normal.force(s), 0.0)), low[i],
-                                    high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
-            else:
-                t[i] = reached(*compiled, impulses[i], low[i], high[i], start, f_tol)
+            levels = impulses[i]
+            gaps = ((lambda s: (levels - self(s), -np.maximum(normal.force(s), 0.0))) if compiled is None
+                    else (lambda s: impulse_gaps(*compiled, levels, s)))
+            t[i] = falling_root(gaps, low[i], high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
         return np.where(impulses <= 0, 0.0, t)
 
     def _compiled(self) -> tuple | None:

@@ -9,8 +9,9 @@ cost.  :func:`grip` is that search compiled: the normal motion enters as its den
 arithmetic in their order, and the sampling and refinement are the very functions the Python search runs
 (``ode.events.roots_at``, ``refine_root``, ``ode.roots.bracketed_root``), so its instant is the Python one to the bit
 (tests/test_contact_kernels.py).  It serves a contact whose force pushes over one interval (J+ = J - J(a) there),
-the force criterion's case; the Python search serves the others.  :func:`reached` is
-``PositiveImpulse.instants``' Newton iteration (``ode.roots.newton_lanes``) compiled on the same terms.
+the force criterion's case; the Python search serves the others.  :func:`positive_impulses` and
+:func:`impulse_gaps` are the functions ``PositiveImpulse.instants`` evaluates on the same terms (J+ on the grid, and
+the function its Newton iteration, ``ode.roots.falling_root``, runs on).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ import numpy as np
 from numba import types
 
 from ...ode.events import NOT_FINITE
-from ...ode.roots import ROOT, newton_lanes
+from ...ode.roots import ROOT
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import (ARRAY, NORMAL, bracketed_root_compiled, normal_state, refine_root_compiled,
                              roots_at_compiled)
@@ -75,13 +76,10 @@ def grip(normal, phase, grid):
     return (found[0] if count else math.nan), ROOT, 0.0, 0.0
 
 
-_newton_lanes = numba.njit(inline="always", **_COMPILE)(newton_lanes)  # inlined: the function it searches is passed
-
-
 @numba.njit(**_COMPILE)
 def _positive_impulse(normal, pushing, t):
     """J+(t) [N s]: ``PositiveImpulse.__call__`` on an array, for one pushing interval (0 before it, J(c) - J(a) with c
-    = t clipped to it, J from the momentum balance, ``NormalMotion.impulse``).  ``pushing``: as :func:`reached`'s."""
+    = t clipped to it, J from the momentum balance, ``NormalMotion.impulse``).  ``pushing``: as :func:`impulse_gaps`'."""
     a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
     if t < a:
         return 0.0
@@ -92,18 +90,19 @@ def _positive_impulse(normal, pushing, t):
 @numba.njit(ARRAY(NORMAL, ARRAY, ARRAY), **_COMPILE)
 def positive_impulses(normal, pushing, times):
     """J+ [N s] at each of ``times`` [s] (``PositiveImpulse.__call__`` on the array, compiled; arguments as
-    :func:`reached`'s)."""
+    :func:`impulse_gaps`')."""
     out = np.empty(times.size)
     for k in range(times.size):
         out[k] = _positive_impulse(normal, pushing, times[k])
     return out
 
 
-@numba.njit(**_COMPILE)
-def _impulse_gap(s, args):
-    """(level - J+(s), -max(P(s), 0)) of each lane: ``PositiveImpulse.instants``' Newton function, with P the law's
-    compiled kernel at s."""
-    normal, force, params, pushing, levels = args
+@numba.njit(types.UniTuple(ARRAY, 2)(NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, ARRAY, ARRAY), **_COMPILE)
+def impulse_gaps(normal, force, params, pushing, levels, s):
+    """(level - J+(s), -max(P(s), 0)) of each lane at its instant ``s`` [s]: the function ``PositiveImpulse.instants``'
+    Newton iteration runs on, compiled.  ``normal``: the motion's :meth:`~..motion.KernelState.arrays`; ``force`` and
+    ``params``: the law's compiled kernel and its parameters; ``pushing``: the one pushing interval's a, b [s] and
+    J(a) [N s], then m [kg], v_n [m/s], g_n [m/s^2]; ``levels`` [N s]: each lane's."""
     f, df = np.empty(s.size), np.empty(s.size)
     for k in range(s.size):
         f[k] = levels[k] - _positive_impulse(normal, pushing, s[k])
@@ -111,13 +110,3 @@ def _impulse_gap(s, args):
         p = force(delta, delta_dot, params)
         df[k] = -(p if p >= 0.0 or p != p else 0.0)  # -np.maximum(P, 0): NaN stays NaN
     return f, df
-
-
-@numba.njit(ARRAY(NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, ARRAY, ARRAY, ARRAY, ARRAY, _F), **_COMPILE)
-def reached(normal, force, params, pushing, levels, low, high, start, f_tol):
-    """The instants [s] at which J+ reaches each of ``levels`` [N s], each bracketed by ``low`` and ``high`` and
-    started from ``start``: ``PositiveImpulse.instants``' Newton iteration compiled.  ``normal``: the motion's
-    :meth:`~..motion.KernelState.arrays`; ``force`` and ``params``: the law's compiled kernel and its parameters;
-    ``pushing``: the one pushing interval's a, b [s] and J(a) [N s], then m [kg], v_n [m/s], g_n [m/s^2]; ``f_tol``
-    [N s]: as ``ode.roots.falling_root``'s."""
-    return _newton_lanes(_impulse_gap, (normal, force, params, pushing, levels), low, high, start, 0.0, f_tol)
