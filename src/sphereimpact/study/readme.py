@@ -78,8 +78,9 @@ def replication_block(config: dict, replication_csv: str, findings_md: str) -> s
 
 def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
     """The single-impact and sweep speed tables against the hand-written baseline, equal accuracy shown."""
-    from ..numerics.bench import STARTUP_SCENE  # here: a workflow reading this module's constants need not
-    from ..numerics.reference import FINE_DIGITS  # import the solvers
+    # imported here, not with the module: a workflow that reads this module's constants need not import the solvers
+    from ..numerics.bench import STARTUP_SCENE
+    from ..numerics.reference import FINE_DIGITS
 
     single = pd.read_csv(bench_csv)
     repeats = int(single["repeats"].max())  # the config's bench.repeats: every single-impact row ran that many

@@ -208,13 +208,14 @@ class PositiveImpulse:
         normal = self._n
         impulses = np.asarray(impulses, dtype=float)
         times = np.append(normal.grid[normal.grid < normal.t_f], normal.t_f)
-        compiled = self._compiled()
-        if compiled is None:
+        terms = self.kernel_terms()
+        if terms is None:
             on_grid = self(times)
         else:
             from .rigid_kernel import impulse_gaps, positive_impulses
 
-            on_grid = positive_impulses(compiled[0], compiled[3], times)
+            arrays, force, params, pushing = terms
+            on_grid = positive_impulses(arrays, pushing, times)
         upper = np.clip(np.searchsorted(on_grid, impulses, side="left"), 1, times.size - 1)
         low, high = times[upper - 1], times[upper]
         gap_low, gap_high = impulses - on_grid[upper - 1], impulses - on_grid[upper]
@@ -226,16 +227,16 @@ class PositiveImpulse:
             # J+ is read off the motion's state, m (v0 - v): its round-off, a few ulp of m v0, ends the search
             f_tol = 8.0 * np.finfo(float).eps * normal.scene.mass * normal.scene.v_normal
             levels = impulses[i]
-            gaps = ((lambda s: (levels - self(s), -np.maximum(normal.force(s), 0.0))) if compiled is None
-                    else (lambda s: impulse_gaps(*compiled, levels, s)))
+            gaps = ((lambda s: (levels - self(s), -np.maximum(normal.force(s), 0.0))) if terms is None
+                    else (lambda s: impulse_gaps(arrays, force, params, pushing, levels, s)))
             t[i] = falling_root(gaps, low[i], high[i], gap_low[i], gap_high[i], start=start, f_tol=f_tol)
         return np.where(impulses <= 0, 0.0, t)
 
-    def _compiled(self) -> tuple | None:
+    def kernel_terms(self) -> tuple | None:
         """(the normal motion's arrays, its law's compiled force kernel and parameters, the numbers of the one pushing
-        interval) as :mod:`.rigid_kernel` takes them, or None where the motion has no
+        interval, :data:`.rigid_kernel.PUSHING`) as :mod:`.rigid_kernel` takes them, or None where the motion has no
         :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` or the force pushes over more than one
-        interval (the Python search then serves, to the same bits)."""
+        interval (the Python searches then serve, to the same bits)."""
         state, pushing = self._n.kernel_state(), self.one_interval()
         if state is None or pushing is None:
             return None
@@ -341,15 +342,15 @@ class TangentialMotion:
         None: compiled (:func:`.rigid_kernel.grip`, the same instant to the bit) where the normal motion has a
         :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` and its force pushes over one interval."""
         j0 = self.jp(p.t0)
-        state, pushing = self.normal.kernel_state(), self.jp.one_interval()
-        if state is None or pushing is None:
+        terms = self.jp.kernel_terms()
+        if terms is None:
             return first_root(lambda t: p.sigma * self._slip(p, t, j0), grid, direction=-1)
         from .rigid_kernel import grip
 
         s = self.scene
-        numbers = [p.sigma, s.mu, s.mass, s.radius, s.inertia_factor, p.v0, p.omega0, p.t0, s.g_tangent, j0, *pushing,
-                   s.v_normal, s.g_normal]
-        t, status, low, high = grip(state.arrays(), np.array(numbers, dtype=float), np.asarray(grid, dtype=float))
+        arrays, _, _, pushing = terms
+        phase = np.array([p.sigma, s.mu, s.mass, s.radius, s.inertia_factor, p.v0, p.omega0, p.t0, s.g_tangent, j0])
+        t, status, low, high = grip(arrays, pushing, phase, np.asarray(grid, dtype=float))
         raise_failed(status, lambda t: p.sigma * self._slip(p, t, j0), low, high)
         return None if math.isnan(t) else float(t)
 

@@ -31,38 +31,46 @@ from ..normal_kernel import (ARRAY, NORMAL, bracketed_root_compiled, normal_stat
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64
 #: The phase's numbers in :func:`grip`'s ``phase`` array, in order.
-PHASE = ("sigma", "mu", "mass", "radius", "inertia_factor", "v0", "omega0", "t0", "g_tangent", "j0", "a", "b", "ja",
-         "v_normal", "g_normal")
+PHASE = ("sigma", "mu", "mass", "radius", "inertia_factor", "v0", "omega0", "t0", "g_tangent", "j0")
+#: The one pushing interval's numbers in the ``pushing`` array every kernel here takes, in order: its start and end
+#: [s] and J there [N s], then the ball's mass [kg] and the normal approach [m/s] and gravity [m/s^2]
+#: (``PositiveImpulse.kernel_terms``).
+PUSHING = ("a", "b", "ja", "mass", "v_normal", "g_normal")
+
+
+@numba.njit(**_COMPILE)
+def _positive_impulse(normal, pushing, t):
+    """J+(t) [N s] (``PositiveImpulse.__call__``) for one pushing interval: 0 before it, J(c) - J(a) with c = t clipped
+    to it, J from the momentum balance (``NormalMotion.impulse``)."""
+    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
+    if t < a:
+        return 0.0
+    c = min(max(t, a), b)
+    return 0.0 + mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
 
 
 @numba.njit(**_COMPILE)
 def _signed_slip(t, args):
-    """sigma (v_t - omega R) [m/s] at t [s] in the sliding phase: ``TangentialMotion._slip`` times sigma, with J+ the
-    one pushing interval's (``PositiveImpulse.__call__`` at one instant) and J from the momentum balance
-    (``NormalMotion.impulse``)."""
-    normal, phase = args
-    sigma, mu, mass, radius, alpha, v0, omega0, t0, g_t, j0, a, b, ja, v_n, g_n = (
-        phase[0], phase[1], phase[2], phase[3], phase[4], phase[5], phase[6], phase[7], phase[8], phase[9], phase[10],
-        phase[11], phase[12], phase[13], phase[14])
-    jp = 0.0
-    if t > a:
-        c = min(max(t, a), b)
-        jp = mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
+    """sigma (v_t - omega R) [m/s] at t [s] in the sliding phase: ``TangentialMotion._slip`` times sigma."""
+    normal, pushing, phase = args
+    sigma, mu, mass, radius, alpha, v0, omega0, t0, g_t, j0 = (
+        phase[0], phase[1], phase[2], phase[3], phase[4], phase[5], phase[6], phase[7], phase[8], phase[9])
     dt = t - t0
-    impulse = -sigma * mu * (jp - j0)
+    impulse = -sigma * mu * (_positive_impulse(normal, pushing, t) - j0)
     v = v0 + g_t * dt + impulse / mass
     omega = omega0 - impulse / (alpha * mass * radius)
     return sigma * (v - omega * radius)
 
 
-@numba.njit(types.Tuple((_F, _I, _F, _F))(NORMAL, ARRAY, ARRAY), **_COMPILE)
-def grip(normal, phase, grid):
+@numba.njit(types.Tuple((_F, _I, _F, _F))(NORMAL, ARRAY, ARRAY, ARRAY), **_COMPILE)
+def grip(normal, pushing, phase, grid):
     """(the first instant [s] the sliding phase's slip falls through zero on ``grid``, NaN if none; status; the
     bracket that failed): ``first_root`` of the signed slip with direction -1, compiled.  ``normal``: the motion's
-    :meth:`~..motion.KernelState.arrays`; ``phase``: the numbers of :data:`PHASE`.  Status ``ode.roots.ROOT``, or
-    ``ode.events.NOT_FINITE``, or the refinement's failure (``ode.roots.NO_BRACKET``, ``LAST_ITERATE``) on the
-    bracket returned (``ode.events.raise_failed`` raises the Python search's error for each)."""
-    args = (normal, phase)
+    :meth:`~..motion.KernelState.arrays`; ``pushing``: the numbers of :data:`PUSHING`; ``phase``: those of
+    :data:`PHASE`.  Status ``ode.roots.ROOT``, or ``ode.events.NOT_FINITE``, or the refinement's failure
+    (``ode.roots.NO_BRACKET``, ``LAST_ITERATE``) on the bracket returned (``ode.events.raise_failed`` raises the
+    Python search's error for each)."""
+    args = (normal, pushing, phase)
     values = np.empty(grid.size)
     for k in range(grid.size):
         values[k] = _signed_slip(grid[k], args)
@@ -76,21 +84,10 @@ def grip(normal, phase, grid):
     return (found[0] if count else math.nan), ROOT, 0.0, 0.0
 
 
-@numba.njit(**_COMPILE)
-def _positive_impulse(normal, pushing, t):
-    """J+(t) [N s]: ``PositiveImpulse.__call__`` on an array, for one pushing interval (0 before it, J(c) - J(a) with c
-    = t clipped to it, J from the momentum balance, ``NormalMotion.impulse``).  ``pushing``: as :func:`impulse_gaps`'."""
-    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
-    if t < a:
-        return 0.0
-    c = min(max(t, a), b)
-    return 0.0 + mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
-
-
 @numba.njit(ARRAY(NORMAL, ARRAY, ARRAY), **_COMPILE)
 def positive_impulses(normal, pushing, times):
-    """J+ [N s] at each of ``times`` [s] (``PositiveImpulse.__call__`` on the array, compiled; arguments as
-    :func:`impulse_gaps`')."""
+    """J+ [N s] at each of ``times`` [s] (``PositiveImpulse.__call__`` on the array, compiled; ``pushing``: the numbers
+    of :data:`PUSHING`)."""
     out = np.empty(times.size)
     for k in range(times.size):
         out[k] = _positive_impulse(normal, pushing, times[k])
@@ -101,8 +98,8 @@ def positive_impulses(normal, pushing, times):
 def impulse_gaps(normal, force, params, pushing, levels, s):
     """(level - J+(s), -max(P(s), 0)) of each lane at its instant ``s`` [s]: the function ``PositiveImpulse.instants``'
     Newton iteration runs on, compiled.  ``normal``: the motion's :meth:`~..motion.KernelState.arrays`; ``force`` and
-    ``params``: the law's compiled kernel and its parameters; ``pushing``: the one pushing interval's a, b [s] and
-    J(a) [N s], then m [kg], v_n [m/s], g_n [m/s^2]; ``levels`` [N s]: each lane's."""
+    ``params``: the law's compiled kernel and its parameters; ``pushing``: the numbers of :data:`PUSHING`; ``levels``
+    [N s]: each lane's."""
     f, df = np.empty(s.size), np.empty(s.size)
     for k in range(s.size):
         f[k] = levels[k] - _positive_impulse(normal, pushing, s[k])
