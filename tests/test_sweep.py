@@ -364,3 +364,19 @@ def test_constant_columns_built_at_once_are_those_assign_gives():
     pd.testing.assert_frame_equal(given_table(built), given_table(assigned))
     assert (built["mu"] == constants["mu"]).all()
     pd.testing.assert_frame_equal(sweep(built.reset_index(drop=True)), sweep(assigned.reset_index(drop=True)))
+
+
+def test_rows_alike_are_grouped_as_pandas_groups_them():
+    """first_rows (the scene checks' and the single path's grouping of alike rows) is pandas' groupby ngroup (sort
+    off, empty cells kept): groups in the order of their first rows, NaN alike, -0.0 as 0.0, names by value."""
+    from sphereimpact.sweep.scenes import first_rows
+
+    rng = np.random.default_rng(3)
+    n = 400
+    table = pd.DataFrame({"a": rng.choice([0.0, -0.0, 1.5, np.nan], n), "b": rng.choice([2.0, np.nan], n),
+                          "model": pd.Series(rng.choice(["hertz", "modified"], n), dtype=object),
+                          "c": rng.choice([1e-300, 3.0], n)})
+    groups, firsts = first_rows({name: table[name].to_numpy() for name in table.columns})
+    expected = table.groupby(list(table.columns), dropna=False, sort=False).ngroup().to_numpy()
+    assert groups.tolist() == expected.tolist() and 2 < firsts.size < n
+    assert firsts.tolist() == np.unique(expected, return_index=True)[1].tolist()

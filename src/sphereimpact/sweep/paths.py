@@ -29,7 +29,7 @@ from ..impact.scene import TANGENTIAL_ONLY, SolverOptions
 from ..impact.solve import reusing_normal_motions, simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
-from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, _compliant, incidence, scene_of
+from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, _compliant, first_rows, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
 #: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
@@ -255,8 +255,8 @@ class SinglePath(SweepPath):
         (:func:`~sphereimpact.impact.solve.reusing_normal_motions`, which keeps a call's motions only while it
         runs): each outcome is still the one ``simulate`` gives its scene alone."""
         rows = np.asarray(rows)
-        normal = [name for name in frame.columns if name not in TANGENTIAL_ONLY]
-        problem = frame.iloc[rows].groupby(normal, dropna=False, sort=False).ngroup().to_numpy()
+        problem = first_rows({name: frame[name].to_numpy()[rows] for name in frame.columns
+                              if name not in TANGENTIAL_ONLY})[0]
         order = np.argsort(problem, kind="stable")  # each problem's rows together, in order of first appearance
         out: dict = {}
         for start in range(0, len(rows), SINGLES_CHUNK):

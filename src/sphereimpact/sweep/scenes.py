@@ -65,16 +65,16 @@ def scene_table(scenes) -> pd.DataFrame:
             scene_of(frame.iloc[i].to_dict())
         except ValueError as err:
             raise ValueError(f"{err} (row {i})") from None
-    tangential = np.column_stack([frame[name].to_numpy() for name in TANGENTIAL_PARAMETERS])
+    tangential = np.column_stack([columns[name] for name in TANGENTIAL_PARAMETERS])
     rows = np.flatnonzero(_compliant(frame) | ~np.isnan(tangential).all(axis=1))
     if rows.size:  # the tangential model's parameters depend on the law: checked as the Scene checks them
-        kappa = frame["kappa"].to_numpy().copy()
+        kappa = columns["kappa"].copy()
         # once per ball, contact and surface: the approach does not reach these checks (the flat's tilt does,
         # with gravity, through the weight it presses)
-        keys = frame.iloc[rows].drop(columns=["speed", "spin", *PATH_RULES])
-        keys.loc[keys["gravity"].to_numpy() == 0, "angle"] = 0.0
-        groups = keys.groupby(list(keys.columns), dropna=False, sort=False).ngroup().to_numpy()
-        firsts = np.unique(groups, return_index=True)[1]
+        keys = {name: np.asarray(values)[rows] for name, values in columns.items()
+                if name not in ("speed", "spin", *PATH_RULES)}
+        keys["angle"] = np.where(keys["gravity"] == 0, 0.0, keys["angle"])
+        groups, firsts = first_rows(keys)
         checked = np.empty(firsts.size)
         for g, first in enumerate(firsts):  # in the order of their first rows: the first bad row is named
             i = int(rows[first])
@@ -86,6 +86,26 @@ def scene_table(scenes) -> pd.DataFrame:
         kappa[rows] = checked[groups]
         frame["kappa"] = kappa
     return frame
+
+
+def first_rows(columns: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(the group of each row, the first row of each group) of the rows of ``columns`` (name -> array, one value
+    per row), rows alike when every column's values are: groups numbered in the order of their first rows, empty
+    cells (NaN) alike, -0.0 as 0.0 (as pandas groups them).  A table's rows as one array of bytes each, not a
+    pandas groupby: on a fit's few bounces that cost most of building the table."""
+    numbers = []
+    for values in columns.values():
+        values = np.asarray(values)
+        if values.dtype.kind != "f":  # names: their codes
+            values = pd.factorize(values, use_na_sentinel=False)[0].astype(float)
+        numbers.append(np.where(np.isnan(values), np.nan, values + 0.0))  # one NaN, one zero
+    table = np.ascontiguousarray(np.column_stack(numbers))
+    rows = table.view(np.dtype((np.void, table.dtype.itemsize * table.shape[1]))).ravel()
+    _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # the groups in the order of their first rows
+    rank = np.empty(order.size, dtype=np.int64)
+    rank[order] = np.arange(order.size)
+    return rank[inverse.ravel()], first[order]
 
 
 def undescribed_row(scenes) -> tuple[int, list[str]] | None:
