@@ -58,7 +58,9 @@ def scene_table(scenes) -> pd.DataFrame:
     # text as object columns: pandas' string dtype costs as much to build as the rest of a sweep's overhead
     columns = {name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
                else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS} | own_columns
-    frame = pd.DataFrame(columns)
+    # labelled by Python strings: under pandas' string dtype of labels each read of a column took twice as long,
+    # and a sweep of a fit's few bounces reads its table's columns about eighty times
+    frame = pd.DataFrame(columns, columns=pd.Index(list(columns), dtype=object))
     paths = ~np.isnan(np.column_stack([columns[name] for name in PATH_RULES]))  # not frame[[...]]: 0.3 ms
     for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"].to_numpy() != 0) | paths.all(axis=1))):
         try:  # one description of the approach per scene: checked as the Scene checks it
