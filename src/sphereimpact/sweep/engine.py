@@ -174,10 +174,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         warnings.warn(f"in {int(gained.sum())} of {n} scenes the tangential model made energy (column energy_gained; "
                       f"work_t up to +{result['work_t'][gained].max():.3g} J): an artefact of the model, not of the "
                       "ball", EnergyGainWarning, stacklevel=2)
-    outputs = pd.DataFrame(result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond,
-                                     "energy_gained": gained})
-    return pd.concat([frame, outputs[[key for key in SWEEP_OUTPUTS if key in wanted]],
-                      pd.DataFrame({"path": pd.Series(path, dtype=object)})], axis=1)
+    values = result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond, "energy_gained": gained}
+    outputs = {key: values[key] for key in SWEEP_OUTPUTS if key in wanted}  # only these: a frame of all cost more
+    return pd.concat([frame, pd.DataFrame(outputs | {"path": pd.Series(path, dtype=object)})], axis=1)
 
 
 def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
