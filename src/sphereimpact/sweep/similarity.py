@@ -401,9 +401,14 @@ class LambdaInterpolant(_Pieces):
             return batch.integrate(np.full(n, zeta), lam, np.zeros(n), np.ones(n, bool), criterion, node_target,
                                    **asked)
 
+        solved: dict = {}  # the normal lanes of nodes solved before: the grip tables' refinement asks them again
+
         def solve(u, criterion, node_target, asked: Asked):
             lam = np.exp(u)
-            out = lanes(lam, criterion, node_target, extremes=asked.extremes)
+            key = (u.tobytes(), criterion, node_target, asked.extremes)
+            if key not in solved:
+                solved[key] = lanes(lam, criterion, node_target, extremes=asked.extremes)
+            out = dict(solved[key])
             if asked.extremes:  # eq. 4.2's force is 0 at both ends of the contact (delta = 0, the ramp off)
                 out["p_ends"] = np.zeros(lam.size)
             if asked.grip:  # one lane per node and level, each stopping at its instant
