@@ -58,8 +58,11 @@ class _Budget(Exception):
 def substep_grid(steps: np.ndarray) -> np.ndarray:
     """Each step of ``steps`` (its boundaries, ascending) split into SUBSTEPS equal parts: sample times fine
     enough to bracket every event, the last boundary left out."""
-    fractions = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
-    return (steps[:-1, None] + np.diff(steps)[:, None] * fractions).ravel()
+    return (steps[:-1, None] + np.diff(steps)[:, None] * _FRACTIONS).ravel()
+
+
+#: The substeps' fractions of a step (:func:`substep_grid`), made once.
+_FRACTIONS = np.linspace(0.0, 1.0, SUBSTEPS, endpoint=False)
 
 
 def separation_function(scene: Scene):
