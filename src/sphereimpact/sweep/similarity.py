@@ -49,7 +49,7 @@ import numpy as np
 from ..errors import InterpolationError
 from ..ode.roots import brent
 from ..impact.scene import Scene, SolverOptions
-from ..impact.solve import shared_normal_motion
+from ..impact.solve import reusing_normal_motions, shared_normal_motion
 from ..contact.laws.linear import modified_per_compression
 from ..contact.separation import Separation
 from ..contact.tangential import PositiveImpulse
@@ -522,10 +522,12 @@ class FamilyInterpolant(_Pieces):
             return float(at.stage_force(delta, y_f * at.v_normal)) / float(at.stage_force(delta, 0.0))
 
         self._node = node
-        # nodes cost one impact each here (not one batched call): start from FIRST_NODES and refine
-        super().__init__(solve, exit_ratio, q_min, q_max, separation, target,
-                         f"model {scene.model!r}, {name} in [{q_min:g}, {q_max:g}]", per_digit=0.0,
-                         extremes=extremes, grips=grips, power=1.0 + onset_exponent(scene))
+        # nodes cost one impact each here (not one batched call): start from FIRST_NODES and refine; a node asked
+        # again (the grip tables' refinement asks the same three at every level) reuses its normal motion
+        with reusing_normal_motions():
+            super().__init__(solve, exit_ratio, q_min, q_max, separation, target,
+                             f"model {scene.model!r}, {name} in [{q_min:g}, {q_max:g}]", per_digit=0.0,
+                             extremes=extremes, grips=grips, power=1.0 + onset_exponent(scene))
 
     def late(self, u, levels) -> np.ndarray:
         """The single-impact integrator on each scene's own copy of the group's scene."""
