@@ -292,6 +292,8 @@ def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
     key: its law's family (or zeta and lam), separation criterion, tangential model, kappa, inertia factor,
     friction, incidence, spin R / v_n and its models' own parameters.  Two scenes with one key differ only in
     their scales: every output of one is the other's, scaled (:data:`SCALES`)."""
+    if not len(rows):  # (a table without such scenes reads none of its columns)
+        return {}
     angle = incidence(frame)
     columns = [frame[name].to_numpy() for name in ("tangential", "kappa", "inertia_factor", "mu")]
     own = [frame[name].to_numpy() for name in frame.columns if name not in SCENE_COLUMNS]  # the models' own
@@ -334,6 +336,8 @@ class SimilarPath(SweepPath):
             for name, model in TANGENTIALS.items():
                 if model.scale_free:  # a model that does not declare it is solved scene by scene
                     free |= names == name
+            if not (mask & free).any():
+                return np.zeros(0, dtype=np.int64)
             return np.flatnonzero(mask & free & _one_by_one(frame) & (frame["gravity"].to_numpy() == 0)
                                   & np.isfinite(d.w))
 
