@@ -28,8 +28,8 @@ from ..contact.tangential import TANGENTIALS, Regime
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Gives, Work, single_options
-from .scenes import (SCENE_COLUMNS, Numbers, _objects, approach_speeds, given_table, grid, incidence, numbers, rows,
-                     scene_of, scene_table, undescribed_row)
+from .scenes import (SCENE_COLUMNS, Numbers, _objects, given_table, grid, incidence, numbers, rows, scene_of,
+                     scene_table, undescribed_row)
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
@@ -185,7 +185,7 @@ def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
     tangential model needs the instant (its ``swept.levels``; NaN for a normal impact, and for a model a
     sweep solves scene by scene); and whether its tangential end follows from the normal motion at all."""
     levels = np.full(len(frame), np.nan)
-    rows = tangential_rows(frame, d.v_n)
+    rows = tangential_rows(frame, d)
     moving = (rows.v_tangent != 0) | (rows.spin != 0)
     slope = (rows.gravity > 0) & (rows.angle > 0)  # gravity along the flat: no tangential end in closed form
     completes = ~moving & ~slope
@@ -210,7 +210,7 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
     ``simulate`` derives them."""
     n = len(part)
     w, v_n, m = d.w, d.v_n, part["mass"].to_numpy()
-    rows = tangential_rows(part, v_n)
+    rows = tangential_rows(part, d)
     impulse, instants = m * v_n * dim["j_p"], dim["tau_g"] / w
     tangential = {"vc_t": np.zeros(n), "omega_f": np.zeros(n), "t_roll": np.full(n, np.nan),
                   "switches": np.zeros(n, np.int64), "regime": _objects(n, Regime.NONE)}
@@ -261,11 +261,11 @@ class _Columns:
 TEXT_COLUMNS = ("model", "separation", "tangential")
 
 
-def tangential_rows(part: pd.DataFrame, v_n: np.ndarray) -> _Columns:
-    """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s]: what a tangential
-    model's :class:`~sphereimpact.contact.tangential.SweptTangential` reads."""
-    v_t = approach_speeds(part)[1]
-    return _Columns(part, radius=0.5 * part["diameter"].to_numpy(), v_normal=v_n, v_tangent=v_t)
+def tangential_rows(part: pd.DataFrame, d: Numbers) -> _Columns:
+    """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s] (the rows'
+    :class:`~.scenes.Numbers` ``d``): what a tangential model's :class:`~sphereimpact.contact.tangential.SweptTangential`
+    reads."""
+    return _Columns(part, radius=0.5 * part["diameter"].to_numpy(), v_normal=d.v_n, v_tangent=d.v_t)
 
 
 def _path_names(paths) -> list:

@@ -285,16 +285,17 @@ def law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
 
 @dataclass(frozen=True)
 class Numbers:
-    """Per scene, what chooses and drives a sweep path: the law's frequency ``w`` = 1 / T [1/s], the normal
-    approach speed ``v_n`` [m/s], the dimensionless gravity ``gamma`` = g_n / (w v_n), the family's ``zeta``
-    and ``lam`` where the batched lanes or a closed form read them (0 elsewhere), masks of eq. 4.2's form
-    (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes and the ``force`` criterion
-    (compared once here: an elementwise comparison of an object array is not cheap), the law's closed form
-    as an index into :data:`CLOSED_FORMS` (``closed_form``, -1 without), the similarity ``family`` as a hashable key
-    (laws the lanes do not take; None otherwise)."""
+    """Per scene, what chooses and drives a sweep path: the law's frequency ``w`` = 1 / T [1/s], the normal and
+    tangential approach speeds ``v_n`` and ``v_t`` [m/s] (:func:`approach_speeds`), the dimensionless gravity
+    ``gamma`` = g_n / (w v_n), the family's ``zeta`` and ``lam`` where the batched lanes or a closed form read them
+    (0 elsewhere), masks of eq. 4.2's form (``modified``), a law's ``closed`` form, a form of the ``batched`` lanes
+    and the ``force`` criterion (compared once here: an elementwise comparison of an object array is not cheap), the
+    law's closed form as an index into :data:`CLOSED_FORMS` (``closed_form``, -1 without), the similarity ``family``
+    as a hashable key (laws the lanes do not take; None otherwise)."""
 
     w: np.ndarray
     v_n: np.ndarray
+    v_t: np.ndarray
     gamma: np.ndarray
     zeta: np.ndarray
     lam: np.ndarray
@@ -341,8 +342,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
     """The :class:`Numbers` of every scene of a :func:`scene_table`, each from its law's ``frequency`` and
     ``family`` (ValueError names a law whose closed form reads numbers the sweep does not carry, and a row
     whose scales overflow)."""
-    beta = np.radians(incidence(frame))
-    v_n = frame["speed"].to_numpy() * np.cos(beta)
+    v_n, v_t = approach_speeds(frame)
     n = len(frame)
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
     closed_form, family = np.full(n, -1), _objects(n, None)
@@ -373,7 +373,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
             family[rows] = [(model, *key) for key in keys]
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
     gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
-    return Numbers(w=w, v_n=v_n, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=closed_form >= 0,
+    return Numbers(w=w, v_n=v_n, v_t=v_t, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=closed_form >= 0,
                    batched=batched, force=separation == Separation.FORCE, closed_form=closed_form,
                    family=family)
 
