@@ -18,8 +18,10 @@ def steady_state() -> None:
     load_compiled()
 
 
-#: Seconds a work-precision or stability point is repeated for (at least 3 runs unless one run exceeds it).
-BUDGET = 0.05
+#: Seconds a work-precision or stability point is repeated for (at least 3 runs unless one run exceeds it).  Every
+#: run of every point of the work-precision table recorded at 0.05 s: taken at 0.02 s, the points' medians move by 0
+#: (median) and 9.5 % (90th percentile), on a chart of decades, and the table costs 48 s instead of 69 s.
+BUDGET = 0.02
 
 
 def median_time(call, budget: float = BUDGET, max_repeats: int = 7) -> tuple[float, object]:
