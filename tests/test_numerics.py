@@ -276,6 +276,33 @@ def test_the_naive_formulations_force_in_floats_is_the_stage_force_to_the_bit():
                 assert event(0.0, np.array([delta, delta_dot])) == expected, (scene.model, delta)
 
 
+def test_the_sweep_benchmark_times_with_the_accuracy_its_own_job_wrote(tmp_path):
+    """The sweep benchmark's untimed half (each sweep's worst error on its sample, the contenders' tolerances at it),
+    written by its own job (rule bench_sweep_accuracy) and read back by the timed one, gives the rows it computes in
+    one process: every cell but the timings and the traced memory equal; a file written for another sample size is
+    refused by name."""
+    import json
+
+    from sphereimpact.numerics import bench_sweep
+
+    small = {"sample": 3, "lanes": 60, "million": False, "laws": ()}
+    bench_sweep.write_accuracies(tmp_path / "accuracy.json", **small)
+    accuracies = json.loads((tmp_path / "accuracy.json").read_text())
+    apart = bench_sweep.run(tmp_path / "apart.csv", repeats=1, accuracies=accuracies, **small)
+    whole = bench_sweep.run(tmp_path / "whole.csv", repeats=1, **small)
+    timed = ("seconds", "throughput", "speedup", "all_over", "peak_memory")
+    kept = [c for c in whole.columns if not c.startswith(timed) and not c.endswith(timed)]
+    assert {"worst_error", "simulate_rtol", "handwritten_error", "handwritten_reached"} <= set(kept)
+    assert len(apart) == 3 and (apart["worst_error"] > 0).all()
+    pd.testing.assert_frame_equal(apart[kept], whole[kept], check_exact=True)
+    first = next(iter(accuracies))  # the timed job times what the file says, computing none of it again
+    accuracies[first]["worst_error"], accuracies[first]["chosen"]["simulate"]["rtol"] = 0.125, 1e-5
+    told = bench_sweep.run(tmp_path / "told.csv", repeats=1, accuracies=accuracies, **small)
+    assert (told.loc[0, "worst_error"], told.loc[0, "simulate_rtol"]) == (0.125, 1e-5)
+    with pytest.raises(ValueError, match=r"no accuracy of the sweep 'k, b, m per scene.*on a sample of 4 scenes"):
+        bench_sweep.run(tmp_path / "other.csv", repeats=1, accuracies=accuracies, **(small | {"sample": 4}))
+
+
 def test_stored_references_are_the_computed_ones_to_the_bit(tmp_path, monkeypatch):
     """The timed studies' references, computed in a job of their own and read back (rule numerics_references): every
     output, the bound and the method equal reference()'s (wall_time aside); a scene the file lacks is computed."""

@@ -105,10 +105,28 @@ rule sweep_paths:
         "../scripts/sweep_paths.py"
 
 
+rule bench_sweep_accuracy:
+    """The sweep benchmark's untimed half: each sweep's error on a sample, and its contenders' tolerances at it."""
+    output:
+        json="results/sweep/bench_sweep_accuracy.json",
+    params:
+        code=code("workflow/scripts/bench_sweep_accuracy.py"),
+        config=params_for("bench_sweep_accuracy"),
+    benchmark:
+        "results/benchmarks/sweep/bench_sweep_accuracy.tsv",
+    log:
+        "logs/bench_sweep_accuracy.log",
+    conda:
+        ENV
+    script:
+        "../scripts/bench_sweep_accuracy.py"
+
+
 rule bench_sweep:
     """Throughput of the sweep engine against per-scene solving at equal accuracy, and fits (a benchmark)."""
     input:
         data=config["validation"]["data"],
+        accuracy="results/sweep/bench_sweep_accuracy.json",
     output:
         csv=report("results/bench_sweep.csv", caption="../report/bench_sweep.rst", category="Sweeps"),
     params:

@@ -20,14 +20,20 @@ engine's speed-up is measured on :data:`~sphereimpact.sweep.engine.FAST_OUTPUTS`
 but t_roll and the force extremes; the script computes less still), and the engine is also timed with every
 output, the default (``seconds_all``, and ``all_over_fast``, its time over the fast outputs'), except on the
 microslip map, whose paths compute every output anyway.  A fit's row (:func:`measure_fit`) times a fit instead.
+
+A row's untimed half, the sample's references and errors and the contenders' tolerances (:func:`accuracy`), is the
+pipeline's job ``bench_sweep_accuracy`` (:func:`write_accuracies`), run beside the others; the timed job, which runs
+alone, takes it back and times.
 """
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import tracemalloc
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -53,10 +59,6 @@ CONTENDERS = {
     "handwritten": lambda scene, rtol: handwritten(scene, rtol),
     "simulate": lambda scene, rtol: simulate(scene, SolverOptions(rtol=rtol, atol=rtol)).to_dict(),
 }
-
-
-def _scene(row) -> Scene:
-    return scene_of({k: row[k] for k in SCENE_COLUMNS})
 
 
 def _worst(outputs, refs, scenes) -> float:
@@ -87,55 +89,84 @@ def per_scene(solve, scenes: list[Scene], refs: list[dict], error: float) -> dic
     return {"rtol": tightest, "error": worst, "reached": True}
 
 
-def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sample_size: int = 60,
-            seed: int = 0, repeats: int = 3, contenders=None, every_output: bool = True, memory: bool = True) -> dict:
-    """One benchmark row for the sweep ``scenes`` (see the module docstring), against ``contenders`` (default
-    :data:`CONTENDERS`; the hand-written baseline has the rigid contact only).  ``every_output`` False skips timing
-    the engine with every output (a sweep whose paths compute them all anyway: ``seconds_all`` left empty);
-    ``memory`` False skips tracing its peak memory (a sweep of many small allocations, which tracing slows
-    tenfold: ``peak_memory_mb`` left empty).
+def accuracy(scenes: pd.DataFrame, sample_size: int = 60, seed: int = 0, contenders=None,
+             memory: bool = True) -> dict:
+    """The untimed half of a sweep's row (see the module docstring): the engine's worst error on a random sample of
+    the sweep ``scenes`` against the per-scene reference (:data:`REFERENCE`), each of ``contenders`` (default
+    :data:`CONTENDERS`) at the loosest tolerance that meets it (:func:`per_scene`), the sample's scenes, and the
+    engine's peak memory while it sweeps (``memory`` False: NaN; tracing slows a sweep of many small allocations
+    tenfold).  The pipeline computes it in a job of its own (rule ``bench_sweep_accuracy``), beside the others, so
+    that the timed job, which runs alone, spends its time timing (:func:`measure` takes it back).
 
-    Random scenes include compressions beyond the radius: the sweep's table flags them, so the
-    per-scene references and contenders do not warn about each one.
+    Returns
+    -------
+    dict
+        ``scenes`` (the sweep's count), ``worst_error``, ``sample`` (each sampled scene as the sweep's table gives
+        it: :data:`~sphereimpact.sweep.engine.SCENE_COLUMNS`, plain values), ``chosen`` (contender -> ``rtol``,
+        ``error``, ``reached``), ``peak_memory_mb``.
+
+    Random scenes include compressions beyond the radius: the sweep's table flags them, so the per-scene references
+    and contenders do not warn about each one.
     """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BeyondRadiusWarning)
-        return _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders or CONTENDERS,
-                        every_output, memory)
+        peak = math.nan
+        if memory:
+            tracemalloc.start()
+        table = sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)  # the chapter's ball where the scenes are silent
+        if memory:
+            peak = tracemalloc.get_traced_memory()[1]
+            tracemalloc.stop()
+        pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)),
+                                                          replace=False))
+        outputs = table.iloc[pick].to_dict("records")
+        sample = [{key: _plain(row[key]) for key in SCENE_COLUMNS} for row in outputs]
+        scenes_of = [scene_of(row) for row in sample]
+        n = len(table)
+        del table
+        refs = [simulate(s, REFERENCE).to_dict() for s in scenes_of]
+        error = _worst(outputs, refs, scenes_of)
+        chosen = {label: per_scene(solve, scenes_of, refs, max(error, TOLERANCES[-1]))
+                  for label, solve in (contenders or CONTENDERS).items()}
+    return {"scenes": n, "worst_error": error, "sample": sample, "chosen": chosen, "peak_memory_mb": peak / 2**20}
 
 
-def _measure(name, scenes, target_speedup, sample_size, seed, repeats, contenders, every_output, memory) -> dict:
+def _plain(value):
+    """A table cell as a plain Python value (JSON's): numpy's scalars as float, int, bool."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def measure(name: str, scenes: pd.DataFrame, target_speedup: float | None, sample_size: int = 60,
+            seed: int = 0, repeats: int = 3, contenders=None, every_output: bool = True, memory: bool = True,
+            known: dict | None = None) -> dict:
+    """One benchmark row for the sweep ``scenes`` (see the module docstring), against ``contenders`` (default
+    :data:`CONTENDERS`; the hand-written baseline has the rigid contact only): its :func:`accuracy` (``known``, as
+    the pipeline's accuracy job wrote it, else computed here with ``sample_size``, ``seed`` and ``memory``), then
+    the engine and the contenders timed in turn.  ``every_output`` False skips timing the engine with every output
+    (a sweep whose paths compute them all anyway: ``seconds_all`` left empty)."""
+    contenders = contenders or CONTENDERS
     log.info("sweep bench: %s (%d scenes)", name, len(scenes))
-    peak = math.nan
-    if memory:  # a run of its own: tracing allocations slows numpy, so it is kept out of the timing
-        tracemalloc.start()
-    table = sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)  # the chapter's ball where the scenes are silent
-    if memory:
-        peak = tracemalloc.get_traced_memory()[1]
-        tracemalloc.stop()
-    pick = np.sort(np.random.default_rng(seed).choice(len(table), size=min(sample_size, len(table)), replace=False))
-    outputs = table.iloc[pick].to_dict("records")
-    sample = [_scene(row) for row in outputs]
-    n = len(table)
-    del table  # a large table held while the per-scene contenders are timed slowed them unevenly
-    refs = [simulate(s, REFERENCE).to_dict() for s in sample]
-    error = _worst(outputs, refs, sample)
-    chosen = {label: per_scene(solve, sample, refs, max(error, TOLERANCES[-1])) for label, solve in contenders.items()}
-    # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
-    calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)} | (
-        {"engine_all": lambda: sweep(scenes, chapter_ball=True)} if every_output else {}) | {
-        label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
-        for label, solve in contenders.items()}
-    seconds, rounds = interleaved_runs(calls, repeats)
+    known = known or accuracy(scenes, sample_size, seed, contenders, memory)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BeyondRadiusWarning)
+        sample, chosen = [scene_of(row) for row in known["sample"]], known["chosen"]
+        # the engine and the contenders in turn within each repeat: a slow spell of the machine falls on all alike
+        calls = {"engine": lambda: sweep(scenes, outputs=FAST_OUTPUTS, chapter_ball=True)} | (
+            {"engine_all": lambda: sweep(scenes, chapter_ball=True)} if every_output else {}) | {
+            label: (lambda solve=solve, rtol=chosen[label]["rtol"]: [solve(s, rtol) for s in sample])
+            for label, solve in contenders.items()}
+        seconds, rounds = interleaved_runs(calls, repeats)
+    n = known["scenes"]
     throughput = n / seconds["engine"]
     every = seconds.get("engine_all", math.nan)
-    row = {"sweep": name, "scenes": n, "seconds": seconds["engine"], "throughput": throughput, "worst_error": error,
-           "repeats": rounds, "sample": len(sample), "seconds_all": every, "all_over_fast": every / seconds["engine"]}
+    row = {"sweep": name, "scenes": n, "seconds": seconds["engine"], "throughput": throughput,
+           "worst_error": known["worst_error"], "repeats": rounds, "sample": len(sample), "seconds_all": every,
+           "all_over_fast": every / seconds["engine"]}
     for label, got in chosen.items():
         per = seconds[label] / len(sample)
         row |= {f"{label}_rtol": got["rtol"], f"{label}_error": got["error"], f"{label}_reached": got["reached"],
                 f"{label}_throughput": 1.0 / per, f"speedup_over_{label}": throughput * per}
-    return row | {"target_speedup": target_speedup, "peak_memory_mb": peak / 2**20}
+    return row | {"target_speedup": target_speedup, "peak_memory_mb": known["peak_memory_mb"]}
 
 
 #: The microslip map's ball: the chapter's, with an elastic Hertz contact (E* 10^8 Pa) and the exact elastic microslip
@@ -204,8 +235,50 @@ def measure_data_fit(name: str, measured, ball, free: list, repeats: int = 3) ->
     return _timed_fit(name, measured, ball, free, repeats, DATA_FIT_TARGET_SECONDS)[0]
 
 
+def sweeps(lanes: int = 20_000, million: bool = True, laws=tuple(LAW_SCENES)) -> list[tuple]:
+    """The benchmark's sweeps, in its rows' order: (name, scenes, target speed-up or None, :func:`measure`'s
+    options, the row's extra cells).  See :func:`run` for the parameters."""
+    rng = np.random.default_rng(1)
+    varied = pd.DataFrame({"angle": rng.uniform(0, 89, lanes), "speed": rng.uniform(0.5, 30, lanes),
+                           "k": rng.uniform(2e4, 2e5, lanes), "b": rng.uniform(2, 30, lanes),
+                           "mass": rng.uniform(0.05, 0.5, lanes)})
+    one_ball = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
+    listed = [
+        # target: 1000x, the contact-laws issue's (the batched integrator's own target was 300x)
+        ("k, b, m per scene, modified ((zeta, lam) plane)", varied, 1000, {}, {}),
+        ("angle x speed, one ball, modified (similarity)", one_ball, 1000, {}, {}),
+        ("angle x speed, one ball, kelvin-voigt (closed form)", one_ball.assign(model="kelvin-voigt"), None, {}, {}),
+    ]
+    for law in laws:  # the modified law's one-ball grid: a law without a kernel is interpolated in chi v_n
+        listed.append((f"angle x speed, one ball, {law}", one_ball.assign(model=law, **LAW_SCENES[law]), None, {}, {}))
+    if million:
+        # the exact elastic microslip contact over a map of one ball: one simulate per incidence, scaled
+        listed.append(("10^5 scenes, hertz, microslip, angle x speed (similar scenes)",
+                       grid(angle=np.linspace(1, 85, 316), speed=np.linspace(0.5, 30, 316)).assign(**MICROSLIP_MAP),
+                       None, {"contenders": {"simulate": CONTENDERS["simulate"]}, "every_output": False,
+                              "memory": False}, {"target_seconds": MICROSLIP_MAP_TARGET_SECONDS}))
+        listed.append(("10^6 scenes, modified, angle x speed",
+                       grid(angle=np.linspace(0, 89, 1000), speed=np.linspace(0.5, 30, 1000)), 1000, {}, {}))
+        flags = " ".join(f"--{name.replace('_', '-')} {text}" for name, text in GUIDE_SWEEP.items())
+        listed.append((f"the sweeps guide's large sweep ({flags})", guide_sweep(), None, {}, {}))
+    return listed
+
+
+def write_accuracies(json_path: str, sample: int = 60, lanes: int = 20_000, million: bool = True,
+                     laws=tuple(LAW_SCENES)) -> dict:
+    """:func:`accuracy` of every sweep of :func:`sweeps` (parameters as :func:`run`'s), by name, into ``json_path``:
+    the untimed half of the benchmark, which :func:`run` takes back (``accuracies``)."""
+    out = {}
+    for name, scenes, _, options, _ in sweeps(lanes, million, laws):
+        log.info("sweep bench accuracy: %s (%d scenes)", name, len(scenes))
+        out[name] = accuracy(scenes, sample, contenders=options.get("contenders"), memory=options.get("memory", True))
+    Path(json_path).write_text(json.dumps(out, indent=1) + "\n")
+    return out
+
+
 def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True,
-        laws=tuple(LAW_SCENES), fit_of: tuple | None = None, data_fit_of: tuple | None = None) -> pd.DataFrame:
+        laws=tuple(LAW_SCENES), fit_of: tuple | None = None, data_fit_of: tuple | None = None,
+        accuracies: dict | None = None) -> pd.DataFrame:
     """Every benchmark sweep; writes ``csv_path``.
 
     Parameters
@@ -229,35 +302,22 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
     data_fit_of : (str, Measured, Ball, list) or None
         Also time a fit to measured bounces (:func:`measure_data_fit`): the row's name, the bounces, the ball it
         starts from, the free parameters.
+    accuracies : dict or None
+        Each sweep's :func:`accuracy` by name, as :func:`write_accuracies` wrote them with the same ``sample``,
+        ``lanes``, ``million`` and ``laws`` (else each is computed before its timing).  ValueError if a sweep's is
+        missing or was drawn on another sample size.
     """
     steady_state()
-    rng = np.random.default_rng(1)
-    varied = pd.DataFrame({"angle": rng.uniform(0, 89, lanes), "speed": rng.uniform(0.5, 30, lanes),
-                           "k": rng.uniform(2e4, 2e5, lanes), "b": rng.uniform(2, 30, lanes),
-                           "mass": rng.uniform(0.05, 0.5, lanes)})
-    one_ball = grid(angle=np.arange(0, 90, 1.0), speed=np.arange(0.5, 30.01, 0.5))
-    options = {"sample_size": sample, "repeats": repeats}
-    rows = [
-        # target: 1000x, the contact-laws issue's (the batched integrator's own target was 300x)
-        measure("k, b, m per scene, modified ((zeta, lam) plane)", varied, 1000, **options),
-        measure("angle x speed, one ball, modified (similarity)", one_ball, 1000, **options),
-        measure("angle x speed, one ball, kelvin-voigt (closed form)", one_ball.assign(model="kelvin-voigt"), None,
-                **options),
-    ]
-    for law in laws:  # the modified law's one-ball grid: a law without a kernel is interpolated in chi v_n
-        rows.append(measure(f"angle x speed, one ball, {law}", one_ball.assign(model=law, **LAW_SCENES[law]), None,
-                            **options))
-    if million:
-        # the exact elastic microslip contact over a map of one ball: one simulate per incidence, scaled
-        rows.append(measure("10^5 scenes, hertz, microslip, angle x speed (similar scenes)",
-                            grid(angle=np.linspace(1, 85, 316), speed=np.linspace(0.5, 30, 316)).assign(
-                                **MICROSLIP_MAP), None, contenders={"simulate": CONTENDERS["simulate"]},
-                            every_output=False, memory=False, **options)
-                    | {"target_seconds": MICROSLIP_MAP_TARGET_SECONDS})
-        rows.append(measure("10^6 scenes, modified, angle x speed",
-                            grid(angle=np.linspace(0, 89, 1000), speed=np.linspace(0.5, 30, 1000)), 1000, **options))
-        flags = " ".join(f"--{name.replace('_', '-')} {text}" for name, text in GUIDE_SWEEP.items())
-        rows.append(measure(f"the sweeps guide's large sweep ({flags})", guide_sweep(), None, **options))
+    rows = []
+    for name, scenes, target, options, extra in sweeps(lanes, million, laws):
+        known = None
+        if accuracies is not None:
+            known = accuracies.get(name)
+            if known is None or len(known["sample"]) != min(sample, len(scenes)):
+                raise ValueError(f"accuracies: no accuracy of the sweep {name!r} on a sample of {sample} scenes; "
+                                 "write them with the same sample, lanes, million and laws (write_accuracies)")
+        rows.append(measure(name, scenes, target, sample_size=sample, repeats=repeats, known=known, **options)
+                    | extra)
     if fit_of is not None:
         truth, start, incidences = fit_of
         rows.append(measure_fit(f"fit of {', '.join(start)} to a {len(incidences)}-incidence Kharaz curve "

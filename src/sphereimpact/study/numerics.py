@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pandas as pd
@@ -9,7 +10,7 @@ import pandas as pd
 from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
-from ..numerics.bench_sweep import run as bench_sweep
+from ..numerics.bench_sweep import run as bench_sweep, write_accuracies
 from ..numerics.bench import (bench_scenes, kernel_bench, microslip_bench, profile_call, simulate_vs_handwritten, stages,
                                startup_bench)
 from ..parsing import parse_range
@@ -86,12 +87,23 @@ def write_bench(config: dict, csv_path: str, stages_csv: str, profile_csv: str, 
     profile_call(profiled).to_csv(profile_csv, **CSV)
 
 
-def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None) -> None:
+def write_bench_sweep_accuracy(config: dict, json_path: str) -> None:
+    """The untimed half of the sweep benchmark with ``bench``'s settings: each sweep's accuracy and its contenders'
+    tolerances (:func:`~sphereimpact.numerics.bench_sweep.write_accuracies`), into ``json_path``, which
+    :func:`write_bench_sweep` times with."""
+    bench = config["bench"]
+    write_accuracies(json_path, sample=bench["sample"], lanes=bench["lanes"], million=bench["million"],
+                     laws=bench["laws"])
+
+
+def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None,
+                      accuracy_json: str | None = None) -> None:
     """The sweep benchmark (:func:`~sphereimpact.numerics.bench_sweep.run`) with ``bench``'s settings; with
     ``bench.fit``, also the fit of ``kharaz_fit``'s free parameters to the noise-free curve of Kharaz's ball (the
     validation's, with ``kharaz_fit``'s tangential model) at the validation's incidences, and with ``data_csv`` (the
     shipped Kharaz data) the fit of those parameters and the COR to the measured bounces, from ``kharaz_fit``'s start
-    and the measured e_n."""
+    and the measured e_n; ``accuracy_json`` the file of :func:`write_bench_sweep_accuracy` (else each sweep's
+    accuracy is computed before its timing)."""
     from ..fit import read_measured, with_values
     from ..impact.ball import Ball, Measurement, calibrated_ball
     from .validation import experiment
@@ -112,7 +124,8 @@ def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None) 
                            f"{scene.tangential})", read_measured(data_csv, source=Path(data_csv).name),
                            with_values(ball, start), free)
     bench_sweep(csv_path, repeats=bench["repeats"], sample=bench["sample"], lanes=bench["lanes"],
-                million=bench["million"], laws=bench["laws"], fit_of=fit_of, data_fit_of=data_fit_of)
+                million=bench["million"], laws=bench["laws"], fit_of=fit_of, data_fit_of=data_fit_of,
+                accuracies=None if accuracy_json is None else json.loads(Path(accuracy_json).read_text()))
 
 
 def _stability_ball(config: dict):

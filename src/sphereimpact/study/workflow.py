@@ -47,6 +47,7 @@ RULE_KEYS = {
               "numerics.microslip", "validation"),
     "bench_sweep": ("bench.repeats", "bench.sample", "bench.lanes", "bench.million", "bench.laws", "bench.fit",
                     "validation", "kharaz_fit"),
+    "bench_sweep_accuracy": ("bench.sample", "bench.lanes", "bench.million", "bench.laws"),
     "sweep_paths": ("bench.repeats", "bench.path_sizes"),
     "bench_kernels": ("bench.repeats",),
     "consistency": ("consistency",),
