@@ -255,19 +255,20 @@ def test_the_stability_studies_one_job_each_merge_into_the_table_of_all_at_once(
         write_stability(config, tmp_path / "grip.csv", "grip")
 
 
-def test_the_naive_formulations_force_in_floats_is_the_stage_force_to_the_bit():
-    """The stability studies' naive runs evaluate the law in Python floats (its scalar formula, for speed): at
+def test_a_laws_force_in_floats_is_its_stage_force_to_the_bit():
+    """The stability studies' naive runs and the planar bodies evaluate the law in Python floats
+    (``ContactLaw.in_floats``: its scalar formula, for speed): at
     states in contact, past separation (the continuation) and pulling, for every built-in law and a ball striking a
     partner (whose reduced sphere the force takes), the same float as ``Scene.stage_force`` and its separation event
     the same as the numpy one's."""
     from sphereimpact.contact.laws import LAWS
     from sphereimpact.numerics.bench import LAW_SCENES
-    from sphereimpact.numerics.stability import _separation_event, _stage_force_in_floats
+    from sphereimpact.numerics.stability import _separation_event
 
     scenes = [Scene(model=name, **LAW_SCENES.get(name, {})) for name in LAWS]
     scenes.append(Scene(angle=20.0, partner_mass=0.4, partner_diameter=0.09))
     for scene in scenes:
-        force, event = _stage_force_in_floats(scene), _separation_event(scene)
+        force, event = scene.law.in_floats(scene.reduced), _separation_event(scene)
         d, v = 0.1 * scene.radius, scene.v_normal
         for delta, delta_dot in ((d, v), (d, -0.6 * v), (1e-3 * d, -v), (-1e-3 * d, -v), (-0.5 * d, 0.3 * v)):
             assert force(delta, delta_dot) == float(scene.stage_force(delta, delta_dot)), (scene.model, delta)

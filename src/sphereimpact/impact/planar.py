@@ -166,20 +166,22 @@ class PlanarMotion(SegmentedMotion):
             return Regime.ROLLING, 1.0, z
         return Regime.SLIDING, 1.0, z  # gravity along the flat outgrows friction: the contact point slips down-slope
 
-    def _contact(self, z):
-        """(delta, delta_dot, P) of state(s) z."""
+    def _contact(self, z, force=None):
+        """(delta, delta_dot, P) of state(s) z; ``force`` the law as a function of (delta, delta_dot): by default
+        ``stage_force`` (any shape), ``ContactLaw.in_floats`` for one state (the same values, no numpy per call)."""
         s = self.scene
         delta = s.radius - (self._n[0] * z[0] + self._n[1] * z[1])
         delta_dot = -(self._n[0] * z[2] + self._n[1] * z[3])
-        return delta, delta_dot, s.stage_force(delta, delta_dot)  # in-contact formula, as NormalMotion.force
+        return delta, delta_dot, (force or s.stage_force)(delta, delta_dot)  # in-contact formula, as NormalMotion's
 
     def _segment(self, mode: str, sigma: float, t0: float, t_end: float, z0):
         s = self.scene
         n_vec, t_vec, radius = self._n, self._t, s.radius
         mu, hold, sep = sigma * s.mu, self._hold, separation_function(s)
+        one = s.law.in_floats(s.reduced)  # the law on one state, in floats
 
         def rhs(t, z):
-            _, _, p = self._contact(z)  # smooth past separation, as in the reduced model
+            _, _, p = self._contact(z, one)  # smooth past separation, as in the reduced model
             f = -mu * max(float(p), 0.0) if mode == Regime.SLIDING else -hold
             ax, ay = (p * n_vec + f * t_vec) / s.mass
             return [z[2], z[3], ax, ay - s.gravity, -f * radius / s.inertia]
@@ -188,14 +190,14 @@ class PlanarMotion(SegmentedMotion):
             return -(n_vec @ z[2:4])
 
         def separation(t, z):
-            delta, delta_dot, _ = self._contact(z)
+            delta, delta_dot, _ = self._contact(z, one)
             return sep(delta, delta_dot)
 
         def switch(t, z):
             if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 return sigma * (t_vec @ z[2:4] - z[4] * radius)
             if hold > 0:
-                return s.mu * max(float(self._contact(z)[2]), 0.0) - hold
+                return s.mu * max(float(self._contact(z, one)[2]), 0.0) - hold
             return 1.0
 
         for event in (max_compression, separation, switch):

@@ -192,11 +192,13 @@ class PlanarPairMotion(SegmentedMotion):
         n_vec = np.array([z[0] / dist, z[1] / dist])
         return dist, self._reach - dist, n_vec, np.array([n_vec[1], -n_vec[0]])
 
-    def _contact(self, z):
-        """(delta, delta_dot, P) of state(s) z."""
-        _, delta, n_vec, _ = self._geometry(z)
+    def _contact(self, z, force=None, geometry=None):
+        """(delta, delta_dot, P) of state(s) z; ``force`` the law as a function of (delta, delta_dot): by default
+        ``stage_force`` (any shape), ``ContactLaw.in_floats`` for one state (the same values, no numpy per call);
+        ``geometry`` z's :meth:`_geometry` where the caller has it."""
+        _, delta, n_vec, _ = geometry or self._geometry(z)
         delta_dot = -(n_vec[0] * z[2] + n_vec[1] * z[3])
-        return delta, delta_dot, self.scene.stage_force(delta, delta_dot)
+        return delta, delta_dot, (force or self.scene.stage_force)(delta, delta_dot)
 
     def _slip(self, z) -> float:
         """s = v.t - w* R* [m/s] of one state z."""
@@ -243,6 +245,7 @@ class PlanarPairMotion(SegmentedMotion):
         sep = separation_function(s)
 
         spring, sticking = self._rescale is not None, mode == Regime.STICKING
+        one = s.law.in_floats(s.reduced)  # the law on one state, in floats
 
         def force(z, p):
             if self._free:
@@ -252,8 +255,9 @@ class PlanarPairMotion(SegmentedMotion):
             return float(self._spring_force(z)) if sticking else self._rolling_force(z)
 
         def rhs(t, z):
-            _, _, n_vec, t_vec = self._geometry(z)
-            delta, delta_dot, p = self._contact(z)  # smooth past separation, as in the reduced model
+            geometry = self._geometry(z)
+            _, _, n_vec, t_vec = geometry
+            delta, delta_dot, p = self._contact(z, one, geometry)  # smooth past separation, as in the reduced model
             f = force(z, p)
             a = (p * n_vec + f * t_vec) / m_star
             slip = t_vec[0] * z[2] + t_vec[1] * z[3] - z[4] * r_star
@@ -265,10 +269,10 @@ class PlanarPairMotion(SegmentedMotion):
             return rates
 
         def max_compression(t, z):
-            return self._contact(z)[1]
+            return self._contact(z, one)[1]
 
         def separation(t, z):
-            delta, delta_dot, _ = self._contact(z)
+            delta, delta_dot, _ = self._contact(z, one)
             return sep(delta, delta_dot)
 
         def switch(t, z):
@@ -276,12 +280,12 @@ class PlanarPairMotion(SegmentedMotion):
                 return 1.0
             if spring:  # |F| reaches the cap while sticking; the stick rule stops outgrowing it while sliding
                 if sticking:
-                    return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(float(self._spring_force(z)))
+                    return s.mu * max(float(self._contact(z, one)[2]), 0.0) - abs(float(self._spring_force(z)))
                 return self._stick_gap(sigma, z)
             if mode == Regime.SLIDING:  # sigma times the slip falls through zero
                 _, _, _, t_vec = self._geometry(z)
                 return sigma * (float(t_vec @ z[2:4]) - z[4] * r_star)
-            return s.mu * max(float(self._contact(z)[2]), 0.0) - abs(self._rolling_force(z))
+            return s.mu * max(float(self._contact(z, one)[2]), 0.0) - abs(self._rolling_force(z))
 
         for event in (max_compression, separation, switch):
             event.direction = -1

@@ -98,19 +98,9 @@ def _budgeted(rhs):
     return wrapped
 
 
-def _stage_force_in_floats(scene: Scene):
-    """``scene.stage_force`` as a function of two Python floats [N]: the law's scalar formula where it declares one
-    (``ContactLaw.scalar``, the same arithmetic without numpy's cost per call, which was most of a naive run's time:
-    the runs here evaluate it up to :data:`BUDGET` times each), else the numpy form on the floats."""
-    scalar, p = scene.law.scalar, scene.reduced
-    if scalar is None:
-        return lambda delta, delta_dot: float(scene.stage_force(delta, delta_dot))
-    return lambda delta, delta_dot: scalar(delta, delta_dot, p)
-
-
 def _separation_event(scene: Scene):
     """Terminal solve_ivp event ending contact under the scene's criterion, on an SI state (delta, delta_dot, ...): in
-    Python floats where the law has its scalar formula (as :func:`_stage_force_in_floats`)."""
+    Python floats where the law has its scalar formula (as ``ContactLaw.in_floats``)."""
     sep = separation_function(scene) if scene.law.scalar is None else scalar_separation_function(scene.reduced)
 
     def separation(t, z):
@@ -164,7 +154,7 @@ def onset(base: Scene, methods=METHODS) -> list[dict]:
 def _friction_ode(scene: Scene, law, method: str, rtol: float):
     """Normal and tangential state together, friction -mu P+ law(slip): the formulation the package avoids."""
     m, radius, inertia, mu = scene.mass, scene.radius, scene.inertia, scene.mu
-    force = _stage_force_in_floats(scene)
+    force = scene.law.in_floats(scene.reduced)  # the law's scalar formula: the runs evaluate it up to BUDGET times
 
     def rhs(t, z):
         p = max(force(float(z[0]), float(z[1])), 0.0)
@@ -203,7 +193,7 @@ def grip(base: Scene, methods=("RK45", "DOP853", "Radau", "LSODA"), angle: float
 
 def _step_end_separation(scene: Scene, method: str, rtol: float) -> tuple[float, int]:
     """Separation taken as the first step end where P <= 0 or delta <= 0 (no root finding)."""
-    w, v, stage = scene.omega_n, scene.v_normal, _stage_force_in_floats(scene)
+    w, v, stage = scene.omega_n, scene.v_normal, scene.law.in_floats(scene.reduced)
     sol = solve_ivp(lambda t, z: [z[1], -stage(float(z[0]), float(z[1])) / scene.mass], (0.0, 50 / w),
                     [0.0, v], method=ivp_method(method), rtol=rtol, atol=rtol * v / w)
     force = scene.force(sol.y[0], sol.y[1])

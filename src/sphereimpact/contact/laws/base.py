@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable, Mapping
 
 import numpy as np
@@ -221,15 +222,26 @@ class ContactLaw:
             raise ValueError(f"law {self.name!r}: closed_form must be a ClosedForm (the linear spring-damper's is "
                              f"sphereimpact.contact.laws.spring_damper.SPRING_DAMPER) or None; got {self.closed_form!r}")
 
+    def in_floats(self, p):
+        """``continued`` for one state: a function (delta [m], delta_dot [m/s]) -> P [N] of two floats, the law's
+        ``scalar`` formula where it declares one (the same arithmetic without numpy's cost per call, most of an
+        integrator's right-hand side on one state), else ``continued`` itself, its value as a float.  ``p``: the
+        scene, as ``continued`` takes it (``Scene.stage_force`` passes its reduced sphere)."""
+        scalar, continued = self.scalar, self.continued
+        if scalar is None:
+            return lambda delta, delta_dot: float(continued(delta, delta_dot, p))
+        return lambda delta, delta_dot: scalar(delta, delta_dot, p)
+
     def force(self, delta, delta_dot, p):
         """P [N] of the law: ``continued`` inside contact (delta > 0) and 0 outside, where nothing is evaluated
         beyond delta = 0 (continued at max(delta, 0)).  Separation events use it."""
         delta = np.asarray(delta, dtype=float)
         return np.where(delta > 0, self.continued(np.maximum(delta, 0.0), delta_dot, p), 0.0)
 
-    @property
+    @cached_property
     def parameter_names(self) -> tuple:
-        """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
+        """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring); made once (a tangential spring's
+        stiffness asks at every evaluation)."""
         names = tuple(p.name for p in self.parameters)
         return (*names, "modulus") if self.spring is Spring.HERTZ else names
 
