@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Callable, Mapping
 
 import numpy as np
@@ -238,10 +237,9 @@ class ContactLaw:
         delta = np.asarray(delta, dtype=float)
         return np.where(delta > 0, self.continued(np.maximum(delta, 0.0), delta_dot, p), 0.0)
 
-    @cached_property
+    @property
     def parameter_names(self) -> tuple:
-        """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring); made once (a tangential spring's
-        stiffness asks at every evaluation)."""
+        """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
         names = tuple(p.name for p in self.parameters)
         return (*names, "modulus") if self.spring is Spring.HERTZ else names
 
