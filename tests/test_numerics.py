@@ -277,14 +277,15 @@ def test_a_laws_force_in_floats_is_its_stage_force_to_the_bit():
                 assert event(0.0, np.array([delta, delta_dot])) == expected, (scene.model, delta)
 
 
-def test_the_sweep_benchmark_times_with_the_accuracy_its_own_job_wrote(tmp_path):
+def test_the_sweep_benchmark_times_with_the_accuracy_its_own_job_wrote(tmp_path, monkeypatch):
     """The sweep benchmark's untimed half (each sweep's worst error on its sample, the contenders' tolerances at it),
     written by its own job (rule bench_sweep_accuracy) and read back by the timed one, gives the rows it computes in
     one process: every cell but the timings and the traced memory equal; a file written for another sample size is
-    refused by name."""
+    refused by name; each engine run is made once untimed before its rounds."""
     import json
 
     from sphereimpact.numerics import bench_sweep
+    from sphereimpact.sweep.engine import FAST_OUTPUTS, sweep
 
     small = {"sample": 3, "lanes": 60, "million": False, "laws": ()}
     bench_sweep.write_accuracies(tmp_path / "accuracy.json", **small)
@@ -298,8 +299,12 @@ def test_the_sweep_benchmark_times_with_the_accuracy_its_own_job_wrote(tmp_path)
     pd.testing.assert_frame_equal(apart[kept], whole[kept], check_exact=True)
     first = next(iter(accuracies))  # the timed job times what the file says, computing none of it again
     accuracies[first]["worst_error"], accuracies[first]["chosen"]["simulate"]["rtol"] = 0.125, 1e-5
+    swept = []
+    monkeypatch.setattr(bench_sweep, "sweep", lambda *a, **k: swept.append(k.get("outputs")) or sweep(*a, **k))
     told = bench_sweep.run(tmp_path / "told.csv", repeats=1, accuracies=accuracies, **small)
     assert (told.loc[0, "worst_error"], told.loc[0, "simulate_rtol"]) == (0.125, 1e-5)
+    # per row: the fast and the every-output sweep once untimed (first touch), then once each in the one round
+    assert swept == [FAST_OUTPUTS, None, FAST_OUTPUTS, None] * 3
     with pytest.raises(ValueError, match=r"no accuracy of the sweep 'k, b, m per scene.*on a sample of 4 scenes"):
         bench_sweep.run(tmp_path / "other.csv", repeats=1, accuracies=accuracies, **(small | {"sample": 4}))
 

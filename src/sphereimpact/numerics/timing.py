@@ -59,7 +59,8 @@ def median_seconds(call, repeats: int) -> float:
 #: Seconds of one round of contenders past which it is not repeated (:func:`interleaved_runs`).  Four complete fits in
 #: a row (bench_sweep's fit rows, 3.9 s and 5 to 5.9 s) spread by 9 % and 20 %, no less than one round from the
 #: next: a median of three rounds that long narrows nothing a reader uses, and cost the timed job 20 s.  The sweeps
-#: guide's large sweep (about 2 s a round, its all-over-fast ratio a target) stays at three rounds.
+#: guide's large sweep, whose all-over-fast ratio is a target, runs its three rounds whatever they take
+#: (:func:`~.bench_sweep.sweeps`).
 ROUND_BUDGET = 3.0
 
 

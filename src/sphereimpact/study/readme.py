@@ -166,7 +166,9 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         *start,
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
         f"sample of {int(sweeps['sample'].iloc[0])} of its scenes, at equal accuracy; every contender timed as "
-        f"{_rounds(repeats, 'run')}; speed-up = the script's time per scene × the engine's "
+        f"{_rounds(repeats, 'run')} (the sweeps guide's large sweep, whose every-output-over-fast ratio is a "
+        f"target, always {repeats}), each engine run made once untimed before (a process's first sweep of a size "
+        "pays for its memory's first touch); speed-up = the script's time per scene × the engine's "
         "impacts per second. The engine is timed on the outputs the script computes too (`--outputs fast`), and "
         "with every output, the default (t_roll and the force's extremes besides; not on the microslip map, whose "
         "paths compute every output anyway). The script has the rigid contact only: the exact microslip map is "
