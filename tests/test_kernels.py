@@ -139,6 +139,35 @@ def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_py
     assert len(calls) == 2 and compiled_rule._spent_in_floats == 3 * first.nfev  # both runs, compiled
 
 
+def test_a_process_loads_the_compiled_stick_phase_once_its_python_stick_phases_have_spent_as_much(monkeypatch):
+    """A compliant tangential contact's stick phases run in Python floats count their evaluations towards the
+    rule for loading the compiled code, as the normal integrators' do (a job of many stick phases and few normal
+    motions, the compliance map, never loaded it); once over, the stick phase runs compiled, to the same bits.  A
+    closed-form motion, which has no compiled form, counts none."""
+    from sphereimpact.contact.tangential import stick_kernel
+
+    calls = []
+    real = stick_kernel.stick
+    monkeypatch.setattr(stick_kernel, "stick", lambda *args: calls.append(1) or real(*args))
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**9)
+    monkeypatch.setattr(compiled_rule, "_KERNEL_MODULE", "not loaded")
+    monkeypatch.setattr(compiled_rule, "_TAYLOR_MODULE", "not loaded")
+    scene = Scene(angle=30.0, tangential="linear", kappa=0.8)
+    for counted in (scene.with_(tangential="rigid"), scene):
+        monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
+        first = simulate(counted)
+        spent = compiled_rule._spent_in_floats
+    rigid = simulate(scene.with_(tangential="rigid"))
+    assert not calls and spent > 2 * rigid.nfev > 0  # the stick phases' evaluations, beyond the normal motion's
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", spent)
+    again = simulate(scene)
+    assert calls and again.to_dict() | {"wall_time": 0} == first.to_dict() | {"wall_time": 0}
+    monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**9)
+    monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
+    simulate(scene.with_(model="kelvin-voigt"))
+    assert compiled_rule._spent_in_floats == 0
+
+
 def test_across_the_domain_the_compiled_answer_is_the_python_floats_one_to_the_bit(monkeypatch):
     """300 random scenes of the differential test's domain (every law with its parameters over decades, both
     criteria, gravity on level and sloped flats, spin), each by DOP853-scalar compiled and in Python floats:

@@ -82,6 +82,12 @@ class NormalMotion:
         and law have compiled forms; else None (the caller then computes in Python, to the same bits)."""
         return None
 
+    def spend_in_floats(self, evaluations: int) -> None:
+        """Count ``evaluations`` of this motion that a computation with a compiled form made in Python floats (a compliant
+        stick phase's right-hand side): a motion that has a compiled form counts them towards its process's rule for
+        loading the compiled code (:mod:`sphereimpact.integrators.compiled`), as its integrator counts its own; one
+        without (this default) ignores them."""
+
     def force(self, t):
         """Normal force P(t) [N] during contact, t in [0, t_f].
 

@@ -199,13 +199,23 @@ class _DimensionlessNormal(NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
 
-    def kernel_state(self):
+    def _has_kernel_state(self) -> bool:
         law = self.scene.law
-        if law.kernel is None or law.scalar is None or not isinstance(self._sol, (StackedDOP853, series.TaylorDense)):
+        return law.kernel is not None and law.scalar is not None and isinstance(self._sol, (StackedDOP853,
+                                                                                              series.TaylorDense))
+
+    def kernel_state(self):
+        if not self._has_kernel_state():
             return None
         from . import compiled as rule
 
         return self.kept("kernel state", lambda: _kernel_state(self)) if rule.compiled_now() else None
+
+    def spend_in_floats(self, evaluations: int) -> None:
+        if self._has_kernel_state():
+            from . import compiled as rule
+
+            rule.spend_in_floats(evaluations)
 
     def state(self, t):
         if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
