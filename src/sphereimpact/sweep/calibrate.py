@@ -11,7 +11,7 @@ import pandas as pd
 from ..errors import ExtrapolationWarning
 from ..impact.ball import FAR, Measurement, calibrated_ball
 from ..impact.scene import Scene
-from .scenes import approach_speeds, given_fields
+from .scenes import approach_speeds, first_rows, given_fields
 
 #: Columns of a sweep's table that describe the approach or the tangential contact, not the ball and its normal
 #: law: a ball's calibration does not depend on them.
@@ -71,8 +71,12 @@ def calibrate_table(table, measurement: Measurement):
         raise ValueError(f"cor: calibrate one law at a time; the table holds {', '.join(map(str, frame['model'].unique()))}")
     out = frame.copy()
     balls = [name for name in frame.columns if name not in APPROACH_COLUMNS]
-    groups = frame.groupby(balls, dropna=False, sort=False).groups.items() if balls else [(None, frame.index)]
-    for _, rows in groups:
+    if balls:  # each ball once, in the order of its first row (rows alike as the scene checks group them)
+        group, firsts = first_rows({name: frame[name].to_numpy() for name in balls})
+        groups = [np.flatnonzero(group == g) for g in range(firsts.size)]
+    else:
+        groups = [np.arange(len(frame))]
+    for rows in groups:
         fields = given_fields(frame.loc[rows[0]].to_dict())
         ball = calibrated_ball(measurement, **{k: v for k, v in fields.items() if k not in APPROACH_COLUMNS})
         for name, value in ball.fitted.items():
