@@ -195,14 +195,19 @@ def horizon(scene: Scene) -> float:
     return float(scene.law.horizon(scene)) / scene.frequency
 
 
+#: The dense outputs read at one instant in plain floats, and by the compiled kernels (DOP853's and the Taylor method's).
+_PLAIN_FLOAT_DENSE = (StackedDOP853, series.TaylorDense)
+
+
 class _DimensionlessNormal(NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
 
     def _has_kernel_state(self) -> bool:
+        """Whether compiled code can read this motion: its law has a kernel and the scalar formula it compiles, and
+        its dense output is one the kernels evaluate."""
         law = self.scene.law
-        return law.kernel is not None and law.scalar is not None and isinstance(self._sol, (StackedDOP853,
-                                                                                              series.TaylorDense))
+        return law.kernel is not None and law.scalar is not None and isinstance(self._sol, _PLAIN_FLOAT_DENSE)
 
     def kernel_state(self):
         if not self._has_kernel_state():
@@ -218,7 +223,7 @@ class _DimensionlessNormal(NormalMotion):
             rule.spend_in_floats(evaluations)
 
     def state(self, t):
-        if is_instant(t) and isinstance(self._sol, (StackedDOP853, series.TaylorDense)):  # in plain floats
+        if is_instant(t) and isinstance(self._sol, _PLAIN_FLOAT_DENSE):  # in plain floats
             t = float(t)
             known = self.kept("states", dict)  # t = 0, t_m and t_f are read many times: each state kept (see kept)
             if t not in known:
