@@ -227,18 +227,17 @@ class Outcome:
 
         ``motion`` has ``scene``, ``t_m``, ``t_f``, ``t_roll``, ``regime``, ``switches``,
         ``grid``, ``stats``, ``force(t)``, ``force_extremes()`` (the normal force's least and greatest values [N])
-        and ``kinematics(t)``.
+        and ``ends()`` (floats: delta at t_m, ``delta_m``, and ``vc_n``, ``vc_t``, ``omega`` and ``u_t`` at t_f).
         """
         s = motion.scene
-        both = motion.kinematics(np.array([motion.t_m, motion.t_f]))  # one call: [0] at t_m, [1] at t_f
+        ends = motion.ends()
         force_min, force_max = motion.force_extremes()
-        vc_n = float(both["vc_n"][1])
+        vc_n = ends["vc_n"]
         if s.law.passive and s.g_normal == 0:  # a passive law rebounds no faster than it came: COR <= 1, where
             vc_n = min(vc_n, s.reduced.v_normal)  # the integrator's error alone crossed it (ContactLaw.passive)
         end = EndState.of_scene(
-            s, t_m=motion.t_m, delta_m=float(both["delta"][0]), t_f=motion.t_f, vc_n=vc_n,
-            force_min=force_min, force_max=force_max,
-            vc_t=float(both["vc_t"][1]), omega_f=float(both["omega"][1]), u_t=float(both["u_t"][1]),
+            s, t_m=motion.t_m, delta_m=ends["delta_m"], t_f=motion.t_f, vc_n=vc_n,
+            force_min=force_min, force_max=force_max, vc_t=ends["vc_t"], omega_f=ends["omega"], u_t=ends["u_t"],
             t_roll=math.nan if motion.t_roll is None else motion.t_roll, switches=int(motion.switches),
             regime=motion.regime)
         values = outputs(end)

@@ -126,6 +126,12 @@ class SegmentedMotion:
         :func:`~sphereimpact.ode.events.extremes`)."""
         return extremes(self.force, self.grid)
 
+    def ends(self) -> dict:
+        """What an outcome reads of the motion (:meth:`~sphereimpact.impact.outcome.Outcome.from_motion`): delta at
+        t_m (``delta_m``) and vc_n, vc_t, omega and u_t at t_f, floats (SI), from one :meth:`kinematics` call."""
+        both = self.kinematics(np.array([self.t_m, self.t_f]))
+        return {"delta_m": float(both["delta"][0]), **{key: float(both[key][1]) for key in ("vc_n", "vc_t", "omega", "u_t")}}
+
 
 class PlanarMotion(SegmentedMotion):
     """Integrate one impact with the full planar model (see module docstring).

@@ -75,6 +75,10 @@ def shared_normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
     return motion if motion.scene is scene else motion.for_scene(scene)
 
 
+#: ``SolverOptions()``, made once: the options are frozen, and checking them again costs as much as a Taylor step loop.
+DEFAULT_OPTIONS = SolverOptions()
+
+
 class ReducedMotion:
     """Normal motion plus the tangential motion it drives, as one contact motion.
 
@@ -105,6 +109,17 @@ class ReducedMotion:
         """The normal force's smallest and largest values [N], the normal motion's
         (:meth:`~sphereimpact.contact.motion.NormalMotion.force_extremes`)."""
         return self.normal.force_extremes()
+
+    def ends(self) -> dict:
+        """What an outcome reads of the motion (:meth:`~sphereimpact.impact.outcome.Outcome.from_motion`): delta at
+        t_m (``delta_m``) and vc_n, vc_t, omega and u_t at t_f, floats (SI): :meth:`kinematics`' values, the
+        tangential motion read at t_f alone (its value at an instant does not depend on the others asked with it)."""
+        delta, delta_dot = self.normal.state(np.array([self.t_m, self.t_f]))  # as kinematics reads them, to the bit
+        if self.tangential is None:
+            v_t = omega = u_t = 0.0
+        else:
+            v_t, omega, u_t = (float(q[0]) for q in self.tangential.at(np.array([self.t_f])))
+        return {"delta_m": float(delta[0]), "vc_n": float(-delta_dot[1]), "vc_t": v_t, "omega": omega, "u_t": u_t}
 
     def kinematics(self, t) -> dict:
         """delta, delta_dot, vc_t, vc_n, omega, u_t at t [s] (arrays, SI)."""
@@ -154,7 +169,7 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
         raise TypeError(f"scene must be a sphereimpact.Scene, e.g. Scene(angle=60.0); got {type(scene).__name__}")
     if scene.has_partner and body != Body.PLANAR:  # one sphere on the flat, then each body's velocities from the impulses
         return pair_outcome(simulate(scene.reduced, options, body, strict), scene)
-    options = SolverOptions() if options is None else options
+    options = DEFAULT_OPTIONS if options is None else options
     if not isinstance(options, SolverOptions):
         raise TypeError("options must be a sphereimpact.SolverOptions, e.g. SolverOptions(rtol=1e-10), or None; "
                         f"got {type(options).__name__}")

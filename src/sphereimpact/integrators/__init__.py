@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 from . import closed, taylor, runge_kutta  # noqa: F401  (each registers itself, in the order of the help)
 from .base import AUTO_ORDER, DEFAULT_INTEGRATOR, INTEGRATORS, Integrator
@@ -45,7 +46,14 @@ def resolve_method(scene, options):
     """``options`` with ``auto`` made concrete: the first integrator :func:`choose` offers."""
     if options.method != "auto":
         return options
-    return replace(options, method=next(choose(scene, options)).name)
+    return with_method(options, next(choose(scene, options)).name)
+
+
+@lru_cache(maxsize=64)
+def with_method(options, name: str):
+    """``options`` with ``method`` set to ``name``: SolverOptions are frozen and hashable, so the few a process uses are
+    made and checked once (the check costs as much as a Taylor step loop)."""
+    return replace(options, method=name)
 
 
 def normal_motion(scene, options):
@@ -55,7 +63,7 @@ def normal_motion(scene, options):
     for integrator in choose(scene, options):
         try:
             return integrator.solve(scene, options if options.method == integrator.name
-                                    else replace(options, method=integrator.name))
+                                    else with_method(options, integrator.name))
         except integrator.overflows as err:
             if options.method != "auto":
                 raise

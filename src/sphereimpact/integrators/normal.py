@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..ode import series
-from ..ode.dense import DOP853, TAYLOR, StackedDOP853, fast_solution, is_instant
+from ..ode.dense import DOP853, SMALL, TAYLOR, StackedDOP853, fast_solution, is_instant
 from ..contact.motion import KernelState, NormalMotion
 from ..errors import ImpactError
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
@@ -223,13 +223,17 @@ class _DimensionlessNormal(NormalMotion):
             rule.spend_in_floats(evaluations)
 
     def state(self, t):
-        if is_instant(t) and isinstance(self._sol, _PLAIN_FLOAT_DENSE):  # in plain floats
-            t = float(t)
-            known = self.kept("states", dict)  # t = 0, t_m and t_f are read many times: each state kept (see kept)
-            if t not in known:
-                x, y = self._sol.single(t * self._w)
-                known[t] = (x * self._d_scale, y * self._v)
-            return known[t]
+        if isinstance(self._sol, _PLAIN_FLOAT_DENSE):
+            if is_instant(t):  # in plain floats
+                t = float(t)
+                known = self.kept("states", dict)  # t = 0, t_m and t_f are read many times: each state kept (see kept)
+                if t not in known:
+                    x, y = self._sol.single(t * self._w)
+                    known[t] = (x * self._d_scale, y * self._v)
+                return known[t]
+            if np.ndim(t) == 1 and 0 < len(t) <= SMALL:  # a few instants (t_m and t_f): each one's, as the dense output's
+                delta, delta_dot = zip(*[self.state(instant) for instant in np.asarray(t, dtype=float).tolist()])
+                return np.array(delta), np.array(delta_dot)  # own few-instant path computes it, to the bit
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
 

@@ -225,6 +225,8 @@ class MicroslipTangential:
         (shape (3, len(t))); exact at the step ends, cubic Hermite between them."""
         s = self.scene
         t = np.atleast_1d(np.asarray(t, dtype=float))
+        if t.size == 1 and t[0] == self.t[-1]:  # at t_f (an outcome's read): the last step end's values, which the
+            return np.array([[self.v[-1]], [self.omega[-1]], [self.x[-1]]])  # interpolation returns there exactly
         accel = self._force / s.mass + s.g_tangent
         spin_rate = -self._force / (s.inertia_factor * s.mass * s.radius)
         return np.array([_hermite(t, self.t, self.v, accel), _hermite(t, self.t, self.omega, spin_rate),
