@@ -397,7 +397,7 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
     """
     n = ys.shape[1]
     sizes = np.diff(ts)  # each step's own size, before a terminal root cuts the last
-    ts, ys = ts.tolist(), ys.tolist()
+    ts, ys = np.array(ts, dtype=float), np.array(ys, dtype=float)  # copies, which a terminal root cuts
     t_events: list[list] = [[] for _ in events]
     y_events: list[list] = [[] for _ in events]
     directions = [getattr(e, "direction", 0) for e in events]
@@ -405,7 +405,8 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
     if events and len(ts) > 1:
         crossed = _crossed(g[:-1], g[1:], np.array(directions))
         for step in np.flatnonzero(crossed.any(axis=1)).tolist():
-            rows, t0, h, y0 = coefficients[step][::-1].tolist(), ts[step], ts[step + 1] - ts[step], ys[step]
+            t0, t1 = float(ts[step]), float(ts[step + 1])
+            rows, h, y0 = coefficients[step][::-1].tolist(), t1 - t0, ys[step].tolist()
 
             def state(time, rows=rows, t0=t0, h=h, y0=y0):
                 return horner_dop853(rows, (time - t0) / h, y0)
@@ -415,7 +416,7 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
                 # to a few ulp; an event function whose round-off keeps Brent from settling there still
                 # leaves it a bracket that narrow: its last iterate, not an error
                 root = found[step, i] if found is not None else brent(
-                    lambda time, e=events[i]: float(e(time, state(time))), t0, ts[step + 1], xtol=4 * EPS,
+                    lambda time, e=events[i]: float(e(time, state(time))), t0, t1, xtol=4 * EPS,
                     rtol=4 * EPS, maxiter=ROOT_ITERATIONS, strict=False)
                 hits.append((root, i))
             hits.sort()
@@ -427,6 +428,6 @@ def located(events, ts, ys, coefficients, g, nfev: int, status: int, message: st
                     break
     steps = len(coefficients)
     sol = StackedDOP853(ts, coefficients, ys[:steps], ts[:steps], sizes) if steps else None
-    return Solution(t=np.array(ts), y=np.array(ys).T, sol=sol, nfev=nfev, status=status, message=message,
+    return Solution(t=ts, y=ys.T, sol=sol, nfev=nfev, status=status, message=message,
                     t_events=[np.array(v) for v in t_events],
                     y_events=[np.array(v).reshape(len(v), n) for v in y_events], steps=steps)

@@ -155,8 +155,13 @@ class PositiveImpulse:
         positive = _at(normal.force, mids) > 0
         self._a, self._b = cuts[:-1][positive], cuts[1:][positive]
         self.intervals = list(zip(self._a.tolist(), self._b.tolist()))
-        self._ja, self._jb = _at(normal.impulse, self._a), _at(normal.impulse, self._b)
-        self._ka, self._kb = _at(normal.impulse_integral, self._a), _at(normal.impulse_integral, self._b)
+        if positive.all() and cuts.size <= SMALL:  # intervals tiling [0, t_f] (the force criterion's one): J and K
+            # at each cut once, each instant as _at reads it alone
+            j, k = _at(normal.impulse, cuts), _at(normal.impulse_integral, cuts)
+            (self._ja, self._jb), (self._ka, self._kb) = (j[:-1], j[1:]), (k[:-1], k[1:])
+        else:
+            self._ja, self._jb = _at(normal.impulse, self._a), _at(normal.impulse, self._b)
+            self._ka, self._kb = _at(normal.impulse_integral, self._a), _at(normal.impulse_integral, self._b)
         gained = self._jb - self._ja  # J+ gained over each interval
         self._before = np.concatenate([[0.0], np.cumsum(gained)])  # J+ at each interval's start, and at the end
         # K+ at each interval's start: the previous intervals' pieces plus the constant stretches between them
