@@ -95,6 +95,27 @@ def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monk
 
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
+def test_the_compiled_states_at_many_instants_are_the_dense_outputs_to_the_bit(method, monkeypatch):
+    """``normal_kernel.normal_states`` (a normal motion read at many instants: a microslip march's steps, a history)
+    against the dense output's vectorised evaluation, on random scenes of every law (Taylor series under ``auto``
+    where the law has one, DOP853's interpolants otherwise), at uniform instants, the grid and past t_f."""
+    taken, kinds = 0, set()
+    for scene, _, b in _solved_pairs(_scenes(60, seed=14, tangentials=("rigid", "microslip")), method, monkeypatch):
+        normal = b.motion.normal
+        state = normal.kernel_state()
+        if state is None:
+            continue
+        t = np.concatenate([np.linspace(0.0, 1.2 * normal.t_f, 1001), normal.grid])
+        compiled = normal.state(t)
+        monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+        python = normal.state(t)
+        monkeypatch.undo()
+        assert np.array_equal(compiled[0], python[0]) and np.array_equal(compiled[1], python[1]), scene
+        taken, kinds = taken + 1, kinds | {state.kind}
+    assert taken >= 40 and len(kinds) == (2 if method == "auto" else 1), (taken, kinds)
+
+
+@pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_grip_is_the_python_search_to_the_bit(method, monkeypatch):
     """The rigid contact's grip (:mod:`sphereimpact.contact.tangential.rigid_kernel`) and, under the penetration
     criterion, the force's sign changes that bound its pushes (``normal_kernel.force_roots``) on random rigid scenes

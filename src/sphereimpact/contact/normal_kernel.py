@@ -3,10 +3,11 @@
 A normal motion hands compiled code its dense output as arrays (:class:`~.motion.KernelState`); :func:`normal_state`
 evaluates them with the arithmetic of the Python evaluator (``TaylorDense.single``, ``StackedDOP853.single``) and
 the kernels of the contact layer build on it (:mod:`.tangential.stick_kernel`, :mod:`.tangential.rigid_kernel`).
-:func:`force_extremes` and :func:`force_roots` are :meth:`.motion.NormalMotion.force_extremes` and
-:meth:`~.motion.NormalMotion.force_roots` compiled: the force sampled on the motion's grid by the law's compiled
-kernel and refined by the very functions the Python path runs (``ode.events.refined_minimum`` and ``minimise``;
-``roots_at`` and ``refine_root``), so their answers are the Python ones to the bit (tests/test_contact_kernels.py).
+:func:`normal_states` is that state at many instants.  :func:`force_extremes` and :func:`force_roots` are
+:meth:`.motion.NormalMotion.force_extremes` and :meth:`~.motion.NormalMotion.force_roots` compiled: the force sampled
+on the motion's grid by the law's compiled kernel and refined by the very functions the Python path runs
+(``ode.events.refined_minimum`` and ``minimise``; ``roots_at`` and ``refine_root``), so their answers are the Python
+ones to the bit (tests/test_contact_kernels.py).
 """
 
 from __future__ import annotations
@@ -52,6 +53,17 @@ def normal_state(normal, t):
         i = min(max(np.searchsorted(knots, tau) - 1, 0), sizes.size - 1)
         x, y = _interpolant_pair(f[i], (tau - starts[i]) / sizes[i], y_old[i, 0], y_old[i, 1])
     return x * d_scale, y * v
+
+
+@numba.njit(types.UniTuple(ARRAY, 2)(NORMAL, ARRAY), **_COMPILE)
+def normal_states(normal, t):
+    """(delta [m], delta_dot [m/s]) at each instant of the array t [s]: :func:`normal_state` at each, which is the
+    arithmetic of the dense outputs' vectorised evaluation too (``TaylorDense.__call__``, ``StackedDOP853.__call__``),
+    element by element."""
+    delta, delta_dot = np.empty(t.size), np.empty(t.size)
+    for k in range(t.size):
+        delta[k], delta_dot[k] = normal_state(normal, t[k])
+    return delta, delta_dot
 
 
 @numba.njit(**_COMPILE)

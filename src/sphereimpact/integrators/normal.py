@@ -234,6 +234,11 @@ class _DimensionlessNormal(NormalMotion):
             if np.ndim(t) == 1 and 0 < len(t) <= SMALL:  # a few instants (t_m and t_f): each one's, as the dense output's
                 delta, delta_dot = zip(*[self.state(instant) for instant in np.asarray(t, dtype=float).tolist()])
                 return np.array(delta), np.array(delta_dot)  # own few-instant path computes it, to the bit
+            kernel = self.kernel_state() if np.ndim(t) == 1 else None
+            if kernel is not None:  # many instants (a microslip march's steps): compiled, the same values to the bit
+                from ..contact.normal_kernel import normal_states
+
+                return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
 
