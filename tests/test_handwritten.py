@@ -54,4 +54,6 @@ def test_time_split_and_profile_tables():
     profile = profile_call(Scene(angle=60.0), calls=5, top=8)
     assert len(profile) == 8 and profile.own_us.is_monotonic_decreasing
     assert (profile.share > 0).all() and profile.share.sum() <= 1.0
-    assert profile.function.str.contains("series.py").any()  # auto integrates eq. 4.2 by its series
+    # auto integrates eq. 4.2 by its series: in Python floats, or by its compiled loop in a process that has loaded it
+    # (a test before this one in the same process may have)
+    assert profile.function.str.contains(r"series\.py|taylor_kernel\.py").any()
