@@ -226,3 +226,33 @@ def test_the_march_samples_read_once_are_the_motions_own_values_to_the_bit(separ
     assert np.array_equal(load, force) and np.array_equal(step_impulse, np.diff(positive(t)))
     if separation == "penetration":
         assert len(positive.intervals) == 1 and positive.intervals[0][1] < normal.t_f  # a gap: J+ held
+
+
+@pytest.mark.parametrize("scene", [Scene(angle=_maw_angle(3.0), **ELASTIC),
+                                   Scene(angle=20.0, spin=-30.0, gravity=9.81, **ALUMINA)], ids=["sticks", "spin-and-gravity"])
+def test_the_motion_kernel_is_the_momentum_balance_on_the_marched_force(scene):
+    """``microslip_march.motion`` against numpy's element-wise arithmetic on the march's own force and impulse, to the
+    bit: v = v_t + g_t t + J_t / m, omega = spin - J_t / (alpha m R), x by the trapezoidal rule with its end correction
+    dt^2 / 12 times the change of acceleration, the friction fraction F / (mu P+) held at its nearest values where
+    the cap is 0, the stuck step ends, their switches over the interior and the first one (t_roll)."""
+    motion = simulate(scene).motion.tangential
+    t, force, j_t = motion.t, motion._force, motion._j
+    cap = scene.mu * np.maximum(motion.normal.force(t), 0.0)
+    cap[0] = cap[-1] = 0.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fraction = np.where(cap > 0, force / cap, np.nan)
+    stuck = (cap > 0) & (np.abs(fraction) < 1.0 - 1e-3)
+    inside = np.flatnonzero(np.isfinite(fraction))
+    filled = fraction.copy()
+    filled[:inside[0]], filled[inside[-1] + 1:] = fraction[inside[0]], fraction[inside[-1]]
+    v = scene.v_tangent + scene.g_tangent * t + j_t / scene.mass
+    omega = scene.spin - j_t / (scene.inertia_factor * scene.mass * scene.radius)
+    accel = force / scene.mass + scene.g_tangent
+    dt = t[1] - t[0]
+    x = np.concatenate([[0.0], np.cumsum(0.5 * dt * (v[1:] + v[:-1]) + dt * dt / 12.0 * (accel[:-1] - accel[1:]))])
+    for mine, theirs in ((motion._fraction, filled), (motion.stuck, stuck), (motion.v, v), (motion.omega, omega),
+                         (motion.x, x)):
+        assert np.array_equal(mine, theirs)
+    assert motion.switches == np.count_nonzero(np.diff(stuck[1:-1].astype(int)))
+    assert motion.t_roll == (t[np.argmax(stuck)] if stuck.any() else None)
+    assert stuck.any() == (motion.regime == "microslip")

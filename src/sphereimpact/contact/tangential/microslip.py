@@ -155,16 +155,6 @@ def march_inputs(normal, time_steps: int):
                s.slip0)
 
 
-def _fill_ends(values):
-    """``values`` with NaN at its ends replaced by the nearest finite value (0 if there is none)."""
-    finite = np.flatnonzero(np.isfinite(values))
-    if not finite.size:
-        return np.zeros_like(values)
-    out = values.copy()
-    out[:finite[0]], out[finite[-1] + 1:] = values[finite[0]], values[finite[-1]]
-    return np.where(np.isfinite(out), out, 0.0)
-
-
 def _hermite(t, nodes, values, slopes):
     """Cubic Hermite interpolation of (values, slopes) given at increasing ``nodes``, at the instants t."""
     i = np.clip(np.searchsorted(nodes, t, side="right") - 1, 0, nodes.size - 2)
@@ -199,26 +189,20 @@ class MicroslipTangential:
     """
 
     def __init__(self, normal, options):
+        from . import microslip_march
+
         self.elements, self.time_steps = resolution(normal.scene, normal, options)
         t, inputs = march_inputs(normal, self.time_steps)
         force, j_t = march(*inputs, self.elements)
-        cap = inputs[1]
         s = self.scene = normal.scene
         self.normal, self.t, self._force, self._j = normal, t, force, j_t
-        with np.errstate(invalid="ignore", divide="ignore"):
-            fraction = np.where(cap > 0, force / cap, np.nan)
-        self._fraction = _fill_ends(fraction)  # F / (mu P+): at the ends, where the cap is 0, the neighbours'
-        self.stuck = (cap > 0) & (np.abs(fraction) < 1.0 - STICK_TOLERANCE)
-        self.v = s.v_tangent + s.g_tangent * t + self._j / s.mass
-        self.omega = s.spin - self._j / (s.inertia_factor * s.mass * s.radius)
-        accel = self._force / s.mass + s.g_tangent
-        dt = t[1] - t[0]
-        self.x = np.concatenate([[0.0], np.cumsum(0.5 * dt * (self.v[1:] + self.v[:-1])
-                                                  + dt * dt / 12.0 * (accel[:-1] - accel[1:]))])
-        flips = np.flatnonzero(np.diff(self.stuck[1:-1].astype(np.int8)))  # the ends have no contact
-        self.t_roll = float(t[np.argmax(self.stuck)]) if self.stuck.any() else None
-        self.regime = MICROSLIP if self.stuck.any() else SLIDING
-        self.switches = int(flips.size)
+        # F / (mu P+) (at the ends, where the cap is 0, the neighbours'), where part sticks, v, omega and x
+        self._fraction, self.stuck, self.v, self.omega, self.x, switches, first_stuck = microslip_march.motion(
+            t, force, j_t, inputs[1], *(float(q) for q in (s.v_tangent, s.g_tangent, s.mass, s.spin,
+                                                            s.inertia_factor * s.mass * s.radius)), 1.0 - STICK_TOLERANCE)
+        self.t_roll = float(t[first_stuck]) if first_stuck >= 0 else None
+        self.regime = MICROSLIP if first_stuck >= 0 else SLIDING
+        self.switches = int(switches)
 
     def at(self, t):
         """Tangential centre velocity v_t [m/s], spin omega [rad/s] and displacement x_t [m] at t [s]

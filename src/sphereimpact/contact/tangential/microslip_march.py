@@ -1,13 +1,13 @@
 """The microslip contact's compiled kernel: the element row of the method of dimensionality reduction, marched.
 
 One implementation of the row's step (:func:`row_weights`, :func:`hold`) serves the march with inertia
-(:func:`march`) and the quasi-static drive (:func:`quasi_static`); the physics and the discretisation are
-described in :mod:`.microslip`.  The functions are compiled by numba (the JIT compiler of numerical Python: the
-march is a loop over time steps and cells that numpy can vectorise only within a step, where one step's numpy
-calls cost more than the step's arithmetic) and cached on disk: by numba's default in the ``__pycache__`` folder
-beside this file, or in ``NUMBA_CACHE_DIR`` when it is set.  A fresh machine compiles them once, on first use
-(``results/bench.csv`` times it); numba is imported only then, so a command that never marches a microslip contact
-does not pay for it.
+(:func:`march`, then the ball's motion from it, :func:`motion`) and the quasi-static drive (:func:`quasi_static`);
+the physics and the discretisation are described in :mod:`.microslip`.  The functions are compiled by numba (the JIT
+compiler of numerical Python: the march is a loop over time steps and cells that numpy can vectorise only within a
+step, where one step's numpy calls cost more than the step's arithmetic) and cached on disk: by numba's default in
+the ``__pycache__`` folder beside this file, or in ``NUMBA_CACHE_DIR`` when it is set.  A fresh machine compiles them
+once, on first use (``results/bench.csv`` times it); numba is imported only then, so a command that never marches a
+microslip contact does not pay for it.
 """
 
 from __future__ import annotations
@@ -156,6 +156,75 @@ def march(xi_a, cap, impulse, dt, stiffness, inverse_mass, g_t, slip0, held):
 
 
 @numba.njit(**_COMPILE)
+def motion(t, force, j_t, cap, v_t, g_t, mass, spin, spin_arm, stick_below):
+    """The ball's tangential motion from a march (:func:`march`'s force and impulse at the step ends t [s]), written
+    into arrays allocated once, in the order of numpy's element-wise and running-sum arithmetic (so the same bits).
+
+    Parameters
+    ----------
+    t, force, j_t, cap : arrays (M + 1,)
+        Step ends [s], the tangential force [N], its impulse since the start [N s] and the cap mu P+ [N] there.
+    v_t, g_t, mass, spin : float
+        Incoming tangential velocity [m/s], gravity along the flat [m/s^2], mass [kg], incoming spin [rad/s].
+    spin_arm : float
+        alpha m R, the impulse per change of spin [kg m].
+    stick_below : float
+        A step end sticks where |F| / (mu P+) is below it (1 - the stick tolerance).
+
+    Returns
+    -------
+    fraction : array (M + 1,)
+        F / (mu P+), at the contact's ends (cap 0) the nearest value where it is defined (0 if none is).
+    stuck : bool array (M + 1,)
+        Whether part of the contact sticks.
+    v, omega, x : arrays (M + 1,)
+        Centre velocity [m/s], spin [rad/s] and displacement [m] along the flat: x by the trapezoidal rule with
+        its end correction, dt^2 / 12 times the change of acceleration.
+    switches : int
+        Changes between sliding and sticking over the interior step ends.
+    first_stuck : int
+        Index of the first step end that sticks, -1 if none does.
+    """
+    points = t.size
+    fraction, stuck = np.empty(points), np.empty(points, dtype=np.bool_)
+    v, omega, x, accel = np.empty(points), np.empty(points), np.empty(points), np.empty(points)
+    first_finite, last_finite, first_stuck = -1, -1, -1
+    for k in range(points):
+        ratio = force[k] / cap[k] if cap[k] > 0.0 else np.nan
+        fraction[k] = ratio
+        if math.isfinite(ratio):
+            last_finite = k
+            if first_finite < 0:
+                first_finite = k
+        stuck[k] = cap[k] > 0.0 and abs(ratio) < stick_below
+        if stuck[k] and first_stuck < 0:
+            first_stuck = k
+        v[k] = v_t + g_t * t[k] + j_t[k] / mass
+        omega[k] = spin - j_t[k] / spin_arm
+        accel[k] = force[k] / mass + g_t
+    for k in range(points):  # the ends, where the cap is 0: the nearest defined fraction
+        if first_finite < 0:
+            fraction[k] = 0.0
+        elif k < first_finite:
+            fraction[k] = fraction[first_finite]
+        elif k > last_finite:
+            fraction[k] = fraction[last_finite]
+        elif not math.isfinite(fraction[k]):
+            fraction[k] = 0.0
+    dt = t[1] - t[0]
+    half_dt, end_term = 0.5 * dt, dt * dt / 12.0
+    x[0] = 0.0
+    for k in range(points - 1):
+        piece = half_dt * (v[k + 1] + v[k]) + end_term * (accel[k] - accel[k + 1])
+        x[k + 1] = piece if k == 0 else x[k] + piece
+    switches = 0
+    for k in range(1, points - 2):  # the ends have no contact
+        if stuck[k + 1] != stuck[k]:
+            switches += 1
+    return fraction, stuck, v, omega, x, switches, first_stuck
+
+
+@numba.njit(**_COMPILE)
 def quasi_static(xi_a, cap, displacement, stiffness, elements):
     """The tangential force of the contact under a prescribed history, without inertia.
 
@@ -187,5 +256,6 @@ def compile_all() -> None:
     """Compile every kernel of this module (or load them from the disk cache), on small inputs of the types the
     contact passes: what a fresh process pays once, before its first microslip impact (``results/bench.csv``)."""
     xi_a, cap = np.array([0.0, 0.5, 0.0]), np.array([0.0, 1.0, 0.0])
-    march(xi_a, cap, np.array([1e-6, 1e-6]), 1e-6, 1.0, 1.0, 0.0, 0.1, np.zeros(8))
+    force, j_t = march(xi_a, cap, np.array([1e-6, 1e-6]), 1e-6, 1.0, 1.0, 0.0, 0.1, np.zeros(8))
+    motion(np.array([0.0, 1e-6, 2e-6]), force, j_t, cap, 1.0, 0.0, 1.0, 0.0, 1.0, 0.999)
     quasi_static(xi_a, cap, np.zeros(3), 1.0, 8)
