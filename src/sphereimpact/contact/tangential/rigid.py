@@ -21,6 +21,7 @@ the ball slips again when mu P+ falls below that.
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, replace
 
@@ -397,9 +398,10 @@ class TangentialMotion:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         if t.size > SMALL:
             return by_phase(self.phases, t, self._evaluate, (3,))
-        out = np.empty((3, t.size))
-        for j, (instant, which) in enumerate(zip(t.tolist(), phase_index(self.phases, t).tolist())):
-            out[:, j] = self._evaluate(self.phases[which], instant)  # a few instants: plain floats, same values
+        out, starts = np.empty((3, t.size)), [p.t0 for p in self.phases]
+        for j, instant in enumerate(t.tolist()):  # a few instants: plain floats, the same phases and values
+            which = min(max(bisect.bisect_right(starts, instant) - 1, 0), len(starts) - 1)  # phase_index's
+            out[:, j] = self._evaluate(self.phases[which], instant)
         return out
 
     def force(self, t):
