@@ -75,7 +75,7 @@ def shared_normal_motion(scene: Scene, options: SolverOptions) -> NormalMotion:
     return motion if motion.scene is scene else motion.for_scene(scene)
 
 
-#: ``SolverOptions()``, made once: the options are frozen, and checking them again costs as much as a Taylor step loop.
+#: ``SolverOptions()``, made and checked once: options are frozen, so a call given none shares these.
 DEFAULT_OPTIONS = SolverOptions()
 
 

@@ -52,7 +52,7 @@ def resolve_method(scene, options):
 @lru_cache(maxsize=64)
 def with_method(options, name: str):
     """``options`` with ``method`` set to ``name``: SolverOptions are frozen and hashable, so the few a process uses are
-    made and checked once (the check costs as much as a Taylor step loop)."""
+    made and checked once, not on every impact."""
     return replace(options, method=name)
 
 

@@ -231,9 +231,10 @@ class _DimensionlessNormal(NormalMotion):
                     x, y = self._sol.single(t * self._w)
                     known[t] = (x * self._d_scale, y * self._v)
                 return known[t]
-            if np.ndim(t) == 1 and 0 < len(t) <= SMALL:  # a few instants (t_m and t_f): each one's, as the dense output's
+            # a few instants (t_m and t_f): each one's kept state, what the dense output's few-instant path computes
+            if np.ndim(t) == 1 and 0 < len(t) <= SMALL:
                 delta, delta_dot = zip(*[self.state(instant) for instant in np.asarray(t, dtype=float).tolist()])
-                return np.array(delta), np.array(delta_dot)  # own few-instant path computes it, to the bit
+                return np.array(delta), np.array(delta_dot)
             kernel = self.kernel_state() if np.ndim(t) == 1 else None
             if kernel is not None:  # many instants (a microslip march's steps): compiled, the same values to the bit
                 from ..contact.normal_kernel import normal_states
