@@ -82,11 +82,15 @@ def separation_function(scene: Scene):
 
 
 def scalar_separation_function(scene: Scene):
-    """:func:`separation_function` for Python floats, by the law's scalar formula (``ContactLaw.scalar``)."""
+    """:func:`separation_function` for one state in Python floats: by the law's scalar formula (``ContactLaw.scalar``,
+    on the reduced sphere as ``Scene.stage_force`` takes it) where it declares one, else :func:`separation_function`
+    itself."""
+    if scene.law.scalar is None:
+        return separation_function(scene)
     if scene.separation.pulls:
         return lambda delta, delta_dot: delta
-    law = scene.law.scalar
-    return lambda delta, delta_dot: law(delta, delta_dot, scene) if delta > 0 else -1.0
+    law, reduced = scene.law.scalar, scene.reduced
+    return lambda delta, delta_dot: law(delta, delta_dot, reduced) if delta > 0 else -1.0
 
 
 def _step_end(dense) -> float:
@@ -314,7 +318,7 @@ class _Run:
         if integrator.floats and scalar is None:  # the same algorithm in numpy
             integrator = INTEGRATORS.named(integrator.ivp)
         self.method, self.stepper, self.multistep = integrator.name, integrator.stepper, integrator.multistep
-        sep = scalar_separation_function(scene) if scalar is not None else separation_function(scene)
+        sep = scalar_separation_function(scene)
         rhs = _RightHandSide(scene, d_scale, v, p_scale, gamma, law, scalar)
 
         def force(z):  # the law, continued past separation, at a dimensionless state [N]
@@ -527,7 +531,7 @@ class TaylorNormal(_DimensionlessNormal):
         self.scene = scene
         w, v = scene.frequency, scene.v_normal
         d_scale, gamma = v / w, scene.g_normal / (w * v)
-        sep = scalar_separation_function(scene) if law.scalar is not None else separation_function(scene)
+        sep = scalar_separation_function(scene)
 
         def separation(x, y):
             return float(sep(x * d_scale, y * v))

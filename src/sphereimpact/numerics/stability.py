@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 
 from ..errors import BeyondRadiusWarning, ImpactError
 from ..integrators import INTEGRATORS
-from ..integrators.normal import scalar_separation_function, separation_function
+from ..integrators.normal import scalar_separation_function
 from ..impact.scene import Scene, SolverOptions
 from ..integrators import ivp_method
 from ..impact.solve import simulate
@@ -100,8 +100,8 @@ def _budgeted(rhs):
 
 def _separation_event(scene: Scene):
     """Terminal solve_ivp event ending contact under the scene's criterion, on an SI state (delta, delta_dot, ...): in
-    Python floats where the law has its scalar formula (as ``ContactLaw.in_floats``)."""
-    sep = separation_function(scene) if scene.law.scalar is None else scalar_separation_function(scene.reduced)
+    Python floats where the law has its scalar formula (``integrators.normal.scalar_separation_function``)."""
+    sep = scalar_separation_function(scene)
 
     def separation(t, z):
         return float(sep(float(z[0]), float(z[1])))
