@@ -2,7 +2,7 @@
 consistency test's domain: the normal force's extremes (:mod:`sphereimpact.contact.normal_kernel`) on every law, and
 the compliant springs' stick phase (:mod:`sphereimpact.contact.tangential.stick_kernel`: the same steps, events and
 dense output; every spring, with and without the dashpot) and the rigid contact's grip
-(:mod:`sphereimpact.contact.tangential.rigid_kernel`), on Taylor and DOP853 normal motions."""
+(:mod:`sphereimpact.contact.tangential.rigid_kernel`), on Taylor and DOP853 normal motions and the closed form's."""
 
 import warnings
 
@@ -11,28 +11,37 @@ import pytest
 
 from sphereimpact import SolverOptions, simulate
 from sphereimpact.errors import BeyondRadiusWarning, EnergyGainWarning
-from sphereimpact.integrators import normal as normal_module
+from sphereimpact.integrators import closed_form as closed_module, normal as normal_module
 from sphereimpact.integrators.compiled import load_compiled
 from sphereimpact.numerics.consistency import random_scenes
 from sphereimpact.sweep.scenes import scene_of, scene_table
 
 
-def _scenes(n: int, seed: int, tangentials=("linear", "mindlin", "mindlin-displacement")) -> list:
-    """The first ``n`` scenes with one of ``tangentials`` among the consistency test's random scenes of ``seed``."""
+def _scenes(n: int, seed: int, tangentials=("linear", "mindlin", "mindlin-displacement"), models=None,
+            draws: int | None = None) -> list:
+    """The first ``n`` scenes with one of ``tangentials`` (and of ``models``, if given) among the consistency test's
+    ``draws`` (40 n) random scenes of ``seed``."""
     scenes = []
-    for row in scene_table(random_scenes(40 * n, seed=seed)).to_dict("records"):
-        if row["tangential"] in tangentials:
+    for row in scene_table(random_scenes(draws or 40 * n, seed=seed)).to_dict("records"):
+        if row["tangential"] in tangentials and (models is None or row["model"] in models):
             scenes.append(scene_of(row))
         if len(scenes) == n:
             return scenes
     raise AssertionError("too few compliant scenes drawn")
 
 
+def _in_python_floats(monkeypatch) -> None:
+    """Normal motions without a compiled form (``kernel_state`` None: the dense outputs' and the closed form's), so
+    that the contact's kernels compute in Python floats, as in a process that has not loaded the compiled code."""
+    for motion in (normal_module._DimensionlessNormal, closed_module.ClosedFormNormal):
+        monkeypatch.setattr(motion, "kernel_state", lambda self: None)
+
+
 def _solve(scenes, options, compiled: bool, monkeypatch) -> list:
     """Each scene simulated, its stick phases compiled or (``compiled`` False) in Python floats; refused ones None."""
     load_compiled()  # the normal motions expose their compiled form only in a process that integrates compiled
     if not compiled:
-        monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+        _in_python_floats(monkeypatch)
     outcomes = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BeyondRadiusWarning)
@@ -69,8 +78,11 @@ def _solved_pairs(scenes, method: str, monkeypatch) -> list:
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
 def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypatch):
-    sticks = kinds = 0
-    for scene, a, b in _solved_pairs(_scenes(70, seed=11), method, monkeypatch):
+    sticks = kinds = closed = 0
+    # the consistency test's compliant scenes, and eq. 4.1's law (its motion the closed form's under ``auto``)
+    scenes = _scenes(70, seed=11) + _scenes(20, seed=18, tangentials=("linear",), models=("kelvin-voigt",),
+                                                 draws=4000)
+    for scene, a, b in _solved_pairs(scenes, method, monkeypatch):
         if a.motion.tangential is None:
             continue
         for pa, pb in zip(a.motion.tangential.phases, b.motion.tangential.phases, strict=True):
@@ -81,7 +93,9 @@ def test_the_compiled_stick_phase_is_the_python_run_to_the_bit(method, monkeypat
                 assert np.array_equal(pa.solution.ts, pb.solution.ts)
                 assert np.array_equal(pa.solution.f, pb.solution.f)
         kinds += b.motion.normal.kernel_state() is not None
+        closed += b.method == "closed" and b.motion.normal.kernel_state() is not None
     assert sticks >= 30 and kinds >= 30  # the compiled path was taken, on many stick phases
+    assert closed >= (15 if method == "auto" else 0), closed  # and on the closed form's motions
 
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
@@ -98,7 +112,8 @@ def test_the_compiled_force_extremes_are_the_python_ones_to_the_bit(method, monk
 def test_the_compiled_states_at_many_instants_are_the_dense_outputs_to_the_bit(method, monkeypatch):
     """``normal_kernel.normal_states`` (a normal motion read at many instants: a microslip march's steps, a history)
     against the dense output's vectorised evaluation, on random scenes of every law (Taylor series under ``auto``
-    where the law has one, DOP853's interpolants otherwise), at uniform instants, the grid and past t_f."""
+    where the law has one, the closed form where it has one, DOP853's interpolants otherwise), at uniform instants,
+    the grid and past t_f."""
     taken, kinds = 0, set()
     for scene, _, b in _solved_pairs(_scenes(60, seed=14, tangentials=("rigid", "microslip")), method, monkeypatch):
         normal = b.motion.normal
@@ -107,12 +122,12 @@ def test_the_compiled_states_at_many_instants_are_the_dense_outputs_to_the_bit(m
             continue
         t = np.concatenate([np.linspace(0.0, 1.2 * normal.t_f, 1001), normal.grid])
         compiled = normal.state(t)
-        monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+        _in_python_floats(monkeypatch)
         python = normal.state(t)
         monkeypatch.undo()
         assert np.array_equal(compiled[0], python[0]) and np.array_equal(compiled[1], python[1]), scene
         taken, kinds = taken + 1, kinds | {state.kind}
-    assert taken >= 40 and len(kinds) == (2 if method == "auto" else 1), (taken, kinds)
+    assert taken >= 40 and len(kinds) == (3 if method == "auto" else 1), (taken, kinds)
 
 
 @pytest.mark.parametrize("method", ["auto", "DOP853-scalar"])
@@ -156,7 +171,7 @@ def test_the_compiled_grip_instants_are_the_python_ones_to_the_bit(method, monke
             levels = np.concatenate([rng.uniform(0.0, top, 6), [0.0, top, 1.1 * top, 1e-9 * top]])
             served += impulse.kernel_terms() is not None
             compiled = impulse.instants(levels)
-            monkeypatch.setattr(normal_module._DimensionlessNormal, "kernel_state", lambda self: None)
+            _in_python_floats(monkeypatch)
             python = PositiveImpulse(normal).instants(levels)
             monkeypatch.undo()
             assert compiled.tolist() == python.tolist(), scene

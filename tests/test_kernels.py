@@ -142,8 +142,9 @@ def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_py
 def test_a_process_loads_the_compiled_stick_phase_once_its_python_stick_phases_have_spent_as_much(monkeypatch):
     """A compliant tangential contact's stick phases run in Python floats count their evaluations towards the
     rule for loading the compiled code, as the normal integrators' do (a job of many stick phases and few normal
-    motions, the compliance map, never loaded it); once over, the stick phase runs compiled, to the same bits.  A
-    closed-form motion, which has no compiled form, counts none."""
+    motions, the compliance map, never loaded it); once over, the stick phase runs compiled, to the same bits.  So
+    do eq. 4.1's closed form's, whose weightless motion has a compiled form; with gravity it has none and counts
+    none."""
     from sphereimpact.contact.tangential import stick_kernel
 
     calls = []
@@ -163,9 +164,10 @@ def test_a_process_loads_the_compiled_stick_phase_once_its_python_stick_phases_h
     again = simulate(scene)
     assert calls and again.to_dict() | {"wall_time": 0} == first.to_dict() | {"wall_time": 0}
     monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**9)
-    monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
-    simulate(scene.with_(model="kelvin-voigt"))
-    assert compiled_rule._spent_in_floats == 0
+    for gravity, counts in ((0.0, True), (9.80665, False)):
+        monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
+        simulate(scene.with_(model="kelvin-voigt", gravity=gravity))
+        assert (compiled_rule._spent_in_floats > 0) == counts, gravity
 
 
 def test_across_the_domain_the_compiled_answer_is_the_python_floats_one_to_the_bit(monkeypatch):

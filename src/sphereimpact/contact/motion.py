@@ -31,7 +31,8 @@ class KernelState:
         ``ode.dense.TAYLOR`` (a Taylor method's series: ``knots`` the steps' ends, ``starts`` their starts, ``cx``
         and ``cy`` their coefficients) or ``ode.dense.DOP853`` (``knots`` the step boundaries, ``starts`` and
         ``sizes`` the steps' starts and sizes, ``f`` their interpolants' rows in reverse order, ``y_old`` their start
-        states); the arrays a kind does not use are empty.
+        states), or a law's closed form (its ``kernel_kind``, e.g. ``spring_damper.KERNEL_KIND``: ``knots`` the
+        constants its motion is evaluated from, w, d_scale and v 1); the arrays a kind does not use are empty.
     w, d_scale, v : float
         The dimensionless time's rate [1/s] and the state's scales [m], [m/s].
     force, params

@@ -1,8 +1,9 @@
 """A solved normal motion read in compiled code: its state at an instant, and its force's extremes.
 
-A normal motion hands compiled code its dense output as arrays (:class:`~.motion.KernelState`); :func:`normal_state`
-evaluates them with the arithmetic of the Python evaluator (``TaylorDense.single``, ``StackedDOP853.single``) and
-the kernels of the contact layer build on it (:mod:`.tangential.stick_kernel`, :mod:`.tangential.rigid_kernel`).
+A normal motion hands compiled code its dense output (or its closed form's constants) as arrays
+(:class:`~.motion.KernelState`); :func:`normal_state` evaluates them with the arithmetic of the Python evaluator
+(``TaylorDense.single``, ``StackedDOP853.single``, ``spring_damper_state``) and the kernels of the contact layer
+build on it (:mod:`.tangential.stick_kernel`, :mod:`.tangential.rigid_kernel`).
 :func:`normal_states` is that state at many instants.  :func:`force_extremes` and :func:`force_roots` are
 :meth:`.motion.NormalMotion.force_extremes` and :meth:`~.motion.NormalMotion.force_roots` compiled: the force sampled
 on the motion's grid by the law's compiled kernel and refined by the very functions the Python path runs
@@ -21,6 +22,7 @@ from ..ode.events import NOT_FINITE, minimise, refine_root, refined_minimum, roo
 from ..ode.roots import bracketed_root
 from ..ode.series import horner
 from .laws.kernels import SIGNATURE
+from .laws.spring_damper import KERNEL_KIND as SPRING_DAMPER, spring_damper_state
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64
@@ -30,6 +32,7 @@ NORMAL = types.Tuple((_I, ARRAY, ARRAY, ARRAY, MATRIX, MATRIX, CUBE, MATRIX, _F,
 
 _horner = numba.njit(**_COMPILE)(horner)
 _interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+_spring_damper_state = numba.njit(**_COMPILE)(spring_damper_state)
 _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
 #: The event search's plain code compiled (``ode.events.roots_at``, ``refine_root``, ``ode.roots.bracketed_root``),
@@ -44,6 +47,8 @@ def normal_state(normal, t):
     """(delta [m], delta_dot [m/s]) at t [s]: the normal motion's ``state`` at one instant (its dense output's
     ``single``, then scaled).  ``normal``: :meth:`~.motion.KernelState.arrays`."""
     kind, knots, starts, sizes, cx, cy, f, y_old, w, d_scale, v = normal
+    if kind == SPRING_DAMPER:  # eq. 4.1's exact motion (SpringDamperMotion.state): knots are its constants
+        return _spring_damper_state(knots, t)
     tau = t * w
     if kind == TAYLOR:  # TaylorDense.single: knots are the steps' ends
         i = min(np.searchsorted(knots, tau), starts.size - 1)

@@ -16,7 +16,8 @@ import numpy as np
 from ..errors import ImpactError
 from ..ode.events import first_root
 from ..contact.laws import LAWS
-from ..contact.motion import NormalMotion
+from ..contact.motion import KernelState, NormalMotion
+from ..ode.dense import SMALL
 from .normal import no_separation_message, separation_function
 
 if TYPE_CHECKING:
@@ -76,5 +77,46 @@ class ClosedFormNormal(NormalMotion):
         self.t_m, self.t_f = t_m, t_f
         self.grid = np.append(scan[scan < t_f], t_f)
 
+    def _has_kernel_state(self) -> bool:
+        """Whether compiled code can read this motion: its closed form declares a compiled kind and the motion is read
+        instant by instant (``per_instant``), and its law has a kernel and the scalar formula the kernel compiles."""
+        law = self.scene.law
+        return (law.closed_form.kernel_kind is not None and self.solution.per_instant and law.kernel is not None
+                and law.scalar is not None)
+
+    def kernel_state(self):
+        if not self._has_kernel_state():
+            return None
+        from . import compiled as rule
+
+        return self.kept("kernel state", self._kernel_state) if rule.compiled_now() else None
+
+    def _kernel_state(self) -> KernelState:
+        """The closed form's constants as its compiled kind reads them, with the law's checked kernel."""
+        from .compiled import checked_kernel
+
+        scene, none = self.scene, np.empty(0)
+        v = scene.v_normal
+        return KernelState(scene.law.closed_form.kernel_kind, np.array(self.solution.constants, dtype=float), none,
+                           none, np.empty((0, 0)), np.empty((0, 0)), np.empty((0, 7, 2)), np.empty((0, 2)), 1.0, 1.0,
+                           1.0, checked_kernel(scene, (v / scene.frequency, v)),
+                           np.array(scene.law.kernel.parameters(scene), dtype=float))
+
+    def spend_in_floats(self, evaluations: int) -> None:
+        if self._has_kernel_state():
+            from . import compiled as rule
+
+            rule.spend_in_floats(evaluations)
+
     def state(self, t):
+        """The closed form's state (:meth:`SpringDamperMotion.state`, instant by instant in plain floats); at many
+        instants compiled (:func:`~sphereimpact.contact.normal_kernel.normal_states`, the same values to the bit) where
+        :meth:`kernel_state` has the motion, else counted towards loading the compiled code."""
+        if np.ndim(t) == 1 and len(t) > SMALL:
+            kernel = self.kernel_state()
+            if kernel is not None:
+                from ..contact.normal_kernel import normal_states
+
+                return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
+            self.spend_in_floats(len(t))
         return self.solution.state(t)

@@ -20,8 +20,8 @@ class ClosedForm:
         What it solves, for messages (``linear spring-damper``).
     motion : callable
         ``motion(scene)``: one scene's exact motion in SI units, with ``weightless``, ``scan_end`` [s],
-        ``state(t) -> (delta [m], delta_dot [m/s])`` and, when weightless, ``events() -> (t_m, t_f or None)``
-        [s] (see :class:`SpringDamperMotion`).
+        ``state(t) -> (delta [m], delta_dot [m/s])``, when weightless ``events() -> (t_m, t_f or None)`` [s], and
+        with a ``kernel_kind`` its ``constants`` and ``per_instant`` (see :class:`SpringDamperMotion`).
     events : callable
         ``events(numbers, separation) -> dict`` of the weightless motion's dimensionless outputs
         (:data:`sphereimpact.sweep.outputs.NORMAL_OUTPUTS`), vectorised over the arrays of ``numbers``.
@@ -32,6 +32,11 @@ class ClosedForm:
         (arrays broadcasting with ``numbers``) and its force with two rates, from which :meth:`extremes` and
         :meth:`grip_instants` follow.  None: the sweep's closed path gives the normal events only (rows that
         need the force's extremes or a grip instant take another path).
+    kernel_kind : int or None
+        The kind of compiled normal motion (:class:`~sphereimpact.contact.motion.KernelState`) that evaluates this
+        closed form's motion from its ``constants`` with the arithmetic of its ``state``, where the motion says so
+        (``per_instant``; :data:`sphereimpact.contact.laws.spring_damper.KERNEL_KIND`).  None: compiled code does
+        not read it (the contact's kernels then compute in Python, the same answer).
     """
 
     name: str
@@ -39,6 +44,7 @@ class ClosedForm:
     events: object
     reads: tuple
     jet: object = None
+    kernel_kind: int | None = None
 
     def extremes(self, numbers: dict, tau_f) -> dict:
         """``p_max`` and ``p_min``, the extremes of P_hat over [0, tau_f] of the weightless motion: at its ends

@@ -11,12 +11,14 @@ E = exp(-sigma t), C = cos(omega_d t), S = sin(omega_d t) / omega_d (= t at zeta
 and for zeta > 1 (q = omega_n sqrt(zeta^2 - 1), r1 = -omega_n / (zeta + sqrt(zeta^2 - 1)) the slow
 root), E = exp(r1 t), C = (1 + exp(-2 q t)) / 2, S = -expm1(-2 q t) / (2 q).  These forms never subtract
 nearly equal numbers (x'(t) over-damped is written with C - sigma S = (r1 - r2 exp(-2 q t)) / (2 q), see
-:meth:`SpringDamperMotion._basis`), so they are accurate to a few ulp in every regime, including zeta -> 1
+:func:`spring_damper_state`), so they are accurate to a few ulp in every regime, including zeta -> 1
 from either side and zeta in the thousands.
 
 Two forms of the one solution live here: :class:`SpringDamperMotion`, one scene in SI units (the ``closed``
-integrator wraps it, :mod:`sphereimpact.integrators.closed_form`), and :func:`events`, the weightless
-motion's dimensionless events for many damping ratios at once (the sweep's ``closed`` path).
+integrator wraps it, :mod:`sphereimpact.integrators.closed_form`; compiled code reads it through
+:func:`spring_damper_state`, the kind :data:`KERNEL_KIND` of :mod:`sphereimpact.contact.normal_kernel`), and
+:func:`events`, the weightless motion's dimensionless events for many damping ratios at once (the sweep's ``closed``
+path).
 """
 
 from __future__ import annotations
@@ -29,6 +31,10 @@ from ...errors import ImpactError
 from ...ode.dense import is_instant
 from ..separation import Separation
 from .closed_form import ClosedForm
+
+#: The kind of compiled normal motion (``KernelState.kind``, beside ``ode.dense.TAYLOR`` and ``DOP853``) that is this
+#: closed form: :func:`spring_damper_state` of :attr:`SpringDamperMotion.constants`.
+KERNEL_KIND = 2
 
 
 class SpringDamperMotion:
@@ -44,6 +50,11 @@ class SpringDamperMotion:
     ----------
     weightless : bool
         No gravity along the normal: :meth:`events` gives t_m and t_f as formulas.
+    constants : tuple of float
+        What :func:`spring_damper_state` reads.
+    per_instant : bool
+        Every read is :func:`spring_damper_state` instant by instant (weightless), so compiled code may read the
+        motion from ``constants``.
     scan_end : float
         [s] A time past any separation of a contact that ends, for root searches with gravity.
 
@@ -72,6 +83,12 @@ class SpringDamperMotion:
                 raise ImpactError(f"the over-damped contact's slow rate omega_n / (2 zeta) underflows double "
                                   f"precision (zeta = {zeta:.3g}): outside what the model computes")
             self.scan_end = 60.0 / -self._slow
+        #: What :func:`spring_damper_state` reads: the regime, sigma, omega_d or q, omega_n^2, x0, v0, offset, r1.
+        self.constants = (1.0 if self._under else 0.0, self._sigma, self._freq, self._w2, self._x0, self._v0,
+                          self._offset, self._slow if not self._under else 0.0)
+        #: Every read of the motion is :func:`spring_damper_state` instant by instant, so compiled code reading it
+        #: from :attr:`constants` gives the same bits (the weightless motion's; see :meth:`state`).
+        self.per_instant = self.weightless
 
     def events(self) -> tuple[float, float | None]:
         """t_m and t_f [s] in closed form, for a contact without gravity (x0 = 0); t_f None when the
@@ -99,10 +116,28 @@ class SpringDamperMotion:
         t_m = 1.0 / w if root == 0.0 else math.acosh(zeta) / (w * root)
         return t_m, None if s.separation.pulls else 2.0 * t_m
 
+    def state(self, t):
+        """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]: :func:`spring_damper_state` at each
+        instant, in plain floats, so that an instant read alone or among many has the same bits (compiled code
+        evaluates the very function: :attr:`per_instant`).  With gravity, whose events are roots on a scan of
+        thousands of instants, many instants at once are numpy's (:meth:`_basis`: the same formulas, a few ulp
+        apart, three times faster there than instant by instant)."""
+        if is_instant(t):
+            return spring_damper_state(self.constants, float(t))
+        t = np.asarray(t, dtype=float)
+        if not self.per_instant:
+            e, c, s, damped = self._basis(t)
+            x0, v0 = self._x0, self._v0
+            x = e * (x0 * c + (v0 + self._sigma * x0) * s)
+            xd = e * (v0 * damped - self._w2 * x0 * s)
+            return x + self._offset, xd
+        if not t.size:
+            return np.empty(t.shape), np.empty(t.shape)
+        delta, delta_dot = zip(*[spring_damper_state(self.constants, instant) for instant in t.ravel().tolist()])
+        return np.array(delta).reshape(t.shape), np.array(delta_dot).reshape(t.shape)
+
     def _basis(self, t):
-        """(E, C, S, C - sigma S) at t: under-damped directly; over-damped with D = exp(-2 q t), C - sigma S =
-        (r1 - r2 D) / (2 q), r2 = -(sigma + q): 1 - sigma / q = r1 / q is computed as r1 itself, where the
-        direct form subtracts nearly equal numbers (at zeta = 5361 it would lose 9 digits of delta_dot)."""
+        """(E, C, S, C - sigma S) at the instants t [s] (an array), numpy's (see :func:`spring_damper_state`)."""
         if self._under:
             e, c, s = np.exp(-self._sigma * t), np.cos(self._freq * t), t * np.sinc(self._freq * t / math.pi)
             return e, c, s, c - self._sigma * s
@@ -111,20 +146,31 @@ class SpringDamperMotion:
         return (np.exp(self._slow * t), 0.5 * (1.0 + d), -np.expm1(-q2t) / (2.0 * q),
                 (self._slow + (self._sigma + q) * d) / (2.0 * q))
 
-    def state(self, t):
-        """Compression delta [m] and its rate delta_dot [m/s] at time(s) t [s]."""
-        if self._under and is_instant(t):  # one instant (root and extremum searches): plain floats
-            t = float(t)
-            e, c = math.exp(-self._sigma * t), math.cos(self._freq * t)
-            s = math.sin(self._freq * t) / self._freq if self._freq * t != 0.0 else t
-            damped = c - self._sigma * s
-        else:
-            t = np.asarray(t, dtype=float)
-            e, c, s, damped = self._basis(t)
-        x0, v0 = self._x0, self._v0
-        x = e * (x0 * c + (v0 + self._sigma * x0) * s)
-        xd = e * (v0 * damped - self._w2 * x0 * s)
-        return x + self._offset, xd
+
+def spring_damper_state(constants, t: float) -> tuple[float, float]:
+    """(delta [m], delta_dot [m/s]) of eq. 4.1's exact motion at one instant t [s], in plain floats, from
+    :attr:`SpringDamperMotion.constants` (regime: 1 under- or critically damped, 0 over-damped; sigma [1/s];
+    omega_d or q [1/s]; omega_n^2 [1/s^2]; x0 [m]; v0 [m/s]; the static offset [m]; r1 [1/s]).  Plain arithmetic
+    and :mod:`math`, so that numba compiles this very function for the compiled reads of the motion.
+
+    Under-damped: E = exp(-sigma t), C = cos(omega_d t), S = sin(omega_d t) / omega_d (t at omega_d t = 0).
+    Over-damped, with D = exp(-2 q t): E = exp(r1 t), C = (1 + D) / 2, S = -expm1(-2 q t) / (2 q) (exact as q t ->
+    0), and C - sigma S = (r1 + (sigma + q) D) / (2 q): 1 - sigma / q is computed as r1 itself, where the direct
+    form subtracts nearly equal numbers (at zeta = 5361 it would lose 9 digits of delta_dot)."""
+    under, sigma, freq, w2 = constants[0], constants[1], constants[2], constants[3]
+    x0, v0, offset, slow = constants[4], constants[5], constants[6], constants[7]
+    if under != 0.0:
+        e, c = math.exp(-sigma * t), math.cos(freq * t)
+        s = math.sin(freq * t) / freq if freq * t != 0.0 else t
+        damped = c - sigma * s
+    else:
+        q2t = 2.0 * freq * t
+        d = math.exp(-q2t)
+        e, c, s = math.exp(slow * t), 0.5 * (1.0 + d), -math.expm1(-q2t) / (2.0 * freq)
+        damped = (slow + (sigma + freq) * d) / (2.0 * freq)
+    x = e * (x0 * c + (v0 + sigma * x0) * s)
+    xd = e * (v0 * damped - w2 * x0 * s)
+    return x + offset, xd
 
 
 def _state(zeta, tau):
@@ -191,4 +237,5 @@ def events(zeta, separation: Separation) -> dict:
 
 #: Eq. 4.1's closed form (the kelvin-voigt law's): the linear ODE with the family's zeta.
 SPRING_DAMPER = ClosedForm("linear spring-damper", SpringDamperMotion,
-                           lambda numbers, separation: events(numbers["zeta"], separation), ("zeta",), jet)
+                           lambda numbers, separation: events(numbers["zeta"], separation), ("zeta",), jet,
+                           kernel_kind=KERNEL_KIND)
