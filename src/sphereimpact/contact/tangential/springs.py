@@ -328,8 +328,8 @@ class CompliantTangential:
     def _compiled_stick(self, slip0: float, t0: float, span, z0, max_step: float, events):
         """A stick phase's DOP853 run compiled (:func:`.stick_kernel.stick`): the Python run's steps, events and dense
         output to the bit.  None where the normal motion has no compiled form (a process that integrates in Python
-        floats, a closed form, a scipy method) or an event's root had no bracket on its step: the Python run then
-        runs (and raises there as it should)."""
+        floats, a closed form with gravity, a scipy method) or an event's root had no bracket on its step: the Python
+        run then runs (and raises there as it should)."""
         state = self.normal.kernel_state()
         if state is None:
             return None
