@@ -277,6 +277,31 @@ def test_a_laws_force_in_floats_is_its_stage_force_to_the_bit():
                 assert event(0.0, np.array([delta, delta_dot])) == expected, (scene.model, delta)
 
 
+def test_the_sweep_path_study_times_with_the_errors_its_own_job_wrote(tmp_path, monkeypatch):
+    """The sweep-path study's untimed half (each contender's worst error on its sample), written by its own job (rule
+    sweep_paths_accuracy) and read back by the timed one, which computes no reference and reports each comparison's
+    errors from the file in its rows; a file written for another sample or another size is refused by name."""
+    import json
+
+    from sphereimpact.numerics import sweep_paths
+
+    sweep_paths.write_accuracies(tmp_path / "accuracy.json", sizes=(40,), sample=3)
+    known = json.loads((tmp_path / "accuracy.json").read_text())
+    assert len(known["errors"]) == 4 and all(0 < e < 1e-6 for row in known["errors"].values() for e in row.values())
+    known["errors"]["one ball, 40 scenes, force"]["plane"] = 0.125
+    (tmp_path / "told.json").write_text(json.dumps(known))
+    monkeypatch.setattr(sweep_paths, "dimensionless_motion", lambda *a: pytest.fail("the timed job solved a reference"))
+    monkeypatch.setattr(sweep_paths, "interleaved_seconds", lambda calls, repeats: {name: 1.0 for name in calls})
+    told = sweep_paths.run(tmp_path / "told.csv", sizes=(40,), sample=3, repeats=1, accuracy_json=tmp_path / "told.json")
+    assert len(told) == 14  # (4 + 3 contenders) x 2 criteria, each with its comparison's error from the file
+    assert [known["errors"][f"{r.comparison}, {r.scenes} scenes, {r.separation}"][r.path] for r in told.itertuples()] == \
+        told["worst_error"].tolist()
+    with pytest.raises(ValueError, match="not at 1e-08 on 4"):
+        sweep_paths.run(tmp_path / "other.csv", accuracy_json=tmp_path / "told.json", sizes=(40,), sample=4)
+    with pytest.raises(ValueError, match="no errors of the comparison 'one ball, 50 scenes, force'"):
+        sweep_paths.run(tmp_path / "other.csv", accuracy_json=tmp_path / "told.json", sizes=(50,), sample=3)
+
+
 def test_the_sweep_benchmark_times_with_the_accuracy_its_own_job_wrote(tmp_path, monkeypatch):
     """The sweep benchmark's untimed half (each sweep's worst error on its sample, the contenders' tolerances at it),
     written by its own job (rule bench_sweep_accuracy) and read back by the timed one, gives the rows it computes in

@@ -87,8 +87,27 @@ rule sweep_map:
         "../scripts/sweep_map.py"
 
 
+rule sweep_paths_accuracy:
+    """The sweep-path study's untimed half: each contender's error on a sample against the reference."""
+    output:
+        json="results/sweep/sweep_paths_accuracy.json",
+    params:
+        code=code("workflow/scripts/sweep_paths_accuracy.py"),
+        config=params_for("sweep_paths_accuracy"),
+    benchmark:
+        "results/benchmarks/sweep/sweep_paths_accuracy.tsv",
+    log:
+        "logs/sweep_paths_accuracy.log",
+    conda:
+        ENV
+    script:
+        "../scripts/sweep_paths_accuracy.py"
+
+
 rule sweep_paths:
     """The sweep paths that can solve the same scenes, timed against each other at equal target (a benchmark)."""
+    input:
+        accuracy="results/sweep/sweep_paths_accuracy.json",
     output:
         csv=report("results/sweep_paths.csv", caption="../report/sweep_paths.rst", category="Sweeps"),
     params:

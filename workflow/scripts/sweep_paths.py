@@ -4,4 +4,5 @@ from sphereimpact.numerics.sweep_paths import run
 
 with job_log(snakemake.log[0], "sweep-path study"):
     bench = snakemake.params.config["bench"]
-    run(snakemake.output.csv, sizes=bench["path_sizes"], repeats=bench["repeats"])
+    run(snakemake.output.csv, sizes=bench["path_sizes"], repeats=bench["repeats"],
+        accuracy_json=snakemake.input.accuracy)

@@ -14,12 +14,17 @@ single-impact model in plain-float DOP853 at rtol 1e-13 (:func:`.similarity.dime
 path none of the contenders shares.  A row is ``dominated`` when another contender of the same comparison,
 size and criterion is faster and at most as far from the reference; a path dominated on every row of a
 comparison is one the engine should not take there.
+
+The errors are the study's untimed half (:func:`errors`, all of them :func:`write_accuracies`): the pipeline's job
+``sweep_paths_accuracy`` computes them beside the other jobs, and the timed job, which runs alone, reads them.
 """
 
 from __future__ import annotations
 
+import json
 import logging
 import math
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -34,6 +39,9 @@ from ..sweep.similarity import LambdaInterpolant, _errors, dimensionless_motion
 log = logging.getLogger(__name__)
 #: The reference: the single-impact model in plain-float DOP853, at a tolerance far below the target.
 REFERENCE = SolverOptions(method="DOP853-scalar", rtol=1e-13, atol=1e-13)
+#: Scenes of the sweep each contender solves once, untimed, before the study's first timing (its compiled code loaded,
+#: its first call made; its errors are computed in another job).
+FIRST_TOUCH = 16
 #: lam range of both comparisons (the chapter's ball at 0.4 to 40 m/s) and zeta range of the many balls'.
 LAM_RANGE = (2.0, 200.0)
 ZETA_RANGE = (0.01, 0.5)
@@ -62,27 +70,64 @@ def _contenders(zeta, lam, separation: Separation, target: float, one_zeta: bool
     return calls
 
 
-def compare(comparison: str, scenes: int, separation: Separation, target: float, repeats: int, sample: int,
-            seed: int) -> list[dict]:
-    """One row per contender of ``comparison`` (``one ball`` or ``many balls``) on ``scenes`` scenes."""
+def _drawn(comparison: str, scenes: int, seed: int, sample: int) -> tuple:
+    """(zeta, lam, the sample's rows) of one comparison's sweep of ``scenes`` scenes, drawn from ``seed``."""
     rng = np.random.default_rng(seed)
     lam = np.exp(rng.uniform(*np.log(LAM_RANGE), scenes))
     if comparison == "one ball":
         zeta = np.full(scenes, Scene().zeta)
     else:
         zeta = rng.uniform(*ZETA_RANGE, scenes)
+    return zeta, lam, np.sort(rng.choice(scenes, size=min(sample, scenes), replace=False))
+
+
+def errors(comparison: str, scenes: int, separation: Separation, target: float, sample: int, seed: int) -> dict:
+    """The study's untimed half for one comparison: each contender's worst error on the sample against the reference
+    (name -> error), the contenders called once each."""
+    zeta, lam, pick = _drawn(comparison, scenes, seed, sample)
     calls = _contenders(zeta, lam, separation, target, comparison == "one ball")
-    pick = np.sort(rng.choice(scenes, size=min(sample, scenes), replace=False))
     solved = [dimensionless_motion(scene_for(z, q, separation), REFERENCE) for z, q in zip(zeta[pick], lam[pick])]
     reference = {key: np.array([row[key] for row in solved]) for key in NORMAL_OUTPUTS}
-    errors = {name: _errors({key: values[pick] for key, values in call().items()}, reference, NORMAL_OUTPUTS)
-              for name, call in calls.items()}
+    return {name: _errors({key: values[pick] for key, values in call().items()}, reference, NORMAL_OUTPUTS)
+            for name, call in calls.items()}
+
+
+def compare(comparison: str, scenes: int, separation: Separation, target: float, repeats: int, sample: int,
+            seed: int, known: dict | None = None) -> list[dict]:
+    """One row per contender of ``comparison`` (``one ball`` or ``many balls``) on ``scenes`` scenes: its time, and
+    its error (``known``, as :func:`errors` gives it, else computed here before the timing)."""
+    zeta, lam, pick = _drawn(comparison, scenes, seed, sample)
+    calls = _contenders(zeta, lam, separation, target, comparison == "one ball")
+    worst = known if known is not None else errors(comparison, scenes, separation, target, sample, seed)
     seconds = interleaved_seconds(calls, repeats)
     log.info("sweep paths: %s, %d scenes, %s: %s", comparison, scenes, separation,
              ", ".join(f"{name} {seconds[name]:.3g} s" for name in calls))
     return [{"comparison": comparison, "separation": separation, "scenes": scenes, "target": target,
              "path": name, "seconds": seconds[name], "us_per_scene": 1e6 * seconds[name] / scenes,
-             "worst_error": errors[name], "repeats": repeats, "sample": len(pick)} for name in calls]
+             "worst_error": worst[name], "repeats": repeats, "sample": len(pick)} for name in calls]
+
+
+def _studied(sizes) -> list[tuple[str, int, Separation, int]]:
+    """(comparison, scenes, criterion, seed) of every comparison of the study, in its order."""
+    return [(comparison, int(scenes), separation, int(scenes) + i) for comparison in ("one ball", "many balls")
+            for scenes in sizes for i, separation in enumerate(Separation)]
+
+
+def _key(comparison: str, scenes: int, separation: Separation) -> str:
+    return f"{comparison}, {scenes} scenes, {separation}"
+
+
+def write_accuracies(json_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, sample: int = 30) -> dict:
+    """:func:`errors` of every comparison of the study (parameters as :func:`run`'s) into ``json_path``: the study's
+    untimed half, which the pipeline runs in a job of its own (rule ``sweep_paths_accuracy``) beside the others, so
+    that the timed job, which runs alone, spends its time timing."""
+    out = {"target": target, "sample": sample, "errors": {}}
+    for comparison, scenes, separation, seed in _studied(sizes):
+        log.info("sweep paths accuracy: %s, %d scenes, %s", comparison, scenes, separation)
+        out["errors"][_key(comparison, scenes, separation)] = errors(comparison, scenes, separation, target, sample,
+                                                                     seed)
+    Path(json_path).write_text(json.dumps(out, indent=1) + "\n")
+    return out
 
 
 def _dominated(table: pd.DataFrame) -> pd.Series:
@@ -96,7 +141,7 @@ def _dominated(table: pd.DataFrame) -> pd.Series:
 
 
 def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, repeats: int = 3,
-        sample: int = 30) -> pd.DataFrame:
+        sample: int = 30, accuracy_json: str | None = None) -> pd.DataFrame:
     """Every comparison at each of ``sizes`` scenes and both criteria; writes ``csv_path``.
 
     Parameters
@@ -109,13 +154,31 @@ def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, rep
         Complete runs per timing, the contenders in turn within each repeat (median reported).
     sample : int
         Scenes per sweep on which each contender's error is measured against the reference.
+    accuracy_json : str, optional
+        The errors as :func:`write_accuracies` wrote them with the same ``sizes``, ``target`` and ``sample`` (else
+        each comparison's errors are computed before its timing).
     """
+    known = None
+    if accuracy_json is not None:
+        known = json.loads(Path(accuracy_json).read_text())
+        if (known["target"], known["sample"]) != (target, sample):
+            raise ValueError(f"sweep paths: {accuracy_json} holds errors at target {known['target']:g} on "
+                             f"{known['sample']} scenes, not at {target:g} on {sample}: write it with the same settings")
     steady_state()
+    for separation in Separation:  # every contender's code run once, untimed, before the first timing
+        zeta, lam, _ = _drawn("many balls", FIRST_TOUCH, 0, 1)
+        for call in _contenders(zeta, lam, separation, target, True).values():
+            call()
     rows = []
-    for comparison in ("one ball", "many balls"):
-        for scenes in sizes:
-            for i, separation in enumerate(Separation):
-                rows += compare(comparison, int(scenes), separation, target, repeats, sample, seed=int(scenes) + i)
+    for comparison, scenes, separation, seed in _studied(sizes):
+        errors_known = None
+        if known is not None:
+            key = _key(comparison, scenes, separation)
+            if key not in known["errors"]:
+                raise ValueError(f"sweep paths: {accuracy_json} holds no errors of the comparison {key!r}: write it "
+                                 "with the same sizes")
+            errors_known = known["errors"][key]
+        rows += compare(comparison, scenes, separation, target, repeats, sample, seed, errors_known)
     table = pd.DataFrame(rows)
     table["dominated"] = _dominated(table)
     table.to_csv(csv_path, index=False, float_format="%.4g")

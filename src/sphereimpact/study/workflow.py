@@ -49,6 +49,7 @@ RULE_KEYS = {
                     "validation", "kharaz_fit"),
     "bench_sweep_accuracy": ("bench.sample", "bench.lanes", "bench.million", "bench.laws"),
     "sweep_paths": ("bench.repeats", "bench.path_sizes"),
+    "sweep_paths_accuracy": ("bench.path_sizes",),
     "bench_kernels": ("bench.repeats",),
     "consistency": ("consistency",),
     "readme": ("primary",),
