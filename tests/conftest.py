@@ -15,8 +15,9 @@ ROOT = Path(__file__).resolve().parents[1]
 #: The small configuration the pipeline tests run on.
 TEST_CONFIG = "config/test.yaml"
 #: numba's disk cache of a module's compiled kernels: an index and machine code in the module's __pycache__, valid
-#: while the module's size and modification time are the same (a copy keeps both).
-KERNEL_CACHE = (".nbi", ".nbc")
+#: while the module's text is the same (a copy keeps it); and the record of the sources the kernels compile
+#: (:mod:`sphereimpact.kernel_cache`), which the copy's kernels then find unchanged.
+KERNEL_CACHE = (".nbi", ".nbc", ".stamps")
 #: Compiles one group of the built-in kernels of the project's own tree (``group``), or loads it from the disk
 #: cache: what a test process, or a process of a copy's pipeline, would otherwise compile on first use.
 COMPILE_KERNELS = "from sphereimpact.integrators.compiled import compile_all; compile_all({group!r})"

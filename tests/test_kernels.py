@@ -318,3 +318,94 @@ def test_a_series_kernel_that_is_not_the_series_is_refused_by_name(monkeypatch):
 def test_compiling_the_kernels_by_group_refuses_a_group_it_does_not_have():
     with pytest.raises(ValueError, match="group must be one of dop853, taylor, contact, or None for every kernel; got 'numpy'"):
         compiled_rule.compile_all("numpy")
+
+
+def test_the_kernel_sources_are_every_module_the_kernels_compile_from():
+    """:data:`sphereimpact.kernel_cache.KERNELS` are the package's modules that cache kernels on disk, and ``SOURCES``
+    holds every package module they import, directly or not (their parent packages' ``__init__`` aside): a function
+    or constant a kernel compiles comes from one of them."""
+    import re
+    from pathlib import Path
+
+    from sphereimpact import kernel_cache
+    from sphereimpact.study import workflow
+
+    root = kernel_cache.ROOT
+    cached = {str(p.relative_to(root)) for p in root.rglob("*.py")
+              if re.search(r"""["']cache["']: True|cache=True""", p.read_text(encoding="utf-8"))}
+    assert cached == set(kernel_cache.KERNELS)
+    seen, todo = set(), [root / name for name in kernel_cache.KERNELS]
+    while todo:
+        path = todo.pop()
+        if path in seen:
+            continue
+        seen.add(path)
+        for name in workflow._imports(path):
+            if name.startswith("sphereimpact."):
+                found = workflow._module_file(name) or workflow._module_file(name.rsplit(".", 1)[0])
+                if found is not None and found.name != "__init__.py":
+                    todo.append(Path(found))
+    assert {str(p.relative_to(root)) for p in seen} - {"kernel_cache.py"} <= set(kernel_cache.SOURCES)  # its own
+
+
+def test_an_edited_source_recompiles_the_kernels_that_compile_it(tmp_path):
+    """numba recompiles a cached kernel when its own module's text changes, not when a function it compiles from
+    another module does; the refresh deletes the kernel modules' caches when any source changed.  A kernel compiling
+    ``dep.f`` is cached in one process; ``dep.py`` is edited; a second process gets the new ``f`` (numba alone, the
+    old one: the refresh's line removed, this test fails)."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    (tmp_path / "dep.py").write_text("def f(x):\n    return x + 1.0\n")
+    from sphereimpact import kernel_cache
+
+    (tmp_path / "ker.py").write_text(  # the refresh's module alone, not the package (a second per process)
+        "import importlib.util\n"
+        "from pathlib import Path\n"
+        f"spec = importlib.util.spec_from_file_location('kernel_cache', {str(Path(kernel_cache.__file__))!r})\n"
+        "cache = importlib.util.module_from_spec(spec)\n"
+        "spec.loader.exec_module(cache)\n"
+        "here = Path(__file__).parent\n"
+        "cache.refresh(here, here / 'record' / 'k.stamps', ('ker.py',), ('ker.py', 'dep.py'))\n"
+        "import numba\n"
+        "from dep import f\n"
+        "_f = numba.njit(cache=True)(f)\n\n\n"
+        "@numba.njit(cache=True)\n"
+        "def k(x):\n"
+        "    return _f(x)\n")
+    env = os.environ | {"PYTHONPATH": str(tmp_path)}
+    env.pop("NUMBA_CACHE_DIR", None)
+
+    def run():
+        return subprocess.run([sys.executable, "-c", "from ker import k; print(k(1.0), k.stats.cache_hits.total())"],
+                              cwd=tmp_path, env=env, capture_output=True, text=True, check=True).stdout.split()
+
+    assert run() == ["2.0", "0"] and list((tmp_path / "__pycache__").glob("ker.k-*.nbi"))
+    (tmp_path / "dep.py").write_text("def f(x):\n    return x + 2.0\n")
+    assert run() == ["3.0", "0"]  # (unchanged sources keep the cache: the test below)
+
+
+def test_the_refresh_deletes_the_kernels_caches_only_when_a_source_changed(tmp_path):
+    """No record (a fresh folder) or a changed source: every kernel module's cached kernels (its index and machine
+    code files, in numba's folder for it) are deleted and the sources recorded; unchanged: nothing is."""
+    from sphereimpact.kernel_cache import cache_folder, refresh
+
+    for name in ("a.py", "b.py", "c.py"):
+        (tmp_path / name).write_text("x = 1\n")
+    record, kernels, sources = tmp_path / "record" / "k.stamps", ("a.py", "b.py"), ("a.py", "b.py", "c.py")
+    folder = cache_folder(tmp_path / "a.py")
+
+    def plant():
+        for name in ("a.k-3.py311.nbi", "a.k-3.py311.1.nbc", "b.g-9.py311.nbi", "c.h-1.py311.nbi"):
+            (folder / name).write_text("")
+
+    plant()
+    assert refresh(tmp_path, record, kernels, sources) == 3 and record.is_file()
+    assert sorted(p.name for p in folder.iterdir()) == ["c.h-1.py311.nbi"]  # not a kernel module's
+    plant()
+    assert refresh(tmp_path, record, kernels, sources) == 0 and len(list(folder.iterdir())) == 4
+    (tmp_path / "c.py").write_text("x = 2\n")
+    assert refresh(tmp_path, record, kernels, sources) == 3
+    assert refresh(tmp_path, record, kernels, sources) == 0

@@ -23,6 +23,9 @@ from ..ode.roots import bracketed_root
 from ..ode.series import horner
 from .laws.kernels import SIGNATURE
 from .laws.spring_damper import KERNEL_KIND as SPRING_DAMPER, spring_damper_state
+from ..kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64

@@ -32,6 +32,9 @@ from ..ode.dop853 import (BUDGET, EPS, OVERFLOW, ROOT_ITERATIONS, STEP_TOO_SMALL
 from ..ode.dense import grown, interpolant_pair
 from ..ode.roots import bracketed_root
 from .event_kinds import EventKind
+from ..kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 #: The events' codes (:class:`.event_kinds.EventKind`), as plain integers for the compiled code.
 MAX_COMPRESSION, PENETRATION, FORCE, BAND = (int(kind) for kind in EventKind)

@@ -23,6 +23,9 @@ from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 from ..ode import series
 from ..ode.dense import grown
 from ..ode.roots import BRENT_ITERATIONS, NO_BRACKET, bracketed_root
+from ..kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 #: Statuses: separation found, the horizon reached without it, the step budget spent, coefficients not finite,
 #: separation before maximum compression, a division by zero (the ramp band's bound at rest), a root search that

@@ -19,6 +19,9 @@ import math
 import numba
 import numpy as np
 from numba import types
+from ...kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 #: P = kernel(delta, delta_dot, params): the one signature of every force kernel.
 SIGNATURE = types.float64(types.float64, types.float64, types.float64[::1])

@@ -16,6 +16,9 @@ import math
 
 import numba
 import numpy as np
+from ...kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 #: Compile on first use, cache the machine code on disk, and keep IEEE semantics (no fast-math reassociation:
 #: the march's sums are the same numbers every run).

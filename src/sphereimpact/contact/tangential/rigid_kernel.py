@@ -27,6 +27,9 @@ from ...ode.roots import ROOT
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import (ARRAY, NORMAL, bracketed_root_compiled, normal_state, refine_root_compiled,
                              roots_at_compiled)
+from ...kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 _COMPILE = {"cache": True, "nogil": True, "error_model": "numpy"}
 _F, _I = types.float64, types.int64

@@ -27,6 +27,9 @@ from ...ode.dop853 import EPS, ROOT_ITERATIONS, STEPPED, tableau
 from ...ode.roots import NO_BRACKET, bracketed_root
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, CUBE, MATRIX, NORMAL, normal_state
+from ...kernel_cache import refresh
+
+refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
 #: The history rules (``springs.RESCALE``, in its order) as integers.
 NEVER, UNLOADING, ALWAYS = 0, 1, 2
