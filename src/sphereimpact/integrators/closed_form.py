@@ -18,7 +18,7 @@ from ..ode.events import first_root
 from ..contact.laws import LAWS
 from ..contact.motion import KernelState, NormalMotion
 from ..ode.dense import SMALL
-from .normal import no_separation_message, separation_function
+from .normal import CompiledReads, no_separation_message, separation_function
 
 if TYPE_CHECKING:
     from ..impact.scene import Scene
@@ -36,7 +36,7 @@ def _scan_grid(t_end: float) -> np.ndarray:
     return np.unique(np.concatenate([uniform, geometric]))
 
 
-class ClosedFormNormal(NormalMotion):
+class ClosedFormNormal(CompiledReads, NormalMotion):
     """The exact normal motion of a scene whose law declares a closed form.
 
     Parameters
@@ -84,13 +84,6 @@ class ClosedFormNormal(NormalMotion):
         return (law.closed_form.kernel_kind is not None and self.solution.per_instant and law.kernel is not None
                 and law.scalar is not None)
 
-    def kernel_state(self):
-        if not self._has_kernel_state():
-            return None
-        from . import compiled as rule
-
-        return self.kept("kernel state", self._kernel_state) if rule.compiled_now() else None
-
     def _kernel_state(self) -> KernelState:
         """The closed form's constants as its compiled kind reads them, with the law's checked kernel."""
         from .compiled import checked_kernel
@@ -101,12 +94,6 @@ class ClosedFormNormal(NormalMotion):
                            none, np.empty((0, 0)), np.empty((0, 0)), np.empty((0, 7, 2)), np.empty((0, 2)), 1.0, 1.0,
                            1.0, checked_kernel(scene, (v / scene.frequency, v)),
                            np.array(scene.law.kernel.parameters(scene), dtype=float))
-
-    def spend_in_floats(self, evaluations: int) -> None:
-        if self._has_kernel_state():
-            from . import compiled as rule
-
-            rule.spend_in_floats(evaluations)
 
     def state(self, t):
         """The closed form's state (:meth:`SpringDamperMotion.state`, instant by instant in plain floats); at many

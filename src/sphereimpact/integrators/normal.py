@@ -203,7 +203,34 @@ def horizon(scene: Scene) -> float:
 _PLAIN_FLOAT_DENSE = (StackedDOP853, series.TaylorDense)
 
 
-class _DimensionlessNormal(NormalMotion):
+class CompiledReads:
+    """What a normal motion that compiled code can read adds to :class:`~sphereimpact.contact.motion.NormalMotion`: its
+    :class:`~sphereimpact.contact.motion.KernelState`, built once (kept) in a process that integrates compiled
+    (:func:`.compiled.compiled_now`), and its evaluations in Python floats counted towards loading the compiled code.
+    A subclass says whether compiled code can read it (``_has_kernel_state``) and builds the arrays
+    (``_kernel_state``)."""
+
+    def _has_kernel_state(self) -> bool:
+        raise NotImplementedError
+
+    def _kernel_state(self) -> KernelState:
+        raise NotImplementedError
+
+    def kernel_state(self):
+        if not self._has_kernel_state():
+            return None
+        from . import compiled as rule
+
+        return self.kept("kernel state", self._kernel_state) if rule.compiled_now() else None
+
+    def spend_in_floats(self, evaluations: int) -> None:
+        if self._has_kernel_state():
+            from . import compiled as rule
+
+            rule.spend_in_floats(evaluations)
+
+
+class _DimensionlessNormal(CompiledReads, NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
 
@@ -213,18 +240,22 @@ class _DimensionlessNormal(NormalMotion):
         law = self.scene.law
         return law.kernel is not None and law.scalar is not None and isinstance(self._sol, _PLAIN_FLOAT_DENSE)
 
-    def kernel_state(self):
-        if not self._has_kernel_state():
-            return None
-        from . import compiled as rule
+    def _kernel_state(self) -> KernelState:
+        """Its dense output's arrays and its law's checked kernel."""
+        from .compiled import checked_kernel
 
-        return self.kept("kernel state", lambda: _kernel_state(self)) if rule.compiled_now() else None
-
-    def spend_in_floats(self, evaluations: int) -> None:
-        if self._has_kernel_state():
-            from . import compiled as rule
-
-            rule.spend_in_floats(evaluations)
+        sol, scene, none = self._sol, self.scene, np.empty(0)
+        if isinstance(sol, StackedDOP853):
+            kind, knots, starts, sizes = DOP853, sol.ts, sol.t_old, sol.h
+            cx = cy = np.empty((0, 0))
+            f, y_old = np.ascontiguousarray(sol.f[:, ::-1]), np.ascontiguousarray(sol.y_old)
+        else:
+            (starts, knots, cx, cy), kind, sizes = sol.pieces(), TAYLOR, none
+            f, y_old = np.empty((0, 7, 2)), np.empty((0, 2))
+        return KernelState(kind, np.ascontiguousarray(knots, dtype=float), np.ascontiguousarray(starts, dtype=float),
+                           np.ascontiguousarray(sizes, dtype=float), cx, cy, f, y_old, float(self._w),
+                           float(self._d_scale), float(self._v), checked_kernel(scene, (self._d_scale, self._v)),
+                           np.array(scene.law.kernel.parameters(scene), dtype=float))
 
     def state(self, t):
         if isinstance(self._sol, _PLAIN_FLOAT_DENSE):
@@ -246,25 +277,6 @@ class _DimensionlessNormal(NormalMotion):
                 return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
-
-
-def _kernel_state(motion: _DimensionlessNormal) -> KernelState:
-    """``motion``'s :class:`~sphereimpact.contact.motion.KernelState`: its dense output's arrays and its law's checked
-    kernel."""
-    from .compiled import checked_kernel
-
-    sol, scene, none = motion._sol, motion.scene, np.empty(0)
-    if isinstance(sol, StackedDOP853):
-        kind, knots, starts, sizes = DOP853, sol.ts, sol.t_old, sol.h
-        cx = cy = np.empty((0, 0))
-        f, y_old = np.ascontiguousarray(sol.f[:, ::-1]), np.ascontiguousarray(sol.y_old)
-    else:
-        (starts, knots, cx, cy), kind, sizes = sol.pieces(), TAYLOR, none
-        f, y_old = np.empty((0, 7, 2)), np.empty((0, 2))
-    return KernelState(kind, np.ascontiguousarray(knots, dtype=float), np.ascontiguousarray(starts, dtype=float),
-                       np.ascontiguousarray(sizes, dtype=float), cx, cy, f, y_old, float(motion._w),
-                       float(motion._d_scale), float(motion._v), checked_kernel(scene, (motion._d_scale, motion._v)),
-                       np.array(scene.law.kernel.parameters(scene), dtype=float))
 
 
 class _RightHandSide:
