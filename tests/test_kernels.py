@@ -358,9 +358,9 @@ def test_an_edited_source_recompiles_the_kernels_that_compile_it(tmp_path):
     import sys
     from pathlib import Path
 
-    (tmp_path / "dep.py").write_text("def f(x):\n    return x + 1.0\n")
     from sphereimpact import kernel_cache
 
+    (tmp_path / "dep.py").write_text("def f(x):\n    return x + 1.0\n")
     (tmp_path / "ker.py").write_text(  # the refresh's module alone, not the package (a second per process)
         "import importlib.util\n"
         "from pathlib import Path\n"

@@ -100,10 +100,8 @@ class ClosedFormNormal(CompiledReads, NormalMotion):
         instants compiled (:func:`~sphereimpact.contact.normal_kernel.normal_states`, the same values to the bit) where
         :meth:`kernel_state` has the motion, else counted towards loading the compiled code."""
         if np.ndim(t) == 1 and len(t) > SMALL:
-            kernel = self.kernel_state()
-            if kernel is not None:
-                from ..contact.normal_kernel import normal_states
-
-                return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
+            compiled = self._compiled_states(t)
+            if compiled is not None:
+                return compiled
             self.spend_in_floats(len(t))
         return self.solution.state(t)

@@ -229,6 +229,17 @@ class CompiledReads:
 
             rule.spend_in_floats(evaluations)
 
+    def _compiled_states(self, t):
+        """(delta [m], delta_dot [m/s]) at the instants of the 1-d array t [s] by compiled code
+        (:func:`~sphereimpact.contact.normal_kernel.normal_states`, the Python evaluation's values to the bit), or None
+        where :meth:`kernel_state` has no compiled form of the motion."""
+        kernel = self.kernel_state()
+        if kernel is None:
+            return None
+        from ..contact.normal_kernel import normal_states
+
+        return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
+
 
 class _DimensionlessNormal(CompiledReads, NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
@@ -270,11 +281,9 @@ class _DimensionlessNormal(CompiledReads, NormalMotion):
             if np.ndim(t) == 1 and 0 < len(t) <= SMALL:
                 delta, delta_dot = zip(*[self.state(instant) for instant in np.asarray(t, dtype=float).tolist()])
                 return np.array(delta), np.array(delta_dot)
-            kernel = self.kernel_state() if np.ndim(t) == 1 else None
-            if kernel is not None:  # many instants (a microslip march's steps): compiled, the same values to the bit
-                from ..contact.normal_kernel import normal_states
-
-                return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
+            compiled = self._compiled_states(t) if np.ndim(t) == 1 else None
+            if compiled is not None:  # many instants (a microslip march's steps): compiled, the same values to the bit
+                return compiled
         z = self._sol(np.asarray(t, dtype=float) * self._w)
         return z[0] * self._d_scale, z[1] * self._v
 

@@ -165,8 +165,8 @@ def run(csv_path: str, sizes=(500, 2000, 8000, 32000), target: float = 1e-8, rep
             raise ValueError(f"sweep paths: {accuracy_json} holds errors at target {known['target']:g} on "
                              f"{known['sample']} scenes, not at {target:g} on {sample}: write it with the same settings")
     steady_state()
+    zeta, lam, _ = _drawn("many balls", FIRST_TOUCH, 0, 1)
     for separation in Separation:  # every contender's code run once, untimed, before the first timing
-        zeta, lam, _ = _drawn("many balls", FIRST_TOUCH, 0, 1)
         for call in _contenders(zeta, lam, separation, target, True).values():
             call()
     rows = []
