@@ -366,6 +366,28 @@ def test_constant_columns_built_at_once_are_those_assign_gives():
     pd.testing.assert_frame_equal(sweep(built.reset_index(drop=True)), sweep(assigned.reset_index(drop=True)))
 
 
+def test_scene_columns_read_and_slice_as_the_scene_table_does():
+    """SceneColumns (the checked table as the sweep reads it, one array per column) gives what the DataFrame of
+    scene_table gives: each column, a slice of rows, each row as a record, with the models' own parameters and text
+    columns; and a Scene from a record is the Scene from the DataFrame's row."""
+    from sphereimpact.numerics.consistency import random_scenes
+    from sphereimpact.sweep.scenes import scene_columns, scene_of, scene_table
+
+    table = random_scenes(400, seed=5)
+    columns, frame = scene_columns(table), scene_table(table)
+    assert len(columns) == len(frame) == 400 and columns.columns == list(frame.columns)
+    assert {"chi", "model", "tangential"} <= set(columns.columns)
+    for name in frame.columns:
+        np.testing.assert_array_equal(columns[name], frame[name].to_numpy())
+    rows = np.array([399, 3, 3, 150])
+    pd.testing.assert_frame_equal(columns.take(rows).frame(), frame.iloc[rows].reset_index(drop=True))
+    for got, expected in ((columns.records(rows), frame.iloc[rows].to_dict("records")),
+                          (columns.records(), frame.to_dict("records"))):  # (NaN cells: compared as frames)
+        assert [type(v) for v in got[0].values()] == [type(v) for v in expected[0].values()]
+        pd.testing.assert_frame_equal(pd.DataFrame(got), pd.DataFrame(expected))
+    assert all(scene_of(columns.record(i)) == scene_of(frame.iloc[i].to_dict()) for i in (0, 77, 399))
+
+
 def test_rows_alike_are_grouped_as_pandas_groups_them():
     """first_rows (the scene checks' and the single path's grouping of alike rows) is pandas' groupby ngroup (sort
     off, empty cells kept): groups in the order of their first rows, NaN alike, -0.0 as 0.0, names by value."""

@@ -28,9 +28,9 @@ from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..impact.outcome import NUMERIC_OUTPUTS, SCALAR_OUTPUTS
 from ..impact.scene import SolverOptions
 from ..impact.solve import simulate
-from ..sweep.engine import SCENE_COLUMNS, scene_of, scene_table, sweep
+from ..sweep.engine import SCENE_COLUMNS, scene_of, sweep
 from ..sweep.paths import single_options
-from ..sweep.scenes import law_view, numbers
+from ..sweep.scenes import law_view, numbers, scene_columns
 from .reference import output_scales
 
 log = logging.getLogger(__name__)
@@ -182,21 +182,21 @@ def _gravity_where_it_bounces(table: pd.DataFrame) -> np.ndarray:
     or damping beyond critical, keeps it on the flat (no separation: outside what a bounce is); and where the
     weight alone would compress the contact beyond the radius (a scene refuses that)."""
     weight = table["gravity"].to_numpy().copy()
-    frame = scene_table(table.assign(gravity=0.0))
+    frame = scene_columns(table.assign(gravity=0.0))
     d = numbers(frame)
-    tilt = np.radians(frame["angle"].to_numpy())
+    tilt = np.radians(frame["angle"])
     gamma = weight * np.cos(tilt) / (d.w * d.v_n)
     zeta = np.where(np.isnan(table["b"]), 0.0, d.zeta)  # the linear damping's ratio (eq. 4.1, 4.2)
     chi_v = np.where(np.isnan(table["chi"]), 0.0, table["chi"] * d.v_n)  # Hunt-Crossley's damping number
     weight[(gamma > GRAVITY_SHARE) | (zeta > 1.0) | (chi_v > 1.0)] = 0.0
-    radius = 0.5 * frame["diameter"].to_numpy()
-    models = frame["model"].to_numpy()
+    radius = 0.5 * frame["diameter"]
+    models = frame["model"]
     for model in dict.fromkeys(models.tolist()):  # the spring at delta = R must hold the weight
         rows = np.flatnonzero((models == model) & (weight > 0))
         if rows.size:
-            view = law_view(frame.iloc[rows], d.v_n[rows])
+            view = law_view(frame.take(rows), d.v_n[rows])
             holds = LAWS[model].force(radius[rows], np.zeros(rows.size), view)
-            weight[rows[holds < frame["mass"].to_numpy()[rows] * weight[rows] * np.cos(tilt[rows])]] = 0.0
+            weight[rows[holds < frame["mass"][rows] * weight[rows] * np.cos(tilt[rows])]] = 0.0
     return weight
 
 
@@ -206,12 +206,12 @@ def references(table: pd.DataFrame) -> pd.DataFrame:
     itself off by up to 3e-8 of t_f): one row per scene, in order, of its outputs (:data:`SCALAR_OUTPUTS`, NaN
     t_roll where it never grips) and ``refused``, simulate's message where it refuses the scene (outside the
     accepted domain: not compared), else ''."""
-    frame = scene_table(table)
+    frame = scene_columns(table)
     rows = []
     with warnings.catch_warnings():  # compressions beyond the radius, energy made: flagged in both, not warned
         warnings.simplefilter("ignore", BeyondRadiusWarning)
         warnings.simplefilter("ignore", EnergyGainWarning)
-        for row in frame.to_dict("records"):  # not frame.iloc[i]: 40 us a row
+        for row in frame.records():
             try:
                 outcome = simulate(scene_of(row), REFERENCE)
             except ImpactError as err:

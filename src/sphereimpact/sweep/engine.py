@@ -28,8 +28,8 @@ from ..contact.tangential import TANGENTIALS, Regime
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
 from .paths import ORDER, PATHS, Gives, Work, single_options
-from .scenes import (SCENE_COLUMNS, Numbers, _objects, given_table, grid, incidence, numbers, rows, scene_of,
-                     scene_table, undescribed_row)
+from .scenes import (SCENE_COLUMNS, Numbers, SceneColumns, _objects, given_table, grid, incidence, numbers, rows,
+                     scene_columns, scene_of, scene_table, undescribed_row)
 
 #: The engine's public names; the scene table's and the paths' are re-exported from :mod:`.scenes` and
 #: :mod:`.paths`, where they are defined.
@@ -118,9 +118,9 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                           outputs=outputs, settings=settings, paths=paths, chapter_ball=True)  # described
     wanted = outputs_wanted(outputs)
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
-    frame = scene_table(scenes)
+    frame = scene_columns(scenes)
     n = len(frame)
-    slip = density_problem(frame["mass"].to_numpy(), frame["diameter"].to_numpy())
+    slip = density_problem(frame["mass"], frame["diameter"])
     if slip:  # once for the table (a row's Scene does not repeat it)
         warnings.warn(slip, UnitWarning, stacklevel=2)
     result = {key: np.full(n, np.nan) for key in SWEEP_OUTPUTS if key in NUMERIC_OUTPUTS}
@@ -131,7 +131,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if span is None:
         span_frame, span_d, span_needs = frame, d, needs
     else:
-        span_frame = scene_table(span)
+        span_frame = scene_columns(span)
         span_d = numbers(span_frame)
         span_needs = needs_of(span_frame, span_d, wanted)
     work = Work(frame, d, needs, span_frame, span_d, span_needs, target, chunk_size, options, progress)
@@ -149,7 +149,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     if todo.any() and paths is None:  # every row has a path: the last takes every batched kernel, earlier the others
         raise ImpactError(f"sweep: no path takes row {int(np.flatnonzero(todo)[0])}")
     if rest.any():
-        values = _complete(frame[rest], d[rest], {key: values[rest] for key, values in normal.items()})
+        values = _complete(frame.take(rest), d[rest], {key: values[rest] for key, values in normal.items()})
         for key, value in values.items():
             if key == "regime":
                 regime[rest] = value
@@ -160,14 +160,14 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
     finite |= todo  # rows no path took (only with ``paths``) stay empty
     if not finite.all():  # never a NaN in a table
         i = int(np.flatnonzero(~finite)[0])
-        scene = ", ".join(f"{k}={v}" for k, v in frame.iloc[i].to_dict().items())
+        scene = ", ".join(f"{k}={v}" for k, v in frame.record(i).items())
         raise ImpactError(f"sweep: no finite outputs for row {i} ({scene}); its contact lies outside what the "
                           "sweep resolves: try `sphereimpact simulate` on that scene")
-    radius = 0.5 * frame["diameter"].to_numpy()
+    radius = 0.5 * frame["diameter"]
     beyond = result["delta_m"] > radius  # outside the model, as simulate flags it
-    mass = frame["mass"].to_numpy()
-    gained = gains_energy(result["work_t"], mass, frame["speed"].to_numpy(),
-                          frame["inertia_factor"].to_numpy() * mass * radius * radius, frame["spin"].to_numpy())
+    mass = frame["mass"]
+    gained = gains_energy(result["work_t"], mass, frame["speed"], frame["inertia_factor"] * mass * radius * radius,
+                          frame["spin"])
     if not todo.any():  # (rows no path took, with ``paths``, keep NaN)
         result["switches"] = result["switches"].astype(np.int64)
     if gained.any():
@@ -176,10 +176,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                       "ball", EnergyGainWarning, stacklevel=2)
     values = result | {"regime": pd.Series(regime, dtype=object), "beyond_radius": beyond, "energy_gained": gained}
     outputs = {key: values[key] for key in SWEEP_OUTPUTS if key in wanted}  # only these: a frame of all cost more
-    return pd.concat([frame, pd.DataFrame(outputs | {"path": pd.Series(path, dtype=object)})], axis=1)
+    return frame.frame(outputs | {"path": pd.Series(path, dtype=object)})
 
 
-def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
+def needs_of(frame: SceneColumns, d: Numbers, wanted: set) -> Needs:
     """What each row needs of a fast path beyond the normal outputs (:class:`~.outputs.Needs`): the force's
     extremes when force_min or force_max is wanted; with t_roll, the level of J+ / (m v_n) at which its
     tangential model needs the instant (its ``swept.levels``; NaN for a normal impact, and for a model a
@@ -189,7 +189,7 @@ def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
     moving = (rows.v_tangent != 0) | (rows.spin != 0)
     slope = (rows.gravity > 0) & (rows.angle > 0)  # gravity along the flat: no tangential end in closed form
     completes = ~moving & ~slope
-    names = frame["tangential"].to_numpy()
+    names = frame["tangential"]
     for name in dict.fromkeys(names[moving].tolist()):
         model = TANGENTIALS[name].swept
         if model is None:
@@ -201,7 +201,7 @@ def needs_of(frame: pd.DataFrame, d: Numbers, wanted: set) -> Needs:
     return Needs(extremes=bool({"force_min", "force_max"} & wanted), levels=levels, completes=completes)
 
 
-def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
+def _complete(part: SceneColumns, d: Numbers, dim: dict) -> dict:
     """Every output of the rows ``part`` that a path solved in dimensionless normal form ``dim``
     (:data:`NORMAL_OUTPUTS`, the force's extremes and the instants of the tangential models' levels where
     asked): the normal events and extremes in SI units, the tangential motion's end from each row's
@@ -209,13 +209,13 @@ def _complete(part: pd.DataFrame, d: Numbers, dim: dict) -> dict:
     impulse J+ = m v_n j_p and those instants), then :func:`~sphereimpact.impact.outcome.outputs`, as
     ``simulate`` derives them."""
     n = len(part)
-    w, v_n, m = d.w, d.v_n, part["mass"].to_numpy()
+    w, v_n, m = d.w, d.v_n, part["mass"]
     rows = tangential_rows(part, d)
     impulse, instants = m * v_n * dim["j_p"], dim["tau_g"] / w
     tangential = {"vc_t": np.zeros(n), "omega_f": np.zeros(n), "t_roll": np.full(n, np.nan),
                   "switches": np.zeros(n, np.int64), "regime": _objects(n, Regime.NONE)}
     moving = (rows.v_tangent != 0) | (rows.spin != 0)  # tangential motion at all: a normal impact has none
-    names = part["tangential"].to_numpy()
+    names = part["tangential"]
     for name in dict.fromkeys(names[moving].tolist()):
         mine = np.flatnonzero(moving & (names == name))
         for key, value in TANGENTIALS[name].swept.end(_Rows(rows, mine), impulse[mine], instants[mine]).items():
@@ -243,16 +243,16 @@ class _Rows:
 
 class _Columns:
     """The numeric columns of a scene table as arrays, each read when first asked for (a tangential model reads a
-    few of them; reading all of a table's columns cost more than a small sweep's solve)."""
+    few of them)."""
 
-    def __init__(self, part: pd.DataFrame, **given):
+    def __init__(self, part: SceneColumns, **given):
         self._part = part
         self.__dict__.update(given)
 
     def __getattr__(self, name: str):
         if name.startswith("_") or name not in self._part or name in TEXT_COLUMNS:
             raise AttributeError(name)
-        value = self._part[name].to_numpy()
+        value = self._part[name]
         setattr(self, name, value)
         return value
 
@@ -261,11 +261,11 @@ class _Columns:
 TEXT_COLUMNS = ("model", "separation", "tangential")
 
 
-def tangential_rows(part: pd.DataFrame, d: Numbers) -> _Columns:
+def tangential_rows(part: SceneColumns, d: Numbers) -> _Columns:
     """The rows' columns as arrays, with ``radius`` [m], ``v_normal`` and ``v_tangent`` [m/s] (the rows'
     :class:`~.scenes.Numbers` ``d``): what a tangential model's :class:`~sphereimpact.contact.tangential.SweptTangential`
     reads."""
-    return _Columns(part, radius=0.5 * part["diameter"].to_numpy(), v_normal=d.v_n, v_tangent=d.v_t)
+    return _Columns(part, radius=0.5 * part["diameter"], v_normal=d.v_n, v_tangent=d.v_t)
 
 
 def _path_names(paths) -> list:

@@ -18,7 +18,6 @@ from enum import Enum
 from typing import Callable
 
 import numpy as np
-import pandas as pd
 
 from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIALS
@@ -29,7 +28,7 @@ from ..impact.scene import TANGENTIAL_ONLY, SolverOptions
 from ..impact.solve import reusing_normal_motions, simulate, simulate_many
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
-from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, _compliant, first_rows, incidence, scene_of
+from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, SceneColumns, _compliant, first_rows, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
 #: Path thresholds, each where the faster path changes on the sweep benchmark's scenes: fewest scenes sharing
@@ -75,10 +74,10 @@ class Work:
     objects when the sweep is not sharded), the accuracy ``target``, the scenes integrated at once
     (``chunk_size``), the single-impact ``options`` and ``progress(done, total)``."""
 
-    frame: pd.DataFrame
+    frame: SceneColumns
     numbers: Numbers
     needs: Needs
-    span_frame: pd.DataFrame
+    span_frame: SceneColumns
     span: Numbers
     span_needs: Needs
     target: float
@@ -153,12 +152,11 @@ def _columns(outcomes: list) -> dict:
     return out | {"regime": np.array([one.regime for one in outcomes], dtype=object)}
 
 
-def _one_by_one(frame: pd.DataFrame) -> np.ndarray:
+def _one_by_one(frame: SceneColumns) -> np.ndarray:
     """Scenes solved one by one: gravity on an inclined flat (stick-slip with re-slip as P falls), or a
     compliant tangential contact with tangential motion (its tangential motion is integrated)."""
-    tangential = (incidence(frame) > 0) | (frame["spin"].to_numpy() != 0)
-    return (((frame["gravity"].to_numpy() > 0) & (frame["angle"].to_numpy() > 0))
-            | (_compliant(frame) & tangential))
+    tangential = (incidence(frame) > 0) | (frame["spin"] != 0)
+    return ((frame["gravity"] > 0) & (frame["angle"] > 0)) | (_compliant(frame) & tangential)
 
 
 def _series_lanes(d: Numbers) -> np.ndarray:
@@ -197,7 +195,7 @@ def _lane_limit(steps: np.ndarray, alone: np.ndarray) -> float:
     return float(steps[best]) if best < steps.size else -np.inf
 
 
-def solved_alone(frame: pd.DataFrame, d: Numbers, target: float, limits: dict | None = None) -> tuple[np.ndarray, dict]:
+def solved_alone(frame: SceneColumns, d: Numbers, target: float, limits: dict | None = None) -> tuple[np.ndarray, dict]:
     """(scenes solved one by one, the lane limit per criterion).
 
     One by one: :func:`_one_by_one` and :func:`_beyond_lanes` scenes, and the scenes the Runge-Kutta lanes
@@ -243,7 +241,7 @@ class SinglePath(SweepPath):
         return SinglePath.solve_rows(work.frame, rows, work, "sweep row")
 
     @staticmethod
-    def solve_rows(frame: pd.DataFrame, rows, work: Work, what: str) -> dict:
+    def solve_rows(frame: SceneColumns, rows, work: Work, what: str) -> dict:
         """``simulate`` on each of ``frame``'s ``rows``, :data:`SINGLES_CHUNK` per call (a batched tangential kernel
         runs them together), progress after each; their outputs as columns (:func:`_columns`), in ``rows``' order.
         An ImpactError names the first failing one as ``what`` ``rows[i]``.
@@ -255,13 +253,12 @@ class SinglePath(SweepPath):
         (:func:`~sphereimpact.impact.solve.reusing_normal_motions`, which keeps a call's motions only while it
         runs): each outcome is still the one ``simulate`` gives its scene alone."""
         rows = np.asarray(rows)
-        problem = first_rows({name: frame[name].to_numpy()[rows] for name in frame.columns
-                              if name not in TANGENTIAL_ONLY})[0]
+        problem = first_rows({name: values[rows] for name, values in frame.items() if name not in TANGENTIAL_ONLY})[0]
         order = np.argsort(problem, kind="stable")  # each problem's rows together, in order of first appearance
         out: dict = {}
         for start in range(0, len(rows), SINGLES_CHUNK):
             chunk = rows[order[start:start + SINGLES_CHUNK]]
-            scenes = [scene_of(row) for row in frame.iloc[chunk].to_dict("records")]  # not iloc[i]: 40 us a row
+            scenes = [scene_of(row) for row in frame.records(chunk)]
             with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
@@ -287,7 +284,7 @@ class SinglePath(SweepPath):
 
 
 
-def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
+def _similar_keys(frame: SceneColumns, d: Numbers, rows: np.ndarray) -> dict:
     """The dimensionless problem of each of ``rows`` (a compliant tangential contact, no gravity) as a hashable
     key: its law's family (or zeta and lam), separation criterion, tangential model, kappa, inertia factor,
     friction, incidence, spin R / v_n and its models' own parameters.  Two scenes with one key differ only in
@@ -295,23 +292,23 @@ def _similar_keys(frame: pd.DataFrame, d: Numbers, rows: np.ndarray) -> dict:
     if not len(rows):  # (a table without such scenes reads none of its columns)
         return {}
     angle = incidence(frame)
-    columns = [frame[name].to_numpy() for name in ("tangential", "kappa", "inertia_factor", "mu")]
-    own = [frame[name].to_numpy() for name in frame.columns if name not in SCENE_COLUMNS]  # the models' own
-    spin_ratio = frame["spin"].to_numpy() * 0.5 * frame["diameter"].to_numpy() / d.v_n
+    columns = [frame[name] for name in ("tangential", "kappa", "inertia_factor", "mu")]
+    own = [values for name, values in frame.items() if name not in SCENE_COLUMNS]  # the models' own
+    spin_ratio = frame["spin"] * 0.5 * frame["diameter"] / d.v_n
     def same(value):  # an empty cell (NaN) equals another, as a key
         return None if isinstance(value, float) and value != value else value
 
     keys = {}
     for i in rows:
-        normal = d.family[i] if d.family[i] is not None else (frame["model"].iat[i], d.zeta[i], d.lam[i])
+        normal = d.family[i] if d.family[i] is not None else (frame["model"][i], d.zeta[i], d.lam[i])
         keys[i] = tuple(same(v) for v in (normal, bool(d.force[i]), *(c[i] for c in columns), angle[i], spin_ratio[i],
                                           *(float(c[i]) for c in own)))
     return keys
 
 
-def _scales(frame: pd.DataFrame, d: Numbers, rows) -> dict:
+def _scales(frame: SceneColumns, d: Numbers, rows) -> dict:
     """The scales (:data:`SCALES`) of the scenes ``rows`` (indices), as arrays."""
-    mass, radius = frame["mass"].to_numpy()[rows], 0.5 * frame["diameter"].to_numpy()[rows]
+    mass, radius = frame["mass"][rows], 0.5 * frame["diameter"][rows]
     v_n, w = d.v_n[rows], d.w[rows]
     return {"time": 1.0 / w, "length": v_n / w, "speed": v_n, "spin": v_n / radius, "force": mass * v_n * w,
             "energy": mass * v_n * v_n}
@@ -331,14 +328,14 @@ class SimilarPath(SweepPath):
 
     def take(self, work, todo, span_todo):
         def eligible(frame, d, mask):
-            names = frame["tangential"].to_numpy()
+            names = frame["tangential"]
             free = np.zeros(names.shape, bool)
             for name, model in TANGENTIALS.items():
                 if model.scale_free:  # a model that does not declare it is solved scene by scene
                     free |= names == name
             if not (mask & free).any():
                 return np.zeros(0, dtype=np.int64)
-            return np.flatnonzero(mask & free & _one_by_one(frame) & (frame["gravity"].to_numpy() == 0)
+            return np.flatnonzero(mask & free & _one_by_one(frame) & (frame["gravity"] == 0)
                                   & np.isfinite(d.w))
 
         span_keys = _similar_keys(work.span_frame, work.span, eligible(work.span_frame, work.span, span_todo))
@@ -412,7 +409,7 @@ class FamilyInterpolantPath(SweepPath):
             if np.unique(q).size < FAMILY_MIN:
                 continue
             try:
-                built[key] = FamilyInterpolant(scene_of(work.span_frame.iloc[rows[0]].to_dict()), float(q.min()),
+                built[key] = FamilyInterpolant(scene_of(work.span_frame.record(rows[0])), float(q.min()),
                                                float(q.max()), key[-1], work.target, extremes=work.needs.extremes,
                                                grips=work.span_needs.grips(rows).any())
             except InterpolationError:  # such a group is solved family by family
@@ -462,14 +459,14 @@ class PerFamilyPath(SweepPath):
         if work.sharded:
             for i, key in zip(span_rows, cls._keys(work.span, span_rows)):
                 if key in members:
-                    first.setdefault(key, work.span_frame.iloc[i])
+                    first.setdefault(key, work.span_frame.record(i))
         names = [*NORMAL_OUTPUTS, *(EXTREMES if extremes else ())]
         out = {name: np.empty(len(keys)) for name in names} | {"tau_g": np.full(len(keys), np.nan)}
         for key, mine in members.items():
             mine = np.array(mine)
             known = mine[np.isfinite(levels[mine])]  # the family's dimensionless motion serves every level
-            scene = first.get(key, work.frame.iloc[rows[mine[0]]])
-            solved = dimensionless_motion(scene_of(scene.to_dict()), options, extremes,
+            scene = first[key] if key in first else work.frame.record(rows[mine[0]])
+            solved = dimensionless_motion(scene_of(scene), options, extremes,
                                           levels[known] if known.size else None)
             for name in names:
                 out[name][mine] = solved[name]

@@ -33,8 +33,69 @@ SCENE_COLUMNS = tuple(name for name in SCENE_KEYS if name not in PARTNER_FIELDS)
 DEFAULTS = {name: FIELD_DEFAULTS.get(name) for name in SCENE_COLUMNS}  # None: a parameter (its law's default)
 
 
+class SceneColumns:
+    """A checked table of scenes (:func:`scene_columns`) as one numpy array per column (text columns as object
+    arrays), read and sliced as the sweep reads them: a DataFrame cost a fit's twenty-bounce sweep more to build,
+    read and slice than its solve.  ``len`` is the number of scenes, ``name in`` asks for a column, ``[name]``
+    gives its array; :meth:`frame` is the DataFrame :func:`scene_table` returns."""
+
+    __slots__ = ("_arrays", "_n")
+
+    def __init__(self, arrays: dict, n: int):
+        self._arrays, self._n = arrays, n
+
+    def __len__(self) -> int:
+        return self._n
+
+    def __contains__(self, name) -> bool:
+        return name in self._arrays
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self._arrays[name]
+
+    def __setitem__(self, name: str, values: np.ndarray) -> None:
+        self._arrays[name] = values
+
+    @property
+    def columns(self) -> list:
+        """The column names, in the table's order."""
+        return list(self._arrays)
+
+    def items(self):
+        """(name, array) of every column, in order."""
+        return self._arrays.items()
+
+    def take(self, rows) -> "SceneColumns":
+        """The scenes ``rows`` (a mask or indices), in their order."""
+        arrays = {name: values[rows] for name, values in self._arrays.items()}
+        return SceneColumns(arrays, len(next(iter(arrays.values()))) if arrays else 0)
+
+    def record(self, i: int) -> dict:
+        """Scene ``i`` as name -> value (what :func:`scene_of` takes)."""
+        return {name: values[i] for name, values in self._arrays.items()}
+
+    def records(self, rows=None) -> list[dict]:
+        """The scenes ``rows`` (indices; default every scene), each as name -> Python value."""
+        columns = [(values if rows is None else values[rows]).tolist() for values in self._arrays.values()]
+        names = list(self._arrays)
+        return [dict(zip(names, values)) for values in zip(*columns)]
+
+    def frame(self, more: dict | None = None) -> pd.DataFrame:
+        """The scenes as a DataFrame (text as object columns), followed by the columns of ``more`` (name -> array
+        or Series), built in one go."""
+        columns = {name: pd.Series(values, dtype=object) if values.dtype == object else values
+                   for name, values in self._arrays.items()}
+        return pd.DataFrame(columns | (more or {}))
+
+
 def scene_table(scenes) -> pd.DataFrame:
-    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row).
+    """Scene parameters as a DataFrame with every column, validated (ValueError names the first bad row): the
+    :class:`SceneColumns` of :func:`scene_columns`, as a DataFrame."""
+    return scene_columns(scenes).frame()
+
+
+def scene_columns(scenes) -> SceneColumns:
+    """Scene parameters with every column, validated (ValueError names the first bad row), as arrays.
 
     A DataFrame is one scene per row; a dict of values or lists is every combination of them (:func:`grid`),
     as the command line's ranges are.  An empty cell (NaN or None) is a parameter the row does not give, as a
@@ -55,16 +116,13 @@ def scene_table(scenes) -> pd.DataFrame:
     own_columns = own_parameter_columns(columns | {name: arrays[name] for name in own if name in arrays}, n)
     for name in ("modulus", *TANGENTIAL_PARAMETERS, *PATH_RULES):
         columns.setdefault(name, np.full(n, np.nan))
-    # text as object columns: pandas' string dtype costs as much to build as the rest of a sweep's overhead
-    columns = {name: pd.Series(np.asarray(columns[name], dtype=object), dtype=object) if name in TEXT_FIELDS
-               else np.asarray(columns[name], dtype=float) for name in SCENE_COLUMNS} | own_columns
-    # labelled by Python strings: under pandas' string dtype of labels each read of a column took twice as long,
-    # and a sweep of a fit's few bounces reads its table's columns about eighty times
-    frame = pd.DataFrame(columns, columns=pd.Index(list(columns), dtype=object))
-    paths = ~np.isnan(np.column_stack([columns[name] for name in PATH_RULES]))  # not frame[[...]]: 0.3 ms
-    for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"].to_numpy() != 0) | paths.all(axis=1))):
+    columns = {name: np.asarray(columns[name], dtype=object if name in TEXT_FIELDS else float)
+               for name in SCENE_COLUMNS} | {name: np.asarray(values, dtype=float) for name, values in own_columns.items()}
+    frame = SceneColumns(columns, n)
+    paths = ~np.isnan(np.column_stack([columns[name] for name in PATH_RULES]))
+    for i in np.flatnonzero(paths.any(axis=1) & ((frame["angle"] != 0) | paths.all(axis=1))):
         try:  # one description of the approach per scene: checked as the Scene checks it
-            scene_of(frame.iloc[i].to_dict())
+            scene_of(frame.record(i))
         except ValueError as err:
             raise ValueError(f"{err} (row {i})") from None
     tangential = np.column_stack([columns[name] for name in TANGENTIAL_PARAMETERS])
@@ -81,7 +139,7 @@ def scene_table(scenes) -> pd.DataFrame:
         for g, first in enumerate(firsts):  # in the order of their first rows: the first bad row is named
             i = int(rows[first])
             try:
-                scene = scene_of(frame.iloc[i].to_dict())
+                scene = scene_of(frame.record(i))
             except ValueError as err:
                 raise ValueError(f"{err} (row {i})") from None
             checked[g] = np.nan if scene.kappa is None else scene.kappa
@@ -220,10 +278,10 @@ def _objects(n: int, value) -> np.ndarray:
     return out
 
 
-def _compliant(frame: pd.DataFrame) -> np.ndarray:
+def _compliant(frame: SceneColumns) -> np.ndarray:
     """Scenes whose tangential model has no ``swept`` end state (its motion is integrated: solved scene by
     scene)."""
-    names = frame["tangential"].to_numpy()
+    names = frame["tangential"]
     out = np.ones(names.shape, dtype=bool)
     for name, model in TANGENTIALS.items():
         if model.swept is not None:
@@ -259,28 +317,29 @@ def given_fields(row: dict) -> dict:
     return given | ({"parameters": own} if own else {})
 
 
-def incidence(frame: pd.DataFrame) -> np.ndarray:
+def incidence(frame) -> np.ndarray:
     """Each scene's incidence from the flat's normal [deg]: its ``incidence``, 90 - ``angle_to_surface``, or
-    the flat's tilt ``angle`` for a vertical approach (as :attr:`sphereimpact.Scene.incidence_deg`)."""
-    given, surface = frame["incidence"].to_numpy(), frame["angle_to_surface"].to_numpy()
-    return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, frame["angle"].to_numpy()))
+    the flat's tilt ``angle`` for a vertical approach (as :attr:`sphereimpact.Scene.incidence_deg`), of a
+    :func:`scene_table` or its :class:`SceneColumns`."""
+    given, surface = np.asarray(frame["incidence"]), np.asarray(frame["angle_to_surface"])
+    return np.where(~np.isnan(given), given, np.where(~np.isnan(surface), 90.0 - surface, np.asarray(frame["angle"])))
 
 
-def approach_speeds(frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+def approach_speeds(frame) -> tuple[np.ndarray, np.ndarray]:
     """Each scene's approach along the normal and along the flat [m/s]: v cos(theta) and v sin(theta), the latter
     exactly 0 at normal incidence, theta its :func:`incidence` (as :attr:`sphereimpact.Scene.v_normal` and
     :attr:`sphereimpact.Scene.v_tangent`)."""
     theta = np.radians(incidence(frame))
-    speed = frame["speed"].to_numpy()
+    speed = np.asarray(frame["speed"])
     return speed * np.cos(theta), np.where(theta == 0, 0.0, speed * np.sin(theta))
 
 
-def law_view(frame: pd.DataFrame, v_n: np.ndarray) -> SimpleNamespace:
+def law_view(frame: SceneColumns, v_n: np.ndarray) -> SimpleNamespace:
     """The columns of scenes of one law that its vectorised functions read: mass, radius, v_normal and its
     parameters (the ``p`` of :class:`~sphereimpact.contact.laws.ContactLaw`'s functions)."""
     own = [name for name in own_parameters() if name in frame]  # the laws' own parameters (and the models')
-    return SimpleNamespace(mass=frame["mass"].to_numpy(), radius=0.5 * frame["diameter"].to_numpy(), v_normal=v_n,
-                           **{name: frame[name].to_numpy() for name in (*PARAMETER_NAMES, *own)})
+    return SimpleNamespace(mass=frame["mass"], radius=0.5 * frame["diameter"], v_normal=v_n,
+                           **{name: frame[name] for name in (*PARAMETER_NAMES, *own)})
 
 
 @dataclass(frozen=True)
@@ -338,8 +397,8 @@ def _closed_form_code(form) -> int:
     return len(CLOSED_FORMS) - 1
 
 
-def numbers(frame: pd.DataFrame) -> Numbers:
-    """The :class:`Numbers` of every scene of a :func:`scene_table`, each from its law's ``frequency`` and
+def numbers(frame: SceneColumns) -> Numbers:
+    """The :class:`Numbers` of every scene of a :func:`scene_columns`, each from its law's ``frequency`` and
     ``family`` (ValueError names a law whose closed form reads numbers the sweep does not carry, and a row
     whose scales overflow)."""
     v_n, v_t = approach_speeds(frame)
@@ -347,7 +406,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
     w, zeta, lam = np.empty(n), np.zeros(n), np.zeros(n)
     closed_form, family = np.full(n, -1), _objects(n, None)
     modified, batched = np.zeros(n, bool), np.zeros(n, bool)
-    models, separation = frame["model"].to_numpy(), frame["separation"].to_numpy()
+    models, separation = frame["model"], frame["separation"]
     for model in dict.fromkeys(models.tolist()):
         rows = np.flatnonzero(models == model)
         law = LAWS[model]
@@ -355,7 +414,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
         if law.closed_form is not None and not set(law.closed_form.reads) <= {"zeta", "lam"}:
             raise ValueError(f"model {model!r} declares a closed form reading {', '.join(law.closed_form.reads)}; "
                              f"the sweep carries zeta and lam only: declare closed_form=None to be solved per family")
-        view = law_view(frame if rows.size == n else frame.iloc[rows], v_n[rows])
+        view = law_view(frame if rows.size == n else frame.take(rows), v_n[rows])
         with np.errstate(all="ignore"):  # extreme rows are refused below, with the row named
             w[rows] = np.broadcast_to(law.frequency(view), rows.shape)
             values = {name: np.broadcast_to(np.asarray(value, dtype=float), rows.shape)
@@ -372,7 +431,7 @@ def numbers(frame: pd.DataFrame) -> Numbers:
             keys = zip(*values.values()) if values else [()] * rows.size
             family[rows] = [(model, *key) for key in keys]
     # gravity along the normal of the flat, tilted by `angle` (w v_n: normal, see scale_problem)
-    gamma = frame["gravity"].to_numpy() * np.cos(np.radians(frame["angle"].to_numpy())) / (w * v_n)
+    gamma = frame["gravity"] * np.cos(np.radians(frame["angle"])) / (w * v_n)
     return Numbers(w=w, v_n=v_n, v_t=v_t, gamma=gamma, zeta=zeta, lam=lam, modified=modified, closed=closed_form >= 0,
                    batched=batched, force=separation == Separation.FORCE, closed_form=closed_form,
                    family=family)
