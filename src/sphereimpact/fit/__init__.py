@@ -2,7 +2,7 @@
 
 ``fit(read_measured(path), ball, free=["mu", "kappa"])`` returns a :class:`FitResult` whose ``ball`` every door
 reuses (``save_ball``, ``--ball``, a study's ``ball_file``).  The names (:mod:`.names`) load at once; the fitting
-(pandas, scipy.optimize, scipy.stats) on first use, so that a command which only names them starts fast.
+(pandas, scipy.optimize) on first use, so that a command which only names them starts fast.
 """
 
 from .names import FIT_FILES, FREE, MEASURABLE, PLAN_FILES

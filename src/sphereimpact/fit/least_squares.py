@@ -22,6 +22,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
+from scipy.special import chdtrc, fdtrc
 
 from ..contact.tangential import TANGENTIALS
 from ..impact.ball import APPROACH, Ball, ball_columns, calibrated_ball, check_described
@@ -353,17 +354,14 @@ def _significant(cost: float, better: float, n: int, p: int) -> bool:
     if n <= p or better <= 0:
         return True
     statistic = (cost - better) / (better / (n - p))
-    from scipy.stats import f  # imported on use: scipy.stats costs a job that only imports the fit 0.3 s
-
-    return bool(f.sf(statistic, 1, n - p) < RESTART_P)
+    # the F distribution's survival function, the one scipy.stats.f.sf calls (scipy.stats' import is slow)
+    return bool(fdtrc(1, n - p, statistic) < RESTART_P)
 
 
 def _misfit_p(chi2: float, dof: int) -> float:
     """The chance of a chi-square at least ``chi2`` with ``dof`` degrees of freedom, were the stated uncertainties
     right."""
-    from scipy.stats import chi2 as distribution  # imported on use (see _significant)
-
-    return float(distribution.sf(chi2, dof))
+    return float(chdtrc(dof, chi2))  # the chi-square survival function, the one scipy.stats.chi2.sf calls
 
 
 def _restarted(result, solve, sigma, names, initial, bounds, logs, natural):
