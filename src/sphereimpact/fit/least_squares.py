@@ -255,11 +255,19 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
         return sweep(with_constants(rows, ball_columns(current)), target=target, outputs=outputs,
                      settings=dict(current.options.settings))
 
-    def predictions(theta, vals=values, bounces=None):
+    def readings(vals):
+        """(quantity, its rows of ``vals``, their bounces) per measured quantity: grouped once per set of values,
+        not at each of the optimiser's evaluations."""
+        return [(name, np.asarray(rows), vals.loc[rows, "bounce"].to_numpy())
+                for name, rows in vals.groupby("quantity").groups.items()]
+
+    every_reading = readings(values)
+
+    def predictions(theta, read=every_reading, bounces=None):
         out = model(theta, bounces)
-        result = np.empty(len(vals))
-        for name, rows in vals.groupby("quantity").groups.items():
-            result[rows] = quantity(name, out)[vals.loc[rows, "bounce"].to_numpy()]
+        result = np.empty(sum(rows.size for _, rows, _ in read))
+        for name, rows, at in read:
+            result[rows] = quantity(name, out)[at]
         return result
 
     measured_values = values["value"].to_numpy(float)
@@ -272,8 +280,10 @@ def _fit(measured: Measured, ball: Ball, names: list, bootstrap: int, seed: int,
     start = _inside(np.where(logs, log_start, initial), *bounds)
 
     def solve(theta0, weights, vals=values, data=measured_values, bounces=None):
+        read = every_reading if vals is values else readings(vals)
+
         def residual(theta):
-            return (predictions(theta, vals, bounces) - data) / weights
+            return (predictions(theta, read, bounces) - data) / weights
 
         result = least_squares(residual, theta0, bounds=bounds, method="trf", jac="2-point", diff_step=DIFF_STEP,
                                x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=200)
