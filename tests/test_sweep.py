@@ -367,9 +367,9 @@ def test_constant_columns_built_at_once_are_those_assign_gives():
 
 
 def test_scene_columns_read_and_slice_as_the_scene_table_does():
-    """SceneColumns (the checked table as the sweep reads it, one array per column) gives what the DataFrame of
-    scene_table gives: each column, a slice of rows, each row as a record, with the models' own parameters and text
-    columns; and a Scene from a record is the Scene from the DataFrame's row."""
+    """SceneColumns (the checked table as the sweep reads it, one read-only array per column) gives what the
+    DataFrame of scene_table gives: each column, a slice of rows, each row as a record, with the models' own
+    parameters and text columns; and a Scene from a record is the Scene from the DataFrame's row."""
     from sphereimpact.numerics.consistency import random_scenes
     from sphereimpact.sweep.scenes import scene_columns, scene_of, scene_table
 
@@ -379,6 +379,7 @@ def test_scene_columns_read_and_slice_as_the_scene_table_does():
     assert {"chi", "model", "tangential"} <= set(columns.columns)
     for name in frame.columns:
         np.testing.assert_array_equal(columns[name], frame[name].to_numpy())
+        assert not columns[name].flags.writeable  # read-only, as a DataFrame's column
     rows = np.array([399, 3, 3, 150])
     pd.testing.assert_frame_equal(columns.take(rows).frame(), frame.iloc[rows].reset_index(drop=True))
     for got, expected in ((columns.records(rows), frame.iloc[rows].to_dict("records")),

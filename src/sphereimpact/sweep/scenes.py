@@ -37,11 +37,14 @@ class SceneColumns:
     """A checked table of scenes (:func:`scene_columns`) as one numpy array per column (text columns as object
     arrays), read and sliced as the sweep reads them: a DataFrame cost a fit's twenty-bounce sweep more to build,
     read and slice than its solve.  ``len`` is the number of scenes, ``name in`` asks for a column, ``[name]``
-    gives its array; :meth:`frame` is the DataFrame :func:`scene_table` returns."""
+    gives its array, read-only (as a DataFrame's column is: a law's function cannot change the table); :meth:`frame`
+    is the DataFrame :func:`scene_table` returns."""
 
     __slots__ = ("_arrays", "_n")
 
     def __init__(self, arrays: dict, n: int):
+        for values in arrays.values():
+            values.flags.writeable = False
         self._arrays, self._n = arrays, n
 
     def __len__(self) -> int:
@@ -54,6 +57,7 @@ class SceneColumns:
         return self._arrays[name]
 
     def __setitem__(self, name: str, values: np.ndarray) -> None:
+        values.flags.writeable = False
         self._arrays[name] = values
 
     @property
@@ -68,7 +72,7 @@ class SceneColumns:
     def take(self, rows) -> "SceneColumns":
         """The scenes ``rows`` (a mask or indices), in their order."""
         arrays = {name: values[rows] for name, values in self._arrays.items()}
-        return SceneColumns(arrays, len(next(iter(arrays.values()))) if arrays else 0)
+        return SceneColumns(arrays, len(next(iter(arrays.values()))))
 
     def record(self, i: int) -> dict:
         """Scene ``i`` as name -> value (what :func:`scene_of` takes)."""
