@@ -52,9 +52,12 @@ def pytest_configure(config):
 
 
 def pytest_collection_modifyitems(items):
-    """The pipeline tests first: run in parallel by file (pyproject's ``-n 2 --dist loadfile``), their
-    long module fixture (the test pipeline) then overlaps the unit tests on the other worker."""
-    items.sort(key=lambda item: item.path.name != "test_workflow.py")
+    """The test pipeline's file first, then the other files with pipeline tests (each runs Snakemake), then the
+    rest: run in parallel by file in this order (pyproject's ``-n 2 --dist loadfile --no-loadscope-reorder``; xdist
+    otherwise takes the files with the most tests first), the long module fixture of test_workflow.py (the test
+    pipeline) overlaps the unit tests on the other worker, and the suite does not end on a file of Snakemake runs."""
+    running = {item.path.name for item in items if item.get_closest_marker("pipeline")}
+    items.sort(key=lambda item: 0 if item.path.name == "test_workflow.py" else 1 if item.path.name in running else 2)
 
 
 def _left_out(directory: str, names: list) -> list:
