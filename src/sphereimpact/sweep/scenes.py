@@ -236,7 +236,7 @@ def given_table(scenes) -> pd.DataFrame:
         text = [c for c, dtype in table.dtypes.items() if isinstance(dtype, pd.StringDtype)]
         if not text:
             return table
-        # as object columns: pandas' string dtype makes each of the sweep's reads of them several times slower
+        # as object columns, whatever dtype the user's text has: one table, however built (with_constants, assign)
         return table.assign(**{c: pd.Series(table[c].to_numpy(dtype=object), index=table.index, dtype=object)
                                for c in text})
     check_size({name: int(np.size(values)) for name, values in scenes.items()},
@@ -443,8 +443,9 @@ def numbers(frame: SceneColumns) -> Numbers:
 
 def with_constants(table: pd.DataFrame, constants: dict) -> pd.DataFrame:
     """``table`` with a column per name of ``constants``, its value in every row (replacing a column of that name),
-    built in one go with text as object columns, as the sweep reads them: ``DataFrame.assign`` of a ball's dozen
-    columns (:func:`~sphereimpact.impact.ball.ball_columns`) cost each of a fit's evaluations a quarter of its time."""
+    built in one go with text as object columns, as :func:`given_table` gives them: ``DataFrame.assign`` of a ball's
+    dozen columns (:func:`~sphereimpact.impact.ball.ball_columns`) cost each of a fit's evaluations a quarter of its
+    time."""
     n, index = len(table), table.index
     columns = dict(table.items())
     for name, value in constants.items():  # in the column's place, as assign puts it
