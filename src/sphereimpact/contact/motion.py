@@ -116,7 +116,21 @@ class NormalMotion:
 
             low, high = force_extremes(state.arrays(), state.force, state.params, np.asarray(self.grid, dtype=float))
             return float(low), float(high)
-        return extremes(self.force, self.grid)
+        return extremes(self.force, self.grid, self._forces_on(np.asarray(self.grid, dtype=float)))
+
+    def _forces_on(self, grid: np.ndarray) -> np.ndarray:
+        """The normal force [N] at each instant of the array ``grid`` [s] as the compiled kernels sample it: the law's
+        ``scalar`` formula instant by instant (the C library's exp, expm1 and pow, as compiled code calls them) where
+        the law has one, else :meth:`force`.  numpy's vectorised exp, expm1 and power are its own on processors with
+        AVX-512 and differ from the C library's in the last bit for a few percent of arguments, so a vectorised sample
+        would not be the compiled one to the bit there (a force extreme at the end of contact, where P is about 0)."""
+        scalar = self.scene.law.scalar
+        if scalar is None:
+            return self.force(grid)
+        delta, delta_dot = self.state(grid)
+        scene = self.scene
+        return np.array([scalar(d, v, scene) for d, v in zip(np.asarray(delta, dtype=float).tolist(),
+                                                             np.asarray(delta_dot, dtype=float).tolist())])
 
     def force_roots(self) -> list[float]:
         """The instants [s] in (0, t_f] where the normal force changes sign (:func:`~sphereimpact.ode.events.roots` of
@@ -126,7 +140,7 @@ class NormalMotion:
         grid = grid[grid > 0.0]
         state = self.kernel_state()
         if state is None:
-            return roots(self.force, grid)
+            return roots(self.force, grid, values=self._forces_on(grid))
         from .normal_kernel import force_roots
 
         found, status, low, high = force_roots(state.arrays(), state.force, state.params, grid)

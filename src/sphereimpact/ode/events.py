@@ -91,7 +91,7 @@ def roots_at(g, args, grid, values, direction: int, found, refine, root) -> tupl
     return count, ROOT, 0.0, 0.0
 
 
-def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float]:
+def roots(f, grid, direction: int = 0, after: float | None = None, values=None) -> list[float]:
     """All roots of ``f`` on ``[grid[0], grid[-1]]``, in time order (:func:`roots_at` on its samples).
 
     Parameters
@@ -104,6 +104,8 @@ def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float
         Keep only crossings from + to - (-1), from - to + (+1), or both (0).
     after : float, optional
         Ignore roots at or before this time (e.g. a force that starts at 0).
+    values : array_like, optional
+        ``f`` sampled on ``grid`` (with ``after``, on the instants kept), when the caller has it.
 
     Returns
     -------
@@ -120,7 +122,7 @@ def roots(f, grid, direction: int = 0, after: float | None = None) -> list[float
     grid = np.asarray(grid, dtype=float)
     if after is not None:
         grid = grid[grid > after]
-    values = np.asarray(f(grid), dtype=float)
+    values = np.asarray(f(grid) if values is None else values, dtype=float)
     return sampled_roots(_value, f, grid, values, direction)
 
 
@@ -154,10 +156,10 @@ def first_root(f, grid, direction: int = 0, after: float | None = None) -> float
     return found[0] if found else None
 
 
-def extremes(f, grid) -> tuple[float, float]:
+def extremes(f, grid, values=None) -> tuple[float, float]:
     """The smallest and largest values of ``f`` over ``[grid[0], grid[-1]]`` (:func:`extremum` of each, ``f`` sampled on
-    the grid once)."""
-    values = f(grid)
+    the grid once, or ``values``, its samples there, when given)."""
+    values = f(grid) if values is None else values
     return extremum(f, grid, "min", values)[1], extremum(f, grid, "max", values)[1]
 
 
