@@ -2,16 +2,28 @@
 
 import math
 import os
+import runpy
 import shutil
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
-from sphereimpact import SolverOptions
-from sphereimpact.integrators.compiled import GROUPS
-from sphereimpact.numerics.reference import output_scales
-
 ROOT = Path(__file__).resolve().parents[1]
+
+# The tests compare the pipeline's files with computations of their own byte for byte, so they compute with the
+# arithmetic the pipeline's jobs do (sphereimpact.arithmetic), set before numpy is imported: the module is run from
+# its file, as importing it would import the package, and numpy with it.
+if "numpy" in sys.modules:
+    warnings.warn("numpy was imported before tests/conftest.py (by a pytest plugin?): the tests compute with this "
+                  "processor's own arithmetic, and on one with AVX-512 a byte comparison with the pipeline's files "
+                  "can fail at the last bit", stacklevel=1)
+runpy.run_path(str(ROOT / "src/sphereimpact/arithmetic.py"))["pin_arithmetic"]()
+
+from sphereimpact import SolverOptions  # noqa: E402
+from sphereimpact.integrators.compiled import GROUPS  # noqa: E402
+from sphereimpact.numerics.reference import output_scales  # noqa: E402
+
 #: The small configuration the pipeline tests run on.
 TEST_CONFIG = "config/test.yaml"
 #: numba's disk cache of a module's compiled kernels: an index and machine code in the module's __pycache__, valid

@@ -11,7 +11,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "sphereimpact"
 #: The layers, from the ground up (README, "What each folder holds"): a module may import its own layer and
 #: those below it.
 LAYERS = (
-    {"errors", "registry", "parsing", "memory", "plugins", "files", "choice", "kernel_cache"},  # no physics
+    {"errors", "registry", "parsing", "memory", "plugins", "files", "choice", "kernel_cache", "arithmetic"},  # no physics
     {"ode"},  # ODE machinery: no physics
     {"contact"},  # what the contact is: laws, tangential models, the solved normal motion's contract
     {"integrators"},  # the normal motion of one impact

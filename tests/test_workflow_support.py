@@ -1,5 +1,7 @@
 """What the rules ask of the package: config subsets and the package sources each job runs."""
 
+import contextlib
+import io
 import os
 import re
 import subprocess
@@ -9,10 +11,9 @@ from pathlib import Path
 import pytest
 import yaml
 
+from sphereimpact.arithmetic import SAME_ARITHMETIC, same_arithmetic
 from sphereimpact.study.config import with_defaults
-
-from sphereimpact.study.workflow import (RULE_KEYS, SAME_ARITHMETIC, config_subset, file_sources, package_sources,
-                                        same_arithmetic)
+from sphereimpact.study.workflow import RULE_KEYS, config_subset, file_sources, package_sources
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The shipped configuration with the schema's defaults filled in, as snakemake fills them before any job.
@@ -145,16 +146,26 @@ def test_the_jobs_arithmetic_is_pinned_to_avx2_only_where_the_processor_has_it()
     assert same_arithmetic(frozenset()) == {}  # another architecture, or no /proc/cpuinfo
 
 
+#: How many of 20000 arguments numpy's vectorised exp, expm1, log and power evaluate otherwise than the C library
+#: (math); printed by a process of its own.
+DIFFERING_BITS = (
+    "import math, numpy as np\n"
+    "x = np.random.default_rng(3).uniform(1e-3, 3.0, 20000)\n"
+    "pairs = [(np.exp(x), math.exp), (np.expm1(-x), lambda v: math.expm1(-v)), (np.log(x), math.log),\n"
+    "         (x ** 1.5, lambda v: v ** 1.5)]\n"
+    "print(sum(int((a != np.array([f(v) for v in x.tolist()])).sum()) for a, f in pairs))\n")
+
+
 def test_under_the_jobs_arithmetic_numpys_elementary_functions_are_the_c_librarys():
-    """In a fresh process with the pipeline's variables, numpy's vectorised exp, expm1, log and power equal the C
-    library's (math) on every one of 20000 arguments, whatever the processor (with AVX-512, numpy's own routines
-    differ from it on a few percent of them)."""
-    script = (
-        "import math, numpy as np\n"
-        "x = np.random.default_rng(3).uniform(1e-3, 3.0, 20000)\n"
-        "pairs = [(np.exp(x), math.exp), (np.expm1(-x), lambda v: math.expm1(-v)), (np.log(x), math.log),\n"
-        "         (x ** 1.5, lambda v: v ** 1.5)]\n"
-        "print(sum(int((a != np.array([f(v) for v in x.tolist()])).sum()) for a, f in pairs))\n")
+    """In a fresh process with the pipeline's variables (a job's), and in this test process (pinned by
+    tests/conftest.py), numpy's elementary functions equal the C library's on every one of 20000 arguments, whatever
+    the processor (with AVX-512 and without the variables, numpy's own routines differ on a few percent of them)."""
     env = os.environ | same_arithmetic()
-    differing = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+    differing = subprocess.run([sys.executable, "-c", DIFFERING_BITS], env=env, capture_output=True, text=True,
+                               check=True)
     assert differing.stdout.strip() == "0", differing.stderr
+    assert {name: os.environ.get(name) for name in same_arithmetic()} == same_arithmetic()
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        exec(DIFFERING_BITS, {})
+    assert printed.getvalue().strip() == "0"

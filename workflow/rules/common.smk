@@ -3,19 +3,19 @@ import os
 
 from snakemake.utils import validate
 
+from sphereimpact.arithmetic import pin_arithmetic
 from sphereimpact.figures.captions import CAPTIONS
 from sphereimpact.figures.catalog import FIGURES
 from sphereimpact.fit import FIT_FILES, PLAN_FILES
 from sphereimpact.study.chung_ooi_definition import variant_tests
 from sphereimpact.study.config_check import check_config
 from sphereimpact.study.readme import TIMING_CHARTS
-from sphereimpact.study.workflow import config_subset, file_sources, same_arithmetic, source_digest
+from sphereimpact.study.workflow import config_subset, file_sources, source_digest
 
 
 # Every job computes with the same arithmetic on any x86-64 processor with AVX2 (numpy without its AVX-512 routines,
 # OpenBLAS's Haswell kernels): the same bytes on every such machine.  A variable the user set is kept.
-for _name, _value in same_arithmetic().items():
-    os.environ.setdefault(_name, _value)
+pin_arithmetic()
 
 # Fail at once, naming every bad key; then let snakemake fill the schema's defaults.
 check_config(config, f"{workflow.basedir}/config/schema.yaml")

@@ -266,34 +266,3 @@ def job_seconds(path: str) -> float:
     except (ValueError, IndexError) as err:
         raise ValueError(f"{path}: not a Snakemake benchmark file (no wall time in its 's' column)") from err
 
-
-#: What the pipeline's jobs run numpy and OpenBLAS with on an x86-64 processor with AVX2 and FMA
-#: (:func:`same_arithmetic`): numpy's dispatch without its AVX-512 targets (numpy 2.4's names; a name this numpy
-#: or processor lacks is ignored), and OpenBLAS's Haswell kernels (AVX2 and FMA).
-SAME_ARITHMETIC = {"NPY_DISABLE_CPU_FEATURES": "X86_V4 AVX512_ICL AVX512_SPR", "OPENBLAS_CORETYPE": "Haswell"}
-
-
-def _cpu_flags(cpuinfo: str = "/proc/cpuinfo") -> frozenset[str]:
-    """The processor's feature flags as Linux lists them (empty where there is no such file)."""
-    try:
-        text = Path(cpuinfo).read_text()
-    except OSError:
-        return frozenset()
-    line = next((line for line in text.splitlines() if line.startswith("flags")), "")
-    return frozenset(line.partition(":")[2].split())
-
-
-def same_arithmetic(flags: frozenset[str] | None = None) -> dict[str, str]:
-    """The environment variables under which a job's numpy and OpenBLAS give the same bits on every x86-64 processor
-    with AVX2 and FMA (``flags``: the processor's, read from /proc/cpuinfo by default), so that the pipeline's tables
-    and figures are the same bytes on any of them.
-
-    Where a processor has AVX-512, numpy evaluates exp, expm1, log and power on arrays by its own AVX-512 routines,
-    which differ from the C library's in the last bit for a few percent of arguments, and OpenBLAS takes its
-    SkylakeX kernels, which sum in another order; both then move results at the round-off level, and what follows
-    from them (an adaptive step count, the worst of two differences at 1e-10, a figure's pixels) differs from an AVX2
-    machine's.  Pinned to AVX2 (:data:`SAME_ARITHMETIC`), numpy's elementary functions are the C library's (as the
-    compiled kernels' are) and OpenBLAS's kernels are one set.  Empty on a processor without AVX2 and FMA (OpenBLAS
-    cannot run Haswell kernels there) and on other architectures: their last bits are their own."""
-    flags = _cpu_flags() if flags is None else flags
-    return dict(SAME_ARITHMETIC) if {"avx2", "fma"} <= flags else {}
