@@ -265,4 +265,3 @@ def job_seconds(path: str) -> float:
         return float(values[header.index("s")])
     except (ValueError, IndexError) as err:
         raise ValueError(f"{path}: not a Snakemake benchmark file (no wall time in its 's' column)") from err
-
