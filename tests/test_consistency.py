@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 from sphereimpact.numerics.consistency import compare, random_scenes, references
-from sphereimpact.sweep import paths
+from sphereimpact.sweep import paths, processes
 from sphereimpact.sweep.engine import PATHS, sweep
 
 TARGET = 1e-8
@@ -81,3 +81,14 @@ def test_compare_measures_each_row_as_relative_errors_does(solved):
         assert isinstance(scene, Scene)
         expected = relative_errors(swept.iloc[i], reference.iloc[rows[i]].to_dict(), scene, COMPARED)
         assert errors["error"].iloc[i] == pytest.approx(max(expected.values()), rel=1e-12, abs=1e-300)
+
+
+@pytest.mark.skipif(not processes.can_fork(), reason="this system's processes cannot fork")
+def test_the_one_at_a_time_rows_shared_among_processes_give_the_table_of_one_process(solved, small_thresholds,
+                                                                                    monkeypatch):
+    """The single-impact path's chunks (of 8 rows here) in two processes: the mixed table to the bit."""
+    table, _ = solved
+    monkeypatch.setattr(paths, "SINGLES_CHUNK", 8)
+    alone = sweep(table, chapter_ball=True, jobs=1)
+    assert (alone["path"] == "single").sum() >= 8 * processes.PARALLEL_MIN_CHUNKS
+    assert sweep(table, chapter_ball=True, jobs=2).equals(alone)

@@ -71,6 +71,7 @@ CLI = [
     (["sweep", "--angle", "5:1:1", "--out", "OUT"], 2, "angle: range must be START:STOP:STEP"),
     (["sweep", "--angle", "0:89:0", "--out", "OUT"], 2, "STEP > 0"),
     (["sweep", "--chunk-size", "0", "--out", "OUT"], 2, "chunk_size must be an integer >= 1"),
+    (["sweep", "--jobs", "0", "--out", "OUT"], 2, "jobs must be an integer >= 1 (processes sharing the one-at-a-time"),
     (["sweep", "--target", "1"], 2, "the following arguments are required: --out"),
     (["sweep", "--out", "/nonexistent/dir/a.csv"], 2, "out: folder '/nonexistent/dir' does not exist"),
     (["sweep", "--out", "FOLDER"], 2, "out is a folder, not a file"),

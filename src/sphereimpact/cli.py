@@ -338,6 +338,10 @@ def _parser() -> argparse.ArgumentParser:
     swp.add_argument("--target", type=_number, default=1e-8, help="relative accuracy of every output, in [1e-12, 1e-3]")
     swp.add_argument("--chunk-size", type=int, default=100_000,
                      help="scenes integrated at once, >= 1 (bounds the integration's working memory)")
+    swp.add_argument("--jobs", type=int, default=None, metavar="N",
+                     help="most processes sharing the scenes solved one at a time (compliant contact at an angle, "
+                          "gravity on a slope), >= 1 (default: every CPU this process may use; the table is the same "
+                          "whatever N)")
     swp.add_argument("--out", required=True, metavar="FILE",
                      help="output table, .csv or .parquet (its folder must exist)")
     swp.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
@@ -530,10 +534,12 @@ def _sweep(args) -> None:
     from .parsing import parse_range
     from .sweep.engine import FAST_OUTPUTS, grid, outputs_wanted, sweep
     from .sweep.io import write_table
+    from .sweep.processes import checked_jobs
 
     start = time.perf_counter()
     if args.chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {args.chunk_size}")
+    checked_jobs(args.jobs)
     check_out(args.out, args.force)
     outputs = _outputs(args.outputs, FAST_OUTPUTS)
     outputs_wanted(outputs)  # checked before any work
@@ -589,7 +595,7 @@ def _sweep(args) -> None:
         warn_if_extrapolating(table, measurement)
     tty = sys.stderr.isatty()
     result = sweep(table, target=args.target, chunk_size=args.chunk_size, outputs=outputs, chapter_ball=args.chapter_ball,
-                   progress=_Progress(start) if tty else None, settings=settings)
+                   progress=_Progress(start) if tty else None, settings=settings, jobs=args.jobs)
     write_table(result, args.out)
     seconds = time.perf_counter() - start
     sys.stderr.write(f"{chr(13) if tty else ''}sphereimpact sweep: {len(result)} scenes in {seconds:.3g} s -> "

@@ -27,6 +27,7 @@ from ..parsing import parse_range  # noqa: F401  (re-exported: sweeps take range
 from ..contact.tangential import TANGENTIALS, Regime
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
 from .pairs import has_partner, pair_sweep
+from .processes import checked_jobs
 from .paths import ORDER, PATHS, Gives, Work, single_options
 from .scenes import (SCENE_COLUMNS, Numbers, SceneColumns, _objects, given_table, grid, incidence, numbers, rows,
                      scene_columns, scene_of, scene_table, undescribed_row)
@@ -43,7 +44,7 @@ FAST_OUTPUTS = tuple(key for key in SWEEP_OUTPUTS if key not in HISTORY_OUTPUTS)
 
 
 def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None, span=None,
-          outputs=None, settings=None, paths=None, chapter_ball: bool = False) -> pd.DataFrame:
+          outputs=None, settings=None, paths=None, chapter_ball: bool = False, jobs: int | None = None) -> pd.DataFrame:
     """Simulate every scene of a table.
 
     Parameters
@@ -83,6 +84,10 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         Take the chapter's ball (0.145 kg, 0.063 m, k = 60000 N/m, b = 10.5 N s/m) and speed (3 m/s) where a row is
         silent (default False: such a row is refused, as on the command line; only ``simulate`` takes the chapter's
         scene unasked).
+    jobs : int or None
+        Most processes that share the scenes solved one at a time by ``simulate`` (the single-impact path), forks
+        of this one (:mod:`.processes`; default None: every CPU this process may use; 1: this process alone).  The
+        table is the same to the bit whatever it is; the other paths run in this process.
 
     Returns
     -------
@@ -104,6 +109,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         raise ValueError(f"target must be a number in [1e-12, 1e-3]; got {target!r}")
     if isinstance(chunk_size, (bool, np.bool_)) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
         raise ValueError(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
+    jobs = checked_jobs(jobs)
     check_flag("chapter_ball", chapter_ball)
     if not isinstance(scenes, dict):  # once: the ball's check and the table read the same columns
         scenes = given_table(scenes)
@@ -115,7 +121,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
                          "chapter's); only simulate takes the chapter's scene unasked")
     if has_partner(scenes) or (span is not None and has_partner(span)):  # each pair as its reduced sphere
         return pair_sweep(sweep, scenes, target=target, chunk_size=chunk_size, progress=progress, span=span,
-                          outputs=outputs, settings=settings, paths=paths, chapter_ball=True)  # described
+                          outputs=outputs, settings=settings, paths=paths, chapter_ball=True, jobs=jobs)  # described
     wanted = outputs_wanted(outputs)
     order = ORDER if paths is None else [way for way in ORDER if way.name in set(_path_names(paths))]
     frame = scene_columns(scenes)
@@ -134,7 +140,7 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         span_frame = scene_columns(span)
         span_d = numbers(span_frame)
         span_needs = needs_of(span_frame, span_d, wanted)
-    work = Work(frame, d, needs, span_frame, span_d, span_needs, target, chunk_size, options, progress)
+    work = Work(frame, d, needs, span_frame, span_d, span_needs, target, chunk_size, options, progress, jobs)
     normal = {key: np.full(n, np.nan) for key in (*NORMAL_OUTPUTS, *EXTREMES, "tau_g")}
     todo, span_todo, rest = np.ones(n, bool), np.ones(len(span_frame), bool), np.zeros(n, bool)
     for way in order:

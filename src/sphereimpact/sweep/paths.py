@@ -19,6 +19,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..contact.laws import LAWS
 from ..contact.separation import Separation
 from ..contact.tangential import TANGENTIALS
 from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError, InterpolationError
@@ -26,8 +27,10 @@ from ..impact.declarations import SCALES
 from ..impact.outcome import NUMERIC_OUTPUTS
 from ..impact.scene import TANGENTIAL_ONLY, SolverOptions
 from ..impact.solve import reusing_normal_motions, simulate, simulate_many
+from ..integrators.compiled import expect_evaluations
 from . import batch, plane, series_lanes
 from .outputs import EXTREMES, NORMAL_OUTPUTS, Needs
+from .processes import solved_chunks
 from .scenes import CLOSED_FORMS, SCENE_COLUMNS, Numbers, SceneColumns, _compliant, first_rows, incidence, scene_of
 from .similarity import FamilyInterpolant, LambdaInterpolant, dimensionless_motion
 
@@ -52,6 +55,9 @@ LANES_LAM_MAX = 1e3
 #: path, never sets an accuracy.
 LANE_STEP_COST, LANE_COST = 160e-6, 0.26e-6
 SINGLE_COST, SINGLE_EVAL_COST = 1e-3, 2.5e-6
+#: Right-hand-side evaluations of a typical impact solved alone (DOP853 on a Hertz law: 510-585 across the Kharaz
+#: ball's map; the Taylor method on eq. 4.2: about 220), which tells the single-impact path how much it will integrate.
+SINGLE_EVALUATIONS = 300
 
 
 def single_options(target: float, settings=None) -> SolverOptions:
@@ -72,7 +78,8 @@ class Work:
     """What a path reads: the scenes to solve (``frame``, their ``numbers``, what each ``needs`` beyond the
     normal outputs), the whole sweep they belong to (``span_frame``, ``span``, ``span_needs``; the same
     objects when the sweep is not sharded), the accuracy ``target``, the scenes integrated at once
-    (``chunk_size``), the single-impact ``options`` and ``progress(done, total)``."""
+    (``chunk_size``), the single-impact ``options``, ``progress(done, total)`` and the most processes the
+    single impacts may share (``jobs``)."""
 
     frame: SceneColumns
     numbers: Numbers
@@ -84,6 +91,7 @@ class Work:
     chunk_size: int
     options: SolverOptions
     progress: Callable | None = None
+    jobs: int = 1
 
     @property
     def sharded(self) -> bool:
@@ -243,8 +251,9 @@ class SinglePath(SweepPath):
     @staticmethod
     def solve_rows(frame: SceneColumns, rows, work: Work, what: str) -> dict:
         """``simulate`` on each of ``frame``'s ``rows``, :data:`SINGLES_CHUNK` per call (a batched tangential kernel
-        runs them together), progress after each; their outputs as columns (:func:`_columns`), in ``rows``' order.
-        An ImpactError names the first failing one as ``what`` ``rows[i]``.
+        runs them together), the chunks shared among ``work.jobs`` processes (:mod:`.processes`), progress after
+        each; their outputs as columns (:func:`_columns`), in ``rows``' order.  An ImpactError names the first
+        failing one as ``what`` ``rows[i]``.
 
         Memory is bounded by the chunk, not the rows: a chunk's scenes and outcomes (a solved motion keeps its
         dense output, tens of kB) are dropped once their outputs are read.  The rows of one normal problem (a map
@@ -255,16 +264,20 @@ class SinglePath(SweepPath):
         rows = np.asarray(rows)
         problem = first_rows({name: values[rows] for name, values in frame.items() if name not in TANGENTIAL_ONLY})[0]
         order = np.argsort(problem, kind="stable")  # each problem's rows together, in order of first appearance
-        out: dict = {}
-        for start in range(0, len(rows), SINGLES_CHUNK):
-            chunk = rows[order[start:start + SINGLES_CHUNK]]
+        places = [order[start:start + SINGLES_CHUNK] for start in range(0, len(rows), SINGLES_CHUNK)]
+        compiled = sum(int(np.count_nonzero(frame["model"][rows] == name)) for name in np.unique(frame["model"][rows])
+                       if LAWS[name].kernel is not None or LAWS[name].series_kernel is not None)
+        expect_evaluations(compiled * SINGLE_EVALUATIONS)  # the work is known: the compiled integrators at once
+
+        def solve(place: np.ndarray) -> dict:
+            chunk = rows[place]
             scenes = [scene_of(row) for row in frame.records(chunk)]
             with warnings.catch_warnings():  # the table flags these in its beyond_radius, energy_gained columns
                 warnings.simplefilter("ignore", BeyondRadiusWarning)
                 warnings.simplefilter("ignore", EnergyGainWarning)
                 try:
                     with reusing_normal_motions():
-                        columns = _columns(simulate_many(scenes, work.options))
+                        return _columns(simulate_many(scenes, work.options))
                 except ImpactError:
                     for i, scene in zip(chunk, scenes):  # the first that fails alone
                         try:
@@ -272,10 +285,15 @@ class SinglePath(SweepPath):
                         except ImpactError as err:
                             raise ImpactError(f"{what} {i}: {err}") from None
                     raise
+
+        out: dict = {}
+        done = 0
+        for place, columns in zip(places, solved_chunks(solve, places, work.jobs)):
             for key, values in columns.items():
-                out.setdefault(key, np.empty(len(rows), dtype=values.dtype))[order[start:start + SINGLES_CHUNK]] = values
+                out.setdefault(key, np.empty(len(rows), dtype=values.dtype))[place] = values
+            done += len(place)
             if work.progress:
-                work.progress(start + len(chunk), len(rows))
+                work.progress(done, len(rows))
         return out
 
 
