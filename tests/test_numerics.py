@@ -368,3 +368,19 @@ def test_the_kernels_rows_are_written_for_the_bench_table_to_take_in(tmp_path, m
     assert list(rows.index) == ["compile (fresh disk cache)", "load (from the disk cache)"]
     assert (rows["scene"] == bench.KERNEL_SCENE).all() and (rows["repeats"] == 2).all()
     assert rows.loc["compile (fresh disk cache)", "time_ratio"] == 4.0 and rows["error"].isna().all()
+
+
+def test_a_commands_benchmark_row_times_the_whole_command_and_counts_its_table():
+    """``measure_command`` (the map-as-a-command row of results/bench_sweep.csv) runs the command in a fresh process
+    and reads its table back: a 2 x 2 chapter sweep gives 4 scenes; the damped map's arguments hold the ball to the
+    bit."""
+    from sphereimpact.numerics.bench_sweep import DAMPED_MAP, damped_map_command, measure_command
+
+    row = measure_command("four", ["sweep", "--chapter-ball", "--angle", "0:30:30", "--speed", "1:3:2"], repeats=1)
+    assert row["scenes"] == 4 and row["throughput"] == pytest.approx(4 / row["seconds"]) and row["repeats"] == 1
+    assert row["command"] == "sphereimpact sweep --chapter-ball --angle 0:30:30 --speed 1:3:2"
+    ball = Scene(model="hunt-crossley", modulus=6.3e10 / 3, mass=2.618e-4, diameter=0.005, mu=0.092,
+                 tangential="microslip", shear_modulus=1.35e10 / 7)
+    flags = damped_map_command(ball)
+    assert flags[flags.index("--modulus") + 1] == repr(6.3e10 / 3) and flags[flags.index("--chi") + 1] == "0.02"
+    assert flags[flags.index("--shear-modulus") + 1] == repr(1.35e10 / 7) and DAMPED_MAP["incidence"] in flags

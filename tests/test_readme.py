@@ -228,7 +228,10 @@ def test_the_speed_blocks_text_does_not_depend_on_the_rounds_a_run_took(tmp_path
              "handwritten_rtol": 1e-12, "speedup_over_simulate": 5.0, "simulate_reached": True,
              "simulate_error": 1e-12, "simulate_rtol": 1e-12, "evaluations": None, "target_seconds": None},
             {"sweep": "fit", "scenes": 20, "seconds": 6.0, "throughput": 50.0, "worst_error": None, "repeats": rounds,
-             "evaluations": 30, "target_seconds": 10.0}])
+             "evaluations": 30, "target_seconds": 10.0},
+            {"sweep": "map", "command": "sphereimpact sweep --chapter-ball", "scenes": 1000, "seconds": 5.0,
+             "throughput": 200.0, "repeats": 3, "target_seconds": 10.0}])
         rows.to_csv(tmp_path / "bench_sweep.csv", index=False)
         texts.append(speed_block(str(tmp_path / "bench.csv"), str(tmp_path / "bench_sweep.csv")))
     assert texts[0] == texts[1] and "or of fewer where one round" in texts[0]
+    assert "| map | `sphereimpact sweep --chapter-ball` | 1,000 | 5 s | 200 | under 10 s |" in texts[0]

@@ -167,14 +167,14 @@ def kernel_seconds(repeats: int = 3) -> tuple[float, float]:
         env = os.environ | {"NUMBA_CACHE_DIR": cache}
 
         def first_use() -> float:
-            return float(_fresh(("-c", _FIRST_USE), "the kernels' compilation", env))
+            return float(fresh_run(("-c", _FIRST_USE), "the kernels' compilation", env))
 
         compiled = first_use()
         loaded = float(np.median([first_use() for _ in range(repeats)]))
     return compiled, loaded
 
 
-def _fresh(arguments, what: str, env=None) -> str:
+def fresh_run(arguments, what: str, env=None) -> str:
     """The standard output of a fresh Python process (this interpreter) run with ``arguments``; RuntimeError naming
     ``what`` when it fails."""
     import subprocess
@@ -207,7 +207,7 @@ def startup_bench(repeats: int = 3) -> pd.DataFrame:
     for _ in range(repeats):
         for name, arguments in STARTUP.items():
             start = time.perf_counter()
-            _fresh(arguments, name)
+            fresh_run(arguments, name)
             seconds[name].append(time.perf_counter() - start)
     floor = float(np.median(seconds["python -c 'import numpy'"]))
     return pd.DataFrame([{"scene": STARTUP_SCENE, "contender": name, "repeats": repeats, "batch": 1,

@@ -21,7 +21,8 @@ Gravity-free scenes under the force criterion only (the baseline's impulse algeb
 engine's speed-up is measured on :data:`~sphereimpact.sweep.engine.FAST_OUTPUTS` (every output of ``simulate``
 but t_roll and the force extremes; the script computes less still), and the engine is also timed with every
 output, the default (``seconds_all``, and ``all_over_fast``, its time over the fast outputs'), except on the
-microslip map, whose paths compute every output anyway.  A fit's row (:func:`measure_fit`) times a fit instead.
+microslip map, whose paths compute every output anyway.  A fit's row (:func:`measure_fit`) times a fit instead, and
+a command's row (:func:`measure_command`) a whole ``sphereimpact sweep`` in a fresh process.
 
 A row's untimed half, the sample's references and errors and the contenders' tolerances (:func:`accuracy`), is the
 pipeline's job ``bench_sweep_accuracy`` (:func:`write_accuracies`), run beside the others; the timed job, which runs
@@ -40,7 +41,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .bench import LAW_SCENES, TOLERANCES
+from .bench import LAW_SCENES, TOLERANCES, fresh_run
 from .handwritten import handwritten
 from .reference import relative_errors
 from .timing import ROUND_BUDGET, interleaved_runs, steady_state
@@ -245,6 +246,45 @@ def measure_data_fit(name: str, measured, ball, free: list, repeats: int = 3) ->
     return _timed_fit(name, measured, ball, free, repeats, DATA_FIT_TARGET_SECONDS)[0]
 
 
+#: The damped microslip map of the compiled kernels' issue (43): Kharaz's ball with the issue's Hunt-Crossley chi over
+#: incidence x speed (10 309 scenes, each its own normal problem: no similarity serves a damped contact), every output.
+DAMPED_MAP = {"chi": "0.02", "incidence": "1:85:0.5", "speed": "1:7:0.1"}
+DAMPED_MAP_TARGET_SECONDS = 10.0
+
+
+def damped_map_command(scene: Scene) -> list[str]:
+    """``sphereimpact sweep``'s arguments (without ``--out``) for :data:`DAMPED_MAP` on ``scene``'s ball: its law (a
+    Hertz spring with a ``chi``), modulus, mass, diameter, inertia factor, friction, tangential model and its shear
+    modulus, each value as Python prints it (the scene's to the bit)."""
+    flags = {"model": scene.model, "modulus": repr(scene.modulus), "mass": repr(scene.mass),
+             "diameter": repr(scene.diameter), "inertia-factor": repr(scene.inertia_factor), "mu": repr(scene.mu),
+             "tangential": scene.tangential, "shear-modulus": repr(scene.shear_modulus), **DAMPED_MAP}
+    return ["sweep", *(part for name, value in flags.items() for part in (f"--{name}", value))]
+
+
+def measure_command(name: str, arguments: list[str], repeats: int = 3,
+                    target_seconds: float = DAMPED_MAP_TARGET_SECONDS) -> dict:
+    """One benchmark row: the command ``sphereimpact`` ``arguments`` whole, each run a fresh Python process (start,
+    imports, loading the compiled kernels, the work on every CPU, the table written to a temporary file), the
+    median of ``repeats`` runs; ``scenes`` is the table's rows, ``command`` the command line."""
+    import tempfile
+    import time
+
+    log.info("sweep bench: %s (a command)", name)
+    seconds = []
+    with tempfile.TemporaryDirectory() as folder:
+        out = Path(folder) / "table.csv"
+        for _ in range(repeats):
+            start = time.perf_counter()
+            fresh_run(("-m", "sphereimpact", *arguments, "--out", str(out), "--force"), name)
+            seconds.append(time.perf_counter() - start)
+        with out.open(encoding="utf-8") as table:
+            scenes = sum(1 for _ in table) - 1
+    median = float(np.median(seconds))
+    return {"sweep": name, "command": " ".join(["sphereimpact", *arguments]), "scenes": scenes, "seconds": median,
+            "throughput": scenes / median, "repeats": repeats, "target_seconds": target_seconds}
+
+
 def sweeps(lanes: int = 20_000, million: bool = True, laws=tuple(LAW_SCENES)) -> list[tuple]:
     """The benchmark's sweeps, in its rows' order: (name, scenes, target speed-up or None, :func:`measure`'s
     options, the row's extra cells).  See :func:`run` for the parameters."""
@@ -289,7 +329,7 @@ def write_accuracies(json_path: str, sample: int = 60, lanes: int = 20_000, mill
 
 def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, million: bool = True,
         laws=tuple(LAW_SCENES), fit_of: tuple | None = None, data_fit_of: tuple | None = None,
-        accuracies: dict | None = None) -> pd.DataFrame:
+        accuracies: dict | None = None, command_of: tuple | None = None) -> pd.DataFrame:
     """Every benchmark sweep; writes ``csv_path``.
 
     Parameters
@@ -317,6 +357,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
         Each sweep's :func:`accuracy` by name, as :func:`write_accuracies` wrote them with the same ``sample``,
         ``lanes``, ``million`` and ``laws`` (else each is computed before its timing).  ValueError if a sweep's is
         missing or was drawn on another sample size.
+    command_of : (str, list of str) or None
+        Also time a whole command (:func:`measure_command`): the row's name and ``sphereimpact``'s arguments.
     """
     steady_state()
     rows = []
@@ -336,6 +378,8 @@ def run(csv_path: str, repeats: int = 3, sample: int = 60, lanes: int = 20_000, 
                                 repeats))
     if data_fit_of is not None:
         rows.append(measure_data_fit(*data_fit_of, repeats))
+    if command_of is not None:
+        rows.append(measure_command(*command_of, repeats))
     frame = pd.DataFrame(rows)
     frame.to_csv(csv_path, index=False, float_format="%.4g")
     return frame

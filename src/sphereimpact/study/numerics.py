@@ -10,7 +10,7 @@ import pandas as pd
 from ..contact.separation import Separation
 from ..numerics.ablation import ablation
 from ..numerics.resolution import resolution_study
-from ..numerics.bench_sweep import run as bench_sweep, write_accuracies
+from ..numerics.bench_sweep import DAMPED_MAP, damped_map_command, run as bench_sweep, write_accuracies
 from ..numerics.bench import (bench_scenes, kernel_bench, microslip_bench, profile_call, simulate_vs_handwritten, stages,
                                startup_bench)
 from ..parsing import parse_range
@@ -98,7 +98,8 @@ def write_bench_sweep_accuracy(config: dict, json_path: str) -> None:
 
 def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None,
                       accuracy_json: str | None = None) -> None:
-    """The sweep benchmark (:func:`~sphereimpact.numerics.bench_sweep.run`) with ``bench``'s settings; with
+    """The sweep benchmark (:func:`~sphereimpact.numerics.bench_sweep.run`) with ``bench``'s settings (with
+    ``bench.million``, the damped microslip map of Kharaz's ball as a whole command); with
     ``bench.fit``, also the fit of ``kharaz_fit``'s free parameters to the noise-free curve of Kharaz's ball (the
     validation's, with ``kharaz_fit``'s tangential model) at the validation's incidences, and with ``data_csv`` (the
     shipped Kharaz data) the fit of those parameters and the COR to the measured bounces, from ``kharaz_fit``'s start
@@ -109,7 +110,11 @@ def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None,
     from .validation import experiment
 
     bench, spec, section = config["bench"], config["kharaz_fit"], config["validation"]
-    fit_of = data_fit_of = None
+    fit_of = data_fit_of = command_of = None
+    if bench["million"]:
+        scene = experiment(section).with_tangential("microslip")
+        command_of = (f"Kharaz's ball, Hunt-Crossley chi {DAMPED_MAP['chi']}, microslip: incidence "
+                      f"{DAMPED_MAP['incidence']} x speed {DAMPED_MAP['speed']}", damped_map_command(scene))
     if bench["fit"]:
         scene = experiment(section).with_tangential(spec["tangential"])
         start = {name: spec["start"][name] for name in spec["free"]}
@@ -125,7 +130,8 @@ def write_bench_sweep(config: dict, csv_path: str, data_csv: str | None = None,
                            with_values(ball, start), free)
     bench_sweep(csv_path, repeats=bench["repeats"], sample=bench["sample"], lanes=bench["lanes"],
                 million=bench["million"], laws=bench["laws"], fit_of=fit_of, data_fit_of=data_fit_of,
-                accuracies=None if accuracy_json is None else json.loads(Path(accuracy_json).read_text()))
+                accuracies=None if accuracy_json is None else json.loads(Path(accuracy_json).read_text()),
+                command_of=command_of)
 
 
 def _stability_ball(config: dict):

@@ -110,7 +110,8 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
              if len(startup) else [])
     table = pd.read_csv(bench_sweep_csv)
     fitted = table["evaluations"].notna() if "evaluations" in table else pd.Series(False, index=table.index)
-    sweeps, fits = table[~fitted], table[fitted]
+    commanded = table["command"].notna() if "command" in table else pd.Series(False, index=table.index)
+    sweeps, fits, commands = table[~fitted & ~commanded], table[fitted], table[commanded]
     rows = []
     for r in sweeps.itertuples():
         goal = "" if pd.isna(r.target_speedup) else f"{r.target_speedup:g}×"
@@ -143,6 +144,14 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "those that made the curve (none made the measured bounces).",
         text_table(("fit", "bounces", "time", "model evaluations", "bounces solved/s", "error, parameters", "target"),
                fit_rows)] if fit_rows else [])
+    command_rows = [(r.sweep, f"`{r.command}`", f"{r.scenes:,}", _seconds(r.seconds), f"{r.throughput:.3g}",
+                     f"under {_seconds(r.target_seconds)}") for r in commands.itertuples()]
+    whole = ([
+        "A map as a command (`results/bench_sweep.csv`): the whole `sphereimpact sweep` in a fresh Python process "
+        "(start, imports, loading the compiled kernels, the sweep with its one-at-a-time scenes shared among the "
+        f"machine's CPUs, the table written), {'one run' if repeats == 1 else f'the median of {repeats} runs'}. "
+        "Each scene of a damped contact is its own normal problem.",
+        text_table(("map", "command", "scenes", "time", "impacts/s", "target"), command_rows)] if command_rows else [])
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options (method `auto`: the law's closed "
         "form where it has one, else the Taylor method where it has a series, else DOP853-scalar, scipy's DOP853 "
@@ -174,6 +183,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "paths compute every output anyway). The script has the rigid contact only: the exact microslip map is "
         "measured against `simulate`, one scene at a time.",
         many,
+        *whole,
         *fitting,
         f"Timings vary from run to run and machine to machine: CI fails when a fresh run's timed cell differs "
         f"from these by more than a factor {TIMING_RANGE:g}.",
