@@ -134,20 +134,20 @@ display(Markdown(f"In this run `simulate` took **{ratio.min():.2f}× to {ratio.m
 # ### Where the time goes
 #
 # Each scene's `simulate` call split into its stages, timed with the same protocol
-# (`results/bench_stages.csv`): the normal motion (the closed form, or the integration with its dense
-# output and events), the tangential motion and spin on it, and the outcome's assembly (force extremes,
-# the state at t_m and t_f). Then a profile of one call on the chapter's oblique impact
+# (`results/bench_stages.csv`): building and checking the Scene (build), the normal motion (the closed form, or the
+# integration with its dense output and events), the tangential motion and spin on it, and the outcome's assembly
+# (force extremes, the state at t_m and t_f). Then a profile of one call on the chapter's oblique impact
 # (`results/bench_profile.csv`): the functions with the most own time per impact.
 
 # %%
 share = stages.pivot(index="scene", columns="stage", values="time").mul(1e3)
-share = share[["normal", "tangential", "outcome", "simulate", "handwritten"]].round(3)
+share = share[["build", "normal", "tangential", "outcome", "simulate", "handwritten"]].round(3)
 display(share.rename(columns=lambda c: f"{c} [ms]"))
 integrated = stages[(stages.stage == "normal")].set_index("scene").share
 display(Markdown(
     f"The normal motion takes **{integrated.min():.0%} to {integrated.max():.0%}** of `simulate`'s time "
-    "(least where eq. 4.1's closed form replaces the integration); the rest is the tangential motion and "
-    "the outcome, which the script does not compute beyond the impulse algebra."))
+    "(least where eq. 4.1's closed form replaces the integration); the rest is the Scene's checks, the tangential "
+    "motion and the outcome, which the script does not compute beyond the impulse algebra."))
 display(profile.assign(own_us=profile.own_us.round(1), share=profile.share.round(3), calls=profile.calls.round(1)))
 
 # %% [markdown]

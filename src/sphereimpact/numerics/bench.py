@@ -4,7 +4,9 @@ planar one (a benchmark: timings are written to files, never asserted).
 ``simulate`` at its default options is timed beside
 :func:`sphereimpact.numerics.handwritten.handwritten` run at the loosest tolerance of :data:`TOLERANCES`
 whose error (against :func:`sphereimpact.numerics.reference.reference`) is no larger than
-``simulate``'s.  Both are timed with one protocol, :func:`per_call_seconds`.
+``simulate``'s.  Both are timed with one protocol, :func:`per_call_seconds`; each timed ``simulate`` call builds and
+checks its Scene too (:meth:`~sphereimpact.Scene.with_`, a copy from its fields: what a user's call pays), the script
+reading the scene's numbers.
 """
 
 from __future__ import annotations
@@ -84,7 +86,7 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
             hand_error = worst_error(hand, ref, scene)
             if hand_error <= sim_error:
                 break
-        timed = per_call_seconds({"simulate": lambda: simulate(scene, default),
+        timed = per_call_seconds({"simulate": lambda: simulate(scene.with_(), default),  # the Scene built too
                                   "handwritten": lambda: handwritten(scene, rtol)}, repeats)
         sim_time, hand_time = timed["simulate"], timed["handwritten"]
         base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed,
@@ -117,8 +119,9 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
     row = out.motion.tangential
     _, inputs = march_inputs(out.motion.normal, row.time_steps)
-    timed = per_call_seconds({"microslip": lambda: simulate(scene, default),
-                              "rigid": lambda: simulate(scene.with_(tangential="rigid"), default),
+    rigid_scene = scene.with_(tangential="rigid")
+    timed = per_call_seconds({"microslip": lambda: simulate(scene.with_(), default),  # each its Scene built too
+                              "rigid": lambda: simulate(rigid_scene.with_(), default),
                               "march": lambda: march(*inputs, row.elements)}, repeats)
     base = {"scene": f"{scene.angle:g}deg-{scene.speed:g}ms/{scene.model}/microslip", "model": scene.model,
             "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": BATCH, "method": out.method,
@@ -218,10 +221,10 @@ def startup_bench(repeats: int = 3) -> pd.DataFrame:
 def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     """Where one impact's time goes, stage by stage, for each scene (same protocol as the bench).
 
-    Rows per scene: ``normal`` (the normal motion: closed form or integration), ``tangential`` (the
-    tangential motion and spin on it), ``outcome`` (outputs: force extremes, kinematics at t_m and t_f),
-    ``simulate`` (the whole call: the stages plus checks) and ``handwritten`` (the script, at simulate's
-    tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
+    Rows per scene: ``build`` (building and checking the Scene from its fields), ``normal`` (the normal motion:
+    closed form or integration), ``tangential`` (the tangential motion and spin on it), ``outcome`` (outputs: force
+    extremes, kinematics at t_m and t_f), ``simulate`` (the whole call on a Scene built in it: the stages plus
+    checks) and ``handwritten`` (the script, at simulate's tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
     """
     from ..impact.outcome import Outcome
     from ..integrators import normal_motion, resolve_method
@@ -236,10 +239,11 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)
         # each timed call does all its work: nothing kept with the normal motion by the call before
-        times = per_call_seconds({"normal": lambda: normal_motion(scene, options),
+        times = per_call_seconds({"build": scene.with_,
+                                  "normal": lambda: normal_motion(scene, options),
                                   "tangential": lambda: (normal.forget(), ReducedMotion(normal, options)),
                                   "outcome": lambda: (normal.forget(), Outcome.from_motion(motion, 0.0)),
-                                  "simulate": lambda: simulate(scene, default),
+                                  "simulate": lambda: simulate(scene.with_(), default),
                                   "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
         rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"]}
                  for stage, seconds in times.items()]
