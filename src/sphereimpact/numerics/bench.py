@@ -224,7 +224,8 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     Rows per scene: ``build`` (building and checking the Scene from its fields), ``normal`` (the normal motion:
     closed form or integration), ``tangential`` (the tangential motion and spin on it), ``outcome`` (outputs: force
     extremes, kinematics at t_m and t_f), ``simulate`` (the whole call on a Scene built in it: the stages plus
-    checks) and ``handwritten`` (the script, at simulate's tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per impact], ``share`` (of simulate's time).
+    checks) and ``handwritten`` (the script, at simulate's tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per
+    impact], ``share`` (of simulate's time).
     """
     from ..impact.outcome import Outcome
     from ..integrators import normal_motion, resolve_method
