@@ -4,6 +4,7 @@ each door (the API's ``jobs``, the command line's ``--jobs``)."""
 
 import os
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -55,10 +56,27 @@ def test_few_chunks_or_one_job_stay_in_this_process():
 
 
 @pytest.mark.parametrize("jobs", [0, -1, 1.5, True, "2"])
-def test_jobs_must_be_a_positive_integer(jobs):
+def test_jobs_must_be_a_positive_integer(jobs, monkeypatch):
+    monkeypatch.delenv(processes.JOBS_VARIABLE, raising=False)
     with pytest.raises(ValueError, match=r"^jobs must be an integer >= 1 .*got "):
         checked_jobs(jobs)
     assert checked_jobs(None) == processes.available_cpus() >= 1 and checked_jobs(3) == 3
+
+
+def test_the_environment_sets_the_default_as_the_pipeline_does(monkeypatch, tmp_path, capsys):
+    """``SPHEREIMPACT_JOBS`` is the default of ``jobs`` (the pipeline's common.smk sets it to 1); a bad value is
+    refused naming it, at the command line in one line."""
+    monkeypatch.setenv(processes.JOBS_VARIABLE, "3")
+    assert checked_jobs(None) == 3 and checked_jobs(2) == 2
+    monkeypatch.setenv(processes.JOBS_VARIABLE, "many")
+    with pytest.raises(ValueError, match=r"^SPHEREIMPACT_JOBS must be an integer >= 1 .*got 'many'$"):
+        checked_jobs(None)
+    assert run(["sweep", "--chapter-ball", "--out", str(tmp_path / "s.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("sphereimpact: error: SPHEREIMPACT_JOBS must be") and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "s.csv").exists()
+    common = (Path(__file__).parents[1] / "workflow/rules/common.smk").read_text(encoding="utf-8")
+    assert f'os.environ.setdefault("{processes.JOBS_VARIABLE}", "1")' in common
 
 
 @forks

@@ -340,8 +340,8 @@ def _parser() -> argparse.ArgumentParser:
                      help="scenes integrated at once, >= 1 (bounds the integration's working memory)")
     swp.add_argument("--jobs", type=int, default=None, metavar="N",
                      help="most processes sharing the scenes solved one at a time (compliant contact at an angle, "
-                          "gravity on a slope), >= 1 (default: every CPU this process may use; the table is the same "
-                          "whatever N)")
+                          "gravity on a slope), >= 1 (default: $SPHEREIMPACT_JOBS, else every CPU this process may use; the "
+                          "table is the same whatever N)")
     swp.add_argument("--out", required=True, metavar="FILE",
                      help="output table, .csv or .parquet (its folder must exist)")
     swp.add_argument("--force", action="store_true", help="overwrite FILE if it exists")

@@ -16,6 +16,9 @@ from sphereimpact.study.workflow import config_subset, file_sources, source_dige
 # Every job computes with the same arithmetic on any x86-64 processor with AVX2 (numpy without its AVX-512 routines,
 # OpenBLAS's Haswell kernels): the same bytes on every such machine.  A variable the user set is kept.
 pin_arithmetic()
+# A sweep in a job keeps its one-at-a-time scenes in its own process (sphereimpact.sweep.processes.JOBS_VARIABLE):
+# Snakemake's scheduler, which runs jobs side by side, owns the cores.  A value the user set is kept.
+os.environ.setdefault("SPHEREIMPACT_JOBS", "1")
 
 # Fail at once, naming every bad key; then let snakemake fill the schema's defaults.
 check_config(config, f"{workflow.basedir}/config/schema.yaml")

@@ -266,9 +266,15 @@ def measure_command(name: str, arguments: list[str], repeats: int = 3,
                     target_seconds: float = DAMPED_MAP_TARGET_SECONDS) -> dict:
     """One benchmark row: the command ``sphereimpact`` ``arguments`` whole, each run a fresh Python process (start,
     imports, loading the compiled kernels, the work on every CPU, the table written to a temporary file), the
-    median of ``repeats`` runs; ``scenes`` is the table's rows, ``command`` the command line."""
+    median of ``repeats`` runs; ``scenes`` is the table's rows, ``command`` the command line.  The process runs as a
+    user's: without the pipeline's ``SPHEREIMPACT_JOBS`` (its timed job runs alone)."""
+    import os
     import tempfile
     import time
+
+    from ..sweep.processes import JOBS_VARIABLE
+
+    env = {name: value for name, value in os.environ.items() if name != JOBS_VARIABLE}
 
     log.info("sweep bench: %s (a command)", name)
     seconds = []
@@ -276,7 +282,7 @@ def measure_command(name: str, arguments: list[str], repeats: int = 3,
         out = Path(folder) / "table.csv"
         for _ in range(repeats):
             start = time.perf_counter()
-            fresh_run(("-m", "sphereimpact", *arguments, "--out", str(out), "--force"), name)
+            fresh_run(("-m", "sphereimpact", *arguments, "--out", str(out), "--force"), name, env)
             seconds.append(time.perf_counter() - start)
         with out.open(encoding="utf-8") as table:
             scenes = sum(1 for _ in table) - 1

@@ -86,7 +86,8 @@ def sweep(scenes, target: float = 1e-8, chunk_size: int = 100_000, progress=None
         scene unasked).
     jobs : int or None
         Most processes that share the scenes solved one at a time by ``simulate`` (the single-impact path), forks
-        of this one (:mod:`.processes`; default None: every CPU this process may use; 1: this process alone).  The
+        of this one (:mod:`.processes`; default None: the environment's ``SPHEREIMPACT_JOBS``, else every CPU this
+        process may use; 1: this process alone).  The
         table is the same to the bit whatever it is; the other paths run in this process.
 
     Returns

@@ -22,6 +22,10 @@ from typing import Callable, Iterator
 #: solved here to load the kernels, are a large part of the work.
 PARALLEL_MIN_CHUNKS = 4
 
+#: The environment variable that sets ``jobs``' default, as OMP_NUM_THREADS sets OpenMP's: the pipeline sets it to 1
+#: (workflow/rules/common.smk), so that its scheduler, which runs jobs side by side, owns the cores.
+JOBS_VARIABLE = "SPHEREIMPACT_JOBS"
+
 #: What a running share reads, set before the workers fork: (solve, chunks).
 _SHARED: tuple | None = None
 
@@ -34,14 +38,26 @@ def available_cpus() -> int:
         return os.cpu_count() or 1
 
 
+def default_jobs() -> int:
+    """The processes a sweep's single impacts share when the call does not say: :data:`JOBS_VARIABLE` where it is
+    set (an integer >= 1, ValueError naming it otherwise), else :func:`available_cpus`."""
+    text = os.environ.get(JOBS_VARIABLE, "").strip()
+    if not text:
+        return available_cpus()
+    if not text.isdigit() or int(text) < 1:
+        raise ValueError(f"{JOBS_VARIABLE} must be an integer >= 1 (processes sharing a sweep's one-at-a-time "
+                         f"scenes), or unset for every CPU this process may use; got {text!r}")
+    return int(text)
+
+
 def checked_jobs(jobs) -> int:
-    """``jobs`` as the most processes a sweep's single impacts may share: None is :func:`available_cpus`; else an
+    """``jobs`` as the most processes a sweep's single impacts may share: None is :func:`default_jobs`; else an
     integer >= 1 (ValueError naming it otherwise)."""
     if jobs is None:
-        return available_cpus()
+        return default_jobs()
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"jobs must be an integer >= 1 (processes sharing the one-at-a-time scenes), or None for "
-                         f"every CPU this process may use ({available_cpus()}); got {jobs!r}")
+                         f"${JOBS_VARIABLE} or every CPU this process may use ({available_cpus()}); got {jobs!r}")
     return jobs
 
 
