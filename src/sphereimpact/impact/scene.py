@@ -261,8 +261,8 @@ class Scene:
     def _hold(self, values: dict) -> None:
         """Hold the resolved ``values`` as the scene's ``parameters``, each also read as ``scene.name`` (an instance
         attribute: the force laws read them in every evaluation)."""
-        for name in self.__dict__.get("parameters", ()):  # the values held before: read no longer
-            self.__dict__.pop(name, None)
+        for name in (*self.__dict__.get("parameters", ()), *_FROM_PARAMETERS):  # the values held before, and what
+            self.__dict__.pop(name, None)  # was derived from them: read no longer
         object.__setattr__(self, "parameters", FrozenMapping(values))
         self.__dict__.update(values)
 
@@ -474,12 +474,13 @@ class Scene:
         """Gravity component along the flat (down-slope = +t), g sin(tilt) [m/s^2]."""
         return 0.0 if self.angle == 0 else self.gravity * math.sin(self.tilt)
 
-    @property
+    @cached_property
     def law(self):
-        """The contact law (:class:`sphereimpact.contact.laws.ContactLaw`)."""
+        """The contact law (:class:`sphereimpact.contact.laws.ContactLaw`), the one ``model`` named when the scene was
+        built."""
         return LAWS[self.model]
 
-    @property
+    @cached_property
     def frequency(self) -> float:
         """1 / T [1/s], T the law's natural contact time (omega_n for a linear spring)."""
         return float(self.law.frequency(self.reduced))
@@ -491,7 +492,12 @@ class Scene:
 
     @property
     def family(self) -> dict:
-        """The law's dimensionless numbers fixing the weightless normal motion (e.g. zeta and lam)."""
+        """The law's dimensionless numbers fixing the weightless normal motion (e.g. zeta and lam): a new dict each
+        read, of the numbers computed once."""
+        return dict(self._family)
+
+    @cached_property
+    def _family(self) -> dict:
         return {name: float(value) for name, value in self.law.family(self.reduced).items()}
 
     @property
@@ -599,6 +605,8 @@ def _chapter_parameters(law, given: dict) -> set:
 
 #: The Scene's fields: any other name given to it or to :meth:`Scene.with_` is a parameter of its models.
 FIELDS = frozenset(f.name for f in fields(Scene))
+#: What a Scene derives from its parameters and keeps once read (:meth:`Scene._hold` drops them with the values).
+_FROM_PARAMETERS = ("frequency", "_family")
 #: Each field's default (``parameters`` aside).
 FIELD_DEFAULTS = {f.name: f.default for f in fields(Scene) if f.name != "parameters"}
 #: A scene's fields and built-in parameters in the order of its tables' columns and its JSON's keys (each model's

@@ -150,6 +150,9 @@ class PositiveImpulse:
         self._n = normal
         # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
         inner = [] if normal.scene.separation.on_force else normal.force_roots()
+        if not inner and normal.t_f > 0.0 and normal.force(0.5 * normal.t_f) > 0:
+            self._one_interval(normal.t_f)  # the force criterion's: the arrays below, for one interval, in floats
+            return
         cuts = [0.0] + inner + [normal.t_f]
         cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
         mids = 0.5 * (cuts[:-1] + cuts[1:])
@@ -169,6 +172,17 @@ class PositiveImpulse:
         pieces = (self._before[:-1] - self._ja) * (self._b - self._a) + self._kb - self._ka
         gaps = self._before[1:-1] * (self._a[1:] - self._b[:-1])
         self._k_start = np.concatenate([[0.0], np.cumsum(pieces[:-1] + gaps)]) if self._a.size else np.zeros(0)
+
+    def _one_interval(self, t_f: float) -> None:
+        """The arrays of ``__init__`` for the force pushing over all of [0, t_f], each value as it computes them: J and K
+        read at 0 and t_f one instant at a time, J+ gained, and K+ at the start 0."""
+        normal = self._n
+        (j0, j1), (k0, k1) = ([f(0.0), f(t_f)] for f in (normal.impulse, normal.impulse_integral))
+        self.intervals = [(0.0, t_f)]
+        self._a, self._b = np.array([0.0]), np.array([t_f])
+        self._ja, self._jb, self._ka, self._kb = (np.array([float(value)]) for value in (j0, j1, k0, k1))
+        self._before = np.array([0.0, float(self._jb[0] - self._ja[0])])
+        self._k_start = np.zeros(1)
 
     def one_interval(self) -> tuple[float, float, float] | None:
         """(a, b, J(a)) [s, s, N s] of the one interval the force pushes over, J+ = J - J(a) on it; None for none or
