@@ -4,6 +4,8 @@ the bit (that one takes scipy's steps: tests/test_dop853.py), the compiled Taylo
 (sphereimpact.integrators.taylor_kernel) the Python-float one's, on every built-in law, both separation criteria,
 gravity and eq. 4.2's ramp band."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -114,7 +116,7 @@ def test_a_kernel_is_named_by_its_module_or_given_itself_and_compiled_once():
 
 def test_a_kernel_without_the_scalar_formula_it_compiles_is_refused():
     with pytest.raises(ValueError, match="must declare the scalar formula it compiles"):
-        LAWS["hertz"].__class__(**{**LAWS["hertz"].__dict__, "name": "no-scalar", "scalar": None})
+        replace(LAWS["hertz"], name="no-scalar", scalar=None)
 
 
 def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_python_floats(monkeypatch):

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable, Mapping
 
 import numpy as np
@@ -237,13 +238,13 @@ class ContactLaw:
         delta = np.asarray(delta, dtype=float)
         return np.where(delta > 0, self.continued(np.maximum(delta, 0.0), delta_dot, p), 0.0)
 
-    @property
+    @cached_property
     def parameter_names(self) -> tuple:
         """Names of the parameters the law uses (plus ``modulus`` for a Hertz spring)."""
         names = tuple(p.name for p in self.parameters)
         return (*names, "modulus") if self.spring is Spring.HERTZ else names
 
-    @property
+    @cached_property
     def own_parameters(self) -> tuple:
         """The parameters that are not Scene fields (carried in ``Scene.parameters``)."""
         return tuple(p for p in self.parameters if p.name not in PARAMETER_NAMES)

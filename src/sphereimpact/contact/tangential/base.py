@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Callable
 
 from ..laws.base import Spring, spring_exponent
@@ -149,16 +150,16 @@ class TangentialModel:
             object.__setattr__(self, "spring", Spring.parse(self.spring, f"tangential model {self.name!r}: spring "
                                                                          "(or None)"))
 
-    @property
+    @cached_property
     def parameter_names(self) -> tuple:
         return tuple(p.name for p in self.parameters)
 
-    @property
+    @cached_property
     def stiffness_parameters(self) -> tuple:
         """The ways of giving kappa it accepts (some of :data:`STIFFNESS`); empty: no tangential stiffness."""
         return tuple(p for p in self.parameters if p.name in TANGENTIAL_PARAMETERS)
 
-    @property
+    @cached_property
     def own_parameters(self) -> tuple:
         """The parameters that are not Scene fields (carried in ``Scene.parameters``)."""
         return tuple(p for p in self.parameters if p.name not in TANGENTIAL_PARAMETERS)
