@@ -49,7 +49,7 @@ def test_time_split_and_profile_tables():
     table = stages(scenes, repeats=1)
     assert sorted(table.groupby("scene").stage.apply(tuple).apply(sorted).iloc[0]) == sorted(
         ("build", "normal", "tangential", "outcome", "simulate", "handwritten"))
-    assert len(table) == 12 and (table.time > 0).all()
+    assert len(table) == 12 and (table.time > 0).all() and (table.batch >= 10).all()
     assert table[table.stage == "simulate"].share.tolist() == [1.0, 1.0]
     profile = profile_call(Scene(angle=60.0), calls=5, top=8)
     assert len(profile) == 8 and profile.own_us.is_monotonic_decreasing
@@ -57,3 +57,19 @@ def test_time_split_and_profile_tables():
     # auto integrates eq. 4.2 by its series: in Python floats, or by its compiled loop in a process that has loaded it
     # (a test before this one in the same process may have)
     assert profile.function.str.contains(r"series\.py|taylor_kernel\.py").any()
+
+
+@pytest.mark.parametrize("seconds, calls", [(2e-3, 10), (1e-4, 100), (3e-4, 34), (0.0, 1000)])
+def test_a_timed_run_lasts_at_least_min_run(monkeypatch, seconds, calls):
+    """A contender quicker than MIN_RUN for BATCH calls is run in batches that long (at most MAX_BATCH calls): a
+    call that advances a fake clock by ``seconds`` gets ``calls`` per run (ceil(10 ms / seconds), at least 10)."""
+    from sphereimpact.numerics import timing
+
+    clock = [0.0]
+    monkeypatch.setattr(timing.time, "perf_counter", lambda: clock[0])
+
+    def call():
+        clock[0] += seconds
+
+    assert (timing.BATCH, timing.MIN_RUN, timing.MAX_BATCH) == (10, 0.01, 1000)
+    assert timing.batch_size(call) == calls

@@ -22,7 +22,7 @@ from ..impact.scene import Scene, SolverOptions
 from ..impact.solve import simulate
 from .handwritten import handwritten
 from .reference import reference, worst_error
-from .timing import interleaved_seconds, steady_state
+from .timing import per_call_seconds, steady_state
 from .workprecision import TARGET
 
 log = logging.getLogger(__name__)
@@ -30,8 +30,6 @@ log = logging.getLogger(__name__)
 #: Tolerances tried for a per-scene contender, loosest first: the first whose error meets the one it is
 #: compared with is timed (here and in :mod:`sphereimpact.numerics.bench_sweep`).
 TOLERANCES = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
-#: Calls per timed run: one impact takes milliseconds, so each run times a batch.
-BATCH = 10
 #: Each law's parameters on the chapter's ball, for the per-law rows here and in the sweep benchmark.  The
 #: Hertz constant 8.8e5 N/m^1.5 gives about the chapter's peak force at 3 m/s (k_linear (v_n /
 #: omega_n)^(-1/2)); chi = 0.05 s/m, a COR near 0.9 there.
@@ -40,14 +38,6 @@ LAW_SCENES = {
     "hertz": {"k": 8.8e5},
     "hunt-crossley": {"k": 8.8e5, "chi": 0.05},
 }
-
-
-def per_call_seconds(calls: dict, repeats: int) -> dict:
-    """Name -> median over ``repeats`` runs of the time of :data:`BATCH` calls, divided by BATCH [s per call],
-    the contenders ``calls`` (name -> callable) timed in turn within each run (:func:`interleaved_seconds`;
-    garbage collector off while timed)."""
-    batches = {name: (lambda call=call: [call() for _ in range(BATCH)]) for name, call in calls.items()}
-    return {name: seconds / BATCH for name, seconds in interleaved_seconds(batches, repeats).items()}
 
 
 def bench_scenes(chapter: dict[str, Scene], domain: bool = True, laws=tuple(LAW_SCENES)) -> dict[str, Scene]:
@@ -86,17 +76,16 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
             hand_error = worst_error(hand, ref, scene)
             if hand_error <= sim_error:
                 break
-        timed = per_call_seconds({"simulate": lambda: simulate(scene.with_(), default),  # the Scene built too
-                                  "handwritten": lambda: handwritten(scene, rtol)}, repeats)
+        timed, sizes = per_call_seconds({"simulate": lambda: simulate(scene.with_(), default),  # the Scene built too
+                                         "handwritten": lambda: handwritten(scene, rtol)}, repeats)
         sim_time, hand_time = timed["simulate"], timed["handwritten"]
-        base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed,
-                "repeats": repeats, "batch": BATCH}
-        rows.append(base | {"contender": "simulate", "method": out.method, "rtol": out.rtol,
+        base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed, "repeats": repeats}
+        rows.append(base | {"batch": sizes["simulate"], "contender": "simulate", "method": out.method, "rtol": out.rtol,
                             "error": sim_error, "reached": True, "time": sim_time, "nfev": out.nfev,
                             "time_ratio": sim_time / hand_time})
-        rows.append(base | {"contender": "handwritten", "method": "DOP853", "rtol": rtol, "error": hand_error,
-                            "reached": bool(hand_error <= sim_error), "time": hand_time, "nfev": hand["nfev"],
-                            "time_ratio": 1.0})
+        rows.append(base | {"batch": sizes["handwritten"], "contender": "handwritten", "method": "DOP853", "rtol": rtol,
+                            "error": hand_error, "reached": bool(hand_error <= sim_error), "time": hand_time,
+                            "nfev": hand["nfev"], "time_ratio": 1.0})
     return pd.DataFrame(rows)
 
 
@@ -120,19 +109,22 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     row = out.motion.tangential
     _, inputs = march_inputs(out.motion.normal, row.time_steps)
     rigid_scene = scene.with_(tangential="rigid")
-    timed = per_call_seconds({"microslip": lambda: simulate(scene.with_(), default),  # each its Scene built too
-                              "rigid": lambda: simulate(rigid_scene.with_(), default),
-                              "march": lambda: march(*inputs, row.elements)}, repeats)
-    base = {"scene": f"{scene.angle:g}deg-{scene.speed:g}ms/{scene.model}/microslip", "model": scene.model,
-            "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": BATCH, "method": out.method,
-            "rtol": out.rtol, "reached": True}
-    rows.append(base | {"contender": "simulate", "error": error, "time": timed["microslip"], "nfev": out.nfev,
-                        "time_ratio": timed["microslip"] / timed["rigid"]})
-    rows.append(base | {"contender": "simulate, rigid contact", "method": rigid.method, "rtol": rigid.rtol,
-                        "error": 0.0, "time": timed["rigid"], "nfev": rigid.nfev, "time_ratio": 1.0})
-    rows.append(base | {"contender": f"its march alone ({row.elements} cells x {row.time_steps} steps)",
-                        "error": math.nan, "time": timed["march"], "nfev": 0,
-                        "time_ratio": timed["march"] / timed["microslip"]})
+    timed, sizes = per_call_seconds({"microslip": lambda: simulate(scene.with_(), default),  # each its Scene built too
+                                     "rigid": lambda: simulate(rigid_scene.with_(), default),
+                                     "march": lambda: march(*inputs, row.elements)}, repeats)
+    march_name = f"its march alone ({row.elements} cells x {row.time_steps} steps)"
+
+    def one(contender: str, key: str, **values) -> dict:
+        return {"scene": f"{scene.angle:g}deg-{scene.speed:g}ms/{scene.model}/microslip", "model": scene.model,
+                "angle": scene.angle, "speed": scene.speed, "repeats": repeats, "batch": sizes[key],
+                "method": out.method, "rtol": out.rtol, "reached": True, "contender": contender, "time": timed[key],
+                **values}
+
+    rows.append(one("simulate", "microslip", error=error, nfev=out.nfev,
+                    time_ratio=timed["microslip"] / timed["rigid"]))
+    rows.append(one("simulate, rigid contact", "rigid", method=rigid.method, rtol=rigid.rtol, error=0.0,
+                    nfev=rigid.nfev, time_ratio=1.0))
+    rows.append(one(march_name, "march", error=math.nan, nfev=0, time_ratio=timed["march"] / timed["microslip"]))
     return pd.DataFrame(rows)
 
 
@@ -225,7 +217,7 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     closed form or integration), ``tangential`` (the tangential motion and spin on it), ``outcome`` (outputs: force
     extremes, kinematics at t_m and t_f), ``simulate`` (the whole call on a Scene built in it: the stages plus
     checks) and ``handwritten`` (the script, at simulate's tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per
-    impact], ``share`` (of simulate's time).
+    impact], ``share`` (of simulate's time), ``batch`` (calls per timed run, :func:`batch_size`).
     """
     from ..impact.outcome import Outcome
     from ..integrators import normal_motion, resolve_method
@@ -240,14 +232,14 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)
         # each timed call does all its work: nothing kept with the normal motion by the call before
-        times = per_call_seconds({"build": scene.with_,
-                                  "normal": lambda: normal_motion(scene, options),
-                                  "tangential": lambda: (normal.forget(), ReducedMotion(normal, options)),
-                                  "outcome": lambda: (normal.forget(), Outcome.from_motion(motion, 0.0)),
-                                  "simulate": lambda: simulate(scene.with_(), default),
-                                  "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
-        rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"]}
-                 for stage, seconds in times.items()]
+        times, sizes = per_call_seconds({"build": scene.with_,
+                                         "normal": lambda: normal_motion(scene, options),
+                                         "tangential": lambda: (normal.forget(), ReducedMotion(normal, options)),
+                                         "outcome": lambda: (normal.forget(), Outcome.from_motion(motion, 0.0)),
+                                         "simulate": lambda: simulate(scene.with_(), default),
+                                         "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
+        rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"],
+                  "batch": sizes[stage]} for stage, seconds in times.items()]
     return pd.DataFrame(rows)
 
 

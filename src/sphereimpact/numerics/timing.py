@@ -87,3 +87,35 @@ def interleaved_seconds(calls: dict, repeats: int) -> dict:
     """Median wall time [s] of each of ``calls`` over ``repeats`` rounds, whatever their length
     (:func:`interleaved_runs` without its budget)."""
     return interleaved_runs(calls, repeats, budget=math.inf)[0]
+
+
+#: Fewest calls per timed run: one impact takes milliseconds, so each run times a batch.
+BATCH = 10
+#: Least wall time [s] of a contender's timed run: a contender that takes less than this for :data:`BATCH` calls is
+#: run in batches this long (:func:`batch_size`).  The contenders are timed in turn, so each run starts right after the
+#: other's (a 3 ms script's ten calls through scipy); its first calls then cost two to three times the later ones
+#: (the chapter's oblique scene, by hand: 770-1080 us, then about 300 us), which a run of ten 0.3 ms impacts did not
+#: amortise: it read 370-380 us per call against 330-340 us in runs of 30 and 315 us in runs of 100, beside the same
+#: script.  Each row reports its contender's batch.
+MIN_RUN = 0.01
+#: Most calls per timed run (a contender of a few microseconds).
+MAX_BATCH = 1000
+
+
+def batch_size(call) -> int:
+    """Calls per timed run of ``call``: :data:`BATCH`, or as many as last :data:`MIN_RUN` s (at most
+    :data:`MAX_BATCH`), judged from :data:`BATCH` untimed calls (which also warm it)."""
+    start = time.perf_counter()
+    for _ in range(BATCH):
+        call()
+    each = (time.perf_counter() - start) / BATCH
+    return BATCH if each * BATCH >= MIN_RUN else min(MAX_BATCH, math.ceil(MIN_RUN / max(each, 1e-9)))
+
+
+def per_call_seconds(calls: dict, repeats: int) -> tuple[dict, dict]:
+    """(name -> median over ``repeats`` runs of the time of one run, divided by its calls [s per call], name -> calls
+    per run, :func:`batch_size`), the contenders ``calls`` (name -> callable) timed in turn within each run
+    (:func:`interleaved_seconds`; garbage collector off while timed)."""
+    sizes = {name: batch_size(call) for name, call in calls.items()}
+    batches = {name: (lambda call=call, n=sizes[name]: [call() for _ in range(n)]) for name, call in calls.items()}
+    return {name: seconds / sizes[name] for name, seconds in interleaved_seconds(batches, repeats).items()}, sizes
