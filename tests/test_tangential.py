@@ -141,6 +141,26 @@ def test_positive_impulse_is_the_quadrature_of_the_positive_force():
         assert len(impulse.intervals) == 1  # P > 0 on one interval: from first touch to tension or separation
 
 
+
+@pytest.mark.parametrize("scene", [Scene(angle=60.0), Scene(angle=30.0, gravity=9.81),
+                                   Scene(angle=30.0, model="hunt-crossley", k=8.8e5, chi=0.05),
+                                   Scene(angle=30.0, model="kelvin-voigt")],
+                         ids=["chapter", "gravity", "hunt-crossley", "kelvin-voigt"])
+def test_one_pushing_interval_is_the_general_cut_to_the_bit(scene):
+    """Under the force criterion the force pushes over all of [0, t_f]: J+'s arrays built for that one interval in
+    floats are the general cut's (any number of intervals, numpy) to the bit, so J+ and K+ are the same whichever
+    builds them."""
+    from sphereimpact.contact.tangential import PositiveImpulse
+
+    normal = simulate(scene).motion.normal
+    one = PositiveImpulse(normal)
+    cut = object.__new__(PositiveImpulse)
+    cut._n = normal
+    cut._cut([])
+    assert one.intervals == cut.intervals == [(0.0, normal.t_f)]
+    for name in ("_a", "_b", "_ja", "_jb", "_ka", "_kb", "_before", "_k_start"):
+        assert getattr(one, name).tolist() == getattr(cut, name).tolist(), name
+
 def test_a_flickering_force_costs_no_more_than_a_few_intervals():
     """A slow creep back to delta = 0 (eq. 4.2, zeta = 536, penetration criterion) makes P flicker about 0
     thousands of times; J+ is then evaluated in one vectorised pass (interval by interval, the same scene at

@@ -151,8 +151,14 @@ class PositiveImpulse:
         # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
         inner = [] if normal.scene.separation.on_force else normal.force_roots()
         if not inner and normal.t_f > 0.0 and normal.force(0.5 * normal.t_f) > 0:
-            self._one_interval(normal.t_f)  # the force criterion's: the arrays below, for one interval, in floats
-            return
+            self._one_interval(normal.t_f)  # the force criterion's: _cut's arrays for one interval, in floats
+        else:
+            self._cut(inner)
+
+    def _cut(self, inner: list) -> None:
+        """The intervals where P > 0 between the force's sign changes ``inner`` [s]: J and K at their ends, J+ and K+ at
+        their starts, as arrays (any number of intervals)."""
+        normal = self._n
         cuts = [0.0] + inner + [normal.t_f]
         cuts = np.array(sorted(set(c for c in cuts if c <= normal.t_f)))
         mids = 0.5 * (cuts[:-1] + cuts[1:])
