@@ -93,10 +93,9 @@ def interleaved_seconds(calls: dict, repeats: int) -> dict:
 BATCH = 10
 #: Least wall time [s] of a contender's timed run: a contender that takes less than this for :data:`BATCH` calls is
 #: run in batches this long (:func:`batch_size`).  The contenders are timed in turn, so each run starts right after the
-#: other's (a 3 ms script's ten calls through scipy); its first calls then cost two to three times the later ones
-#: (the chapter's oblique scene, by hand: 770-1080 us, then about 300 us), which a run of ten 0.3 ms impacts did not
-#: amortise: it read 370-380 us per call against 330-340 us in runs of 30 and 315 us in runs of 100, beside the same
-#: script.  Each row reports its contender's batch.
+#: other's, its caches holding the other's code and data: its first calls cost several times the later ones, which a
+#: run of a few quick calls would report as their cost (the measurements: the commit that set this).  Each row reports
+#: its contender's batch.
 MIN_RUN = 0.01
 #: Most calls per timed run (a contender of a few microseconds).
 MAX_BATCH = 1000

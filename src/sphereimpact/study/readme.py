@@ -163,7 +163,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         f"t_f, COR, ω_f and v_E,t against the closed form, the {FINE_DIGITS}-digit Taylor reference (eq. 4.2) or scipy's "
         "DOP853 at rtol 1e-13 (the Hertz and Hunt–Crossley laws). Times are medians over "
         f"{int(single['repeats'].iloc[0])} runs of each contender in turn, a run of at least {BATCH} calls lasting "
-        f"at least {MIN_RUN * 1e3:g} ms (each row's `batch`): a run of ten quick calls right after the other "
+        f"at least {MIN_RUN * 1e3:g} ms (each row's `batch`): a run of {BATCH} quick calls right after the other "
         "contender's run paid for its first calls' cold caches.",
         one,
         "The exact microslip contact (`results/bench.csv`): one impact at the default resolution beside the "
