@@ -33,6 +33,10 @@ SCENES = {
                                              separation="penetration"),
     "kelvin-voigt-overdamped": Scene(model="kelvin-voigt", b=200.0),
 }
+#: Over-damped scenes whose landing on t_f takes all four of its steps (Newton's corrections in between), at the
+#: tolerance given (at 1e-4 their rebound is below what it resolves, and refused).
+LANDED_FOUR_TIMES = {"kelvin-voigt-b1e4": (Scene(model="kelvin-voigt", b=1e4), 1e-10),
+                     "modified-band-b1.2e4": (Scene(b=1.2e4), 1e-12)}
 
 
 @pytest.mark.parametrize("name", sorted(LAWS))
@@ -52,12 +56,18 @@ def _python_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
     return dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events, first_step=first_step)
 
 
+def _in_python_floats(monkeypatch):
+    """DOP853-scalar run by run in Python floats from now on: neither the compiled drive nor the compiled runs."""
+    monkeypatch.setattr(runge_kutta, "_compiled_drive", lambda run, band: None)
+    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+
+
 @pytest.mark.parametrize("rtol", [1e-4, 1e-10, 1e-12])
 @pytest.mark.parametrize("name", sorted(SCENES))
 def test_the_compiled_normal_motion_is_the_python_floats_one_to_the_bit(name, rtol, monkeypatch):
     scene, options = SCENES[name], SolverOptions(method="DOP853-scalar", rtol=rtol, atol=rtol)
     compiled = simulate(scene, options).to_dict()
-    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+    _in_python_floats(monkeypatch)
     floats = simulate(scene, options).to_dict()
     compiled.pop("wall_time"), floats.pop("wall_time")
     assert compiled == floats
@@ -69,7 +79,7 @@ def test_the_compiled_run_reports_its_evaluations_and_its_steps_like_the_python_
 
     scene, options = SCENES["modified-band"], SolverOptions(method="DOP853-scalar")
     compiled = IntegratedNormal(scene, options)
-    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+    _in_python_floats(monkeypatch)
     floats = IntegratedNormal(scene, options)
     assert compiled.stats == floats.stats and np.array_equal(compiled.grid, floats.grid)
     t = np.linspace(0.0, floats.t_f, 301)
@@ -90,6 +100,7 @@ def test_the_compiled_loop_locates_every_event_as_the_python_run_does(monkeypatc
         return sol
 
     monkeypatch.setattr(runge_kutta, "_compiled", both)
+    monkeypatch.setattr(runge_kutta, "_compiled_drive", lambda run, band: None)  # run by run
     for name in ("modified-band", "hunt-crossley", "hunt-crossley-n1.3-penetration", "kelvin-voigt-overdamped"):
         IntegratedNormal(SCENES[name], SolverOptions(method="DOP853-scalar"))
     assert len(runs) >= 4 and sum(len(t) for sol, _ in runs for t in sol.t_events) >= 8
@@ -97,6 +108,50 @@ def test_the_compiled_loop_locates_every_event_as_the_python_run_does(monkeypatc
         assert [t.tolist() for t in sol.t_events] == [t.tolist() for t in floats.t_events]
         assert [y.tolist() for y in sol.y_events] == [y.tolist() for y in floats.y_events]
         assert np.array_equal(sol.t, floats.t) and np.array_equal(sol.y, floats.y)
+
+
+def _drive_spy(monkeypatch):
+    """The compiled drive's answers (None where it left the motion to the driver), as it gives them."""
+    answers, drive = [], runge_kutta._compiled_drive
+    monkeypatch.setattr(runge_kutta, "_compiled_drive", lambda run, band: answers.append(drive(run, band)) or
+                        answers[-1])
+    return answers
+
+
+@pytest.mark.parametrize("scene, rtol", [pytest.param(SCENES[name], rtol, id=f"{name}-{rtol:g}") for name in sorted(SCENES)
+                                         for rtol in (1e-4, 1e-10, 1e-12)]
+                         + [pytest.param(*case, id=name) for name, case in LANDED_FOUR_TIMES.items()])
+def test_the_compiled_drive_is_the_driver_run_by_run_to_the_bit(scene, rtol, monkeypatch):
+    """The whole normal motion in one compiled call (the runs, the ramp band's restart, the landing and its Newton
+    corrections) against the driver's runs of the compiled loop: the same dense output, step ends, grid, times
+    and evaluations, every bit."""
+    from sphereimpact.integrators.normal import IntegratedNormal
+
+    options = SolverOptions(method="DOP853-scalar", rtol=rtol, atol=rtol)
+    answers = _drive_spy(monkeypatch)
+    driven, stepwise = IntegratedNormal(scene, options), IntegratedNormal(scene, options, drive=False)
+    assert len(answers) == 1 and answers[0] is not None
+    assert (driven.t_m, driven.t_f, driven.stats) == (stepwise.t_m, stepwise.t_f, stepwise.stats)
+    assert np.array_equal(driven.grid, stepwise.grid)
+    for field in ("ts", "f", "y_old", "t_old", "h"):
+        assert np.array_equal(getattr(driven._sol, field), getattr(stepwise._sol, field)), field
+
+
+@pytest.mark.parametrize("scene, options, match", [
+    (Scene(model="kelvin-voigt", b=1e5, separation="penetration"), SolverOptions(method="DOP853-scalar"),
+     r"no separation within 1e\+06 right-hand-side evaluations .*zeta = 536"),
+    (Scene(model="hertz", modulus=1e8), SolverOptions(method="DOP853-scalar", max_step=1e-9),
+     r"no separation within 1e\+06 right-hand-side evaluations"),
+    (Scene(model="hunt-crossley", k=1e300, exponent=3.0, chi=1e300, speed=1e10), SolverOptions(),
+     r"the contact force overflows \(exponent = 3, chi_v = inf"),
+], ids=["over-damped-penetration-budget", "1ns-steps-budget", "force-overflow"])
+def test_where_the_drive_stops_short_the_driver_says_why(scene, options, match, monkeypatch):
+    """A spent budget (an over-damped contact under the penetration criterion, steps of 1 ns) and a force that
+    leaves the finite numbers: the drive hands the motion back, and the driver refuses it as before."""
+    answers = _drive_spy(monkeypatch)
+    with pytest.raises(ImpactError, match=match):
+        simulate(scene, options)
+    assert answers == [None]
 
 
 def test_a_force_that_leaves_the_finite_numbers_is_refused_by_name_at_once():
@@ -120,16 +175,16 @@ def test_a_kernel_without_the_scalar_formula_it_compiles_is_refused():
 
 
 def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_python_floats(monkeypatch):
-    calls = []
+    calls, drive = [], runge_kutta._compiled_drive
 
     def spy(*args):
         calls.append(1)
-        return _python_floats(*args)
+        return drive(*args)
 
     monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 10**9)
     monkeypatch.setattr(compiled_rule, "_spent_in_floats", 0)
     monkeypatch.setattr(compiled_rule, "_KERNEL_MODULE", "not loaded")
-    monkeypatch.setattr(runge_kutta, "_compiled", spy)
+    monkeypatch.setattr(runge_kutta, "_compiled_drive", spy)
     scene, options = SCENES["hertz"], SolverOptions(method="DOP853-scalar")
     first = simulate(scene, options)
     assert not calls and compiled_rule._spent_in_floats == first.nfev  # 510 evaluations in two runs
@@ -137,8 +192,9 @@ def test_a_process_loads_the_compiled_integrator_once_it_has_spent_as_much_in_py
     for _ in range(2):
         simulate(scene, options)
     assert not calls and compiled_rule._spent_in_floats == 3 * first.nfev
-    simulate(scene, options)
-    assert len(calls) == 2 and compiled_rule._spent_in_floats == 3 * first.nfev  # both runs, compiled
+    last = simulate(scene, options)
+    assert len(calls) == 1 and compiled_rule._spent_in_floats == 3 * first.nfev  # the whole motion, compiled
+    assert last.to_dict() | {"wall_time": 0} == first.to_dict() | {"wall_time": 0}
 
 
 def test_a_process_loads_the_compiled_stick_phase_once_its_python_stick_phases_have_spent_as_much(monkeypatch):
@@ -197,7 +253,7 @@ def test_across_the_domain_the_compiled_answer_is_the_python_floats_one_to_the_b
         return answers
 
     compiled = outcomes()
-    monkeypatch.setattr(runge_kutta, "_compiled", _python_floats)
+    _in_python_floats(monkeypatch)
     floats = outcomes()
     assert sum(isinstance(a, dict) for a in compiled) > 250
     assert compiled == floats

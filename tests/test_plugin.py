@@ -95,20 +95,25 @@ def test_a_law_that_brings_its_own_kernel_is_integrated_compiled_with_the_python
     compiled_law = LAWS.register(replace(GROWING, name="growing-compiled", scalar=_growing_scalar,
                                          kernel=Kernel(_growing_kernel, lambda p: (p.k, p.b, p.radius))))
     monkeypatch.setattr(compiled_rule, "COMPILE_AFTER", 0)
-    calls = []
-    compiled = runge_kutta._compiled
+    calls, driven = [], []
+    compiled, drive = runge_kutta._compiled, runge_kutta._compiled_drive
     monkeypatch.setattr(runge_kutta, "_compiled", lambda *args: calls.append(1) or compiled(*args))
+    monkeypatch.setattr(runge_kutta, "_compiled_drive", lambda *args: driven.append(1) or drive(*args))
     try:
         scene = Scene(model="growing-compiled", b=400.0, angle=30.0)
         out = simulate(scene).to_dict()
-        assert out["method"] == "DOP853-scalar" and len(calls) == 2  # both runs (to separation, the landing)
+        assert out["method"] == "DOP853-scalar" and len(driven) == 1 and not calls  # the whole motion, compiled
         assert out["cor"] == pytest.approx(simulate(Scene(model=NAME, b=400.0, angle=30.0)).cor, rel=1e-8)
+        monkeypatch.setattr(runge_kutta, "_compiled_drive", lambda run, band: None)
+        stepwise = simulate(scene).to_dict()
+        assert len(calls) == 2  # run by run, compiled: to separation, the landing
         monkeypatch.setattr(runge_kutta, "_compiled", lambda rhs, span, z0, rtol, atol, max_step, events, first:
                             dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events,
                                          first_step=first))
         floats = simulate(scene).to_dict()
-        assert out | {"wall_time": 0.0} == floats | {"wall_time": 0.0}
+        assert out | {"wall_time": 0.0} == floats | {"wall_time": 0.0} == stepwise | {"wall_time": 0.0}
         monkeypatch.setattr(runge_kutta, "_compiled", compiled)
+        monkeypatch.setattr(runge_kutta, "_compiled_drive", drive)
         row = sweep(grid(angle=[30.0]).assign(model="growing-compiled", b=400.0), chapter_ball=True).iloc[0]
         assert row["cor"] == pytest.approx(out["cor"], rel=1e-8)
         assert run(["simulate", "--model", "growing-compiled", "--b", "400", "--angle", "30", "--json"]) == 0

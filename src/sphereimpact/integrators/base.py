@@ -47,6 +47,10 @@ class Integrator:
     multistep : bool
         The stepper restarts at low order (BDF, LSODA): its landing on t_f is no better than its interpolant,
         so the driver takes no Newton correction there.
+    drive : callable or None
+        The driver's whole work done another way where it can be: ``drive(run, band)`` returning the dense output,
+        the step ends, tau_m, tau_f, y at t_f and the evaluations (what the driver computes, to the bit), or None
+        where the driver must run (DOP853-scalar's compiled drive, :func:`~.dop853_kernel.drive`).
     """
 
     name: str
@@ -59,6 +63,7 @@ class Integrator:
     stepper: Callable | None = None
     floats: bool = False
     multistep: bool = False
+    drive: Callable | None = None
 
 
 #: The integrators by name, in registration order (the order of ``--method``'s help).

@@ -339,6 +339,7 @@ class _Run:
         if integrator.floats and scalar is None:  # the same algorithm in numpy
             integrator = INTEGRATORS.named(integrator.ivp)
         self.method, self.stepper, self.multistep = integrator.name, integrator.stepper, integrator.multistep
+        self.drive = integrator.drive
         sep = scalar_separation_function(scene)
         rhs = _RightHandSide(scene, d_scale, v, p_scale, gamma, law, scalar)
 
@@ -471,6 +472,9 @@ class IntegratedNormal(_DimensionlessNormal):
     scene : Scene
     options : SolverOptions
         ``method`` names an integrator with a ``stepper`` (``auto``: the default one).
+    drive : bool
+        Let the integrator's ``drive`` do the whole work where it can (the same answer to the bit); False: run
+        by run here (the reference its tests hold it to).
 
     Raises
     ------
@@ -480,10 +484,17 @@ class IntegratedNormal(_DimensionlessNormal):
         When the solver fails, or maximum compression or separation is not found.
     """
 
-    def __init__(self, scene: Scene, options: SolverOptions):
+    def __init__(self, scene: Scene, options: SolverOptions, drive: bool = True):
         self.scene = scene
         run = _Run(scene, options)
         band = _RampBand.of(scene, run.d_scale)
+        driven = run.drive(run, band) if drive and run.drive is not None else None
+        self._landed(run, options, *(driven if driven is not None else self._driven(run, band, options)))
+
+    def _driven(self, run: _Run, band: _RampBand | None, options: SolverOptions):
+        """The motion driven run by run: to separation, through the ramp band, landed on t_f.  Returns the dense
+        output, the step ends, tau_m, tau_f, y at t_f and the evaluations."""
+        scene = self.scene
         events = [run.max_compression, run.separation] + ([band.event] if band is not None else [])
         # overflow in an absurd scene (b = 1e300) is reported by the checks below, not as a warning
         sol = run.integrate((0.0, run.end), [0.0, 1.0], run.max_step, events)
@@ -510,13 +521,17 @@ class IntegratedNormal(_DimensionlessNormal):
         on_delta = scene.separation.pulls or (abs(float(z_f[0])) <= LANDING_DELTA * x_m
                                               and not run.force(np.array([0.0, float(z_f[1])])) < 0)
         tail, tau_f, landing = _land(run, dense, tau_f, cap, on_delta)
-        nfev += landing
         dense = _join(dense, fast_solution(tail.sol))
         steps = np.concatenate([steps[:-1], tail.t[1:]])
-        rate_f = float(tail.y[1, -1])
-        check_rebound(scene, options, rate_f * run.v)
+        return dense, steps, float(t_m[0]), tau_f, float(tail.y[1, -1]), nfev + landing
+
+    def _landed(self, run: _Run, options: SolverOptions, dense, steps, tau_m: float, tau_f: float, rate_f: float,
+                nfev: int) -> None:
+        """The motion from its dense output and step ends (tau), maximum compression and separation [tau] and y at
+        t_f: its rebound checked, its times in seconds, its grid."""
+        check_rebound(self.scene, options, rate_f * run.v)
         self._sol, self._w, self._d_scale, self._v = dense, run.w, run.d_scale, run.v
-        self.t_m = float(t_m[0]) / run.w
+        self.t_m = tau_m / run.w
         self.t_f = tau_f / run.w
         grid = substep_grid(steps / run.w)
         self.grid = np.append(grid[grid < self.t_f], self.t_f)

@@ -3,7 +3,8 @@
 
 ``DOP853-scalar`` is DOP853's algorithm in plain floats on a law with a scalar formula, scipy's DOP853 on any
 other: compiled (:mod:`.dop853_kernel`) for a law with a kernel once the process has integrated enough to repay
-loading it (:mod:`.compiled`), else in Python (:mod:`sphereimpact.ode.dop853`), the same answer to the bit.
+loading it (:mod:`.compiled`), else in Python (:mod:`sphereimpact.ode.dop853`), the same answer to the bit.  Compiled,
+the driver's whole work is one call (:func:`_compiled_drive`).
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..ode import dop853
+from ..ode.dense import StackedDOP853
+from . import normal as driver
 from .normal import IntegratedNormal
 from .base import INTEGRATORS, Integrator
 from .compiled import checked_kernel, compiled_now, spend_in_floats
@@ -55,6 +58,33 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
                           dict(zip(map(tuple, where.tolist()), roots.tolist())))
 
 
+def _drive(run, band):
+    """The whole normal motion by the compiled drive (:func:`_compiled_drive`) where the law has a kernel and the
+    process integrates compiled; else None (the driver runs it, on :func:`_plain_floats`)."""
+    if run.scene.law.kernel is None or not compiled_now():
+        return None
+    return _compiled_drive(run, band)
+
+
+def _compiled_drive(run, band):
+    """:class:`~.normal.IntegratedNormal`'s work in one compiled call (:func:`~.dop853_kernel.drive`): its runs of
+    :func:`_compiled`, the ramp band and the landing, the same arithmetic, so the same dense output, steps, times
+    and evaluations to the bit (tests/test_kernels.py); None where the drive stops short (a failure, a missed event,
+    the budget), and the driver then runs the motion and says why."""
+    from . import dop853_kernel as kernel  # _KERNEL_MODULE
+
+    scene = run.scene
+    ts, f, y_old, t_old, h, steps, tau_m, tau_f, rate_f, nfev, status = kernel.drive(
+        checked_kernel(scene, run.rhs.scales), np.array(scene.law.kernel.parameters(scene), dtype=float),
+        np.array(run.rhs.scales, dtype=float), float(run.end), float(run.rtol), float(run.atol), float(run.max_step),
+        int(run.separation.kind), float(band.lam) if band is not None else 0.0,
+        np.array([driver.BAND_RESTART, driver.BAND_STEP, driver.BAND_SPEED, driver.LANDING_DELTA], dtype=float),
+        driver.LANDINGS, driver.MAX_NFEV)  # read at each call: the driver's policy, whatever it is then
+    if status != kernel.DRIVEN:
+        return None
+    return StackedDOP853(ts, f, y_old, t_old, h), steps, float(tau_m), float(tau_f), float(rate_f), int(nfev)
+
+
 def _scipy(method: str):
     """The stepper of solve_ivp's ``method``, with its dense output."""
 
@@ -70,7 +100,8 @@ def _scipy(method: str):
 SCALAR = INTEGRATORS.register(Integrator(
     "DOP853-scalar", "scipy's DOP853 in plain floats (its steps, without numpy's per-call cost; compiled for a law "
     "with a kernel once a process has integrated enough to repay loading it)",
-    IntegratedNormal, ivp="DOP853", stepper=_plain_floats, floats=True))
+    IntegratedNormal, ivp="DOP853", stepper=_plain_floats, floats=True,
+    drive=_drive))
 
 SCIPY = tuple(INTEGRATORS.register(Integrator(
     name, f"scipy's solve_ivp method {name}", IntegratedNormal, ivp=name, stepper=_scipy(name),
