@@ -24,7 +24,7 @@ def _plain_floats(rhs, span, z0, rtol, atol, max_step, events, first_step):
     """DOP853 in plain floats: compiled (:func:`_compiled`) where the law has a kernel, once the process integrates
     compiled (:func:`.compiled.compiled_now`); else in Python."""
     law = rhs.scene.law
-    if law.kernel is not None and compiled_now():
+    if _integrates_compiled(law):
         return _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step)
     sol = dop853.solve(rhs, span, z0, rtol, atol, max_step=max_step, events=events, first_step=first_step)
     if law.kernel is not None:
@@ -61,9 +61,13 @@ def _compiled(rhs, span, z0, rtol, atol, max_step, events, first_step):
 def _drive(run, band):
     """The whole normal motion by the compiled drive (:func:`_compiled_drive`) where the law has a kernel and the
     process integrates compiled; else None (the driver runs it, on :func:`_plain_floats`)."""
-    if run.scene.law.kernel is None or not compiled_now():
-        return None
-    return _compiled_drive(run, band)
+    return _compiled_drive(run, band) if _integrates_compiled(run.scene.law) else None
+
+
+def _integrates_compiled(law) -> bool:
+    """Whether this process integrates ``law`` compiled: it has a kernel, and the process has loaded the compiled
+    loop (:func:`.compiled.compiled_now`).  The one rule of both the runs and the drive."""
+    return law.kernel is not None and compiled_now()
 
 
 def _compiled_drive(run, band):
