@@ -50,12 +50,13 @@ def test_the_series_satisfies_the_law_it_is_the_series_of(model, changes):
     w, v = scene.frequency, scene.v_normal
     d_scale, gamma = v / w, scene.g_normal / (w * v)
     p_scale = scene.mass * w * v
+    starts, ends, cx, cy = dense.pieces()
     for i in range(dense.steps):
-        xs, ys = dense._xs[i], dense._ys[i]
+        xs, ys = cx[i].tolist(), cy[i].tolist()
         p = len(xs) - 1
         dxs = [k * c for k, c in enumerate(xs)][1:]
         dys = [k * c for k, c in enumerate(ys)][1:]
-        h = dense._ends[i] - dense._starts[i]
+        h = float(ends[i] - starts[i])
         residuals = []
         for s in (0.5 * h, 0.25 * h):
             x, y = horner(xs, s), horner(ys, s)

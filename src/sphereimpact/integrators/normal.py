@@ -58,7 +58,13 @@ class _Budget(Exception):
 def substep_grid(steps: np.ndarray) -> np.ndarray:
     """Each step of ``steps`` (its boundaries, ascending) split into SUBSTEPS equal parts: sample times fine
     enough to bracket every event, the last boundary left out."""
-    return (steps[:-1, None] + np.diff(steps)[:, None] * _FRACTIONS).ravel()
+    return (steps[:-1, None] + (steps[1:] - steps[:-1])[:, None] * _FRACTIONS).ravel()
+
+
+def contact_grid(steps: np.ndarray, t_f: float) -> np.ndarray:
+    """A motion's ``grid`` [s]: the substeps of ``steps`` [s] (:func:`substep_grid`) before t_f, then t_f."""
+    grid = substep_grid(steps)
+    return np.concatenate((grid[grid < t_f], (t_f,)))
 
 
 #: The substeps' fractions of a step (:func:`substep_grid`), made once.
@@ -533,8 +539,7 @@ class IntegratedNormal(_DimensionlessNormal):
         self._sol, self._w, self._d_scale, self._v = dense, run.w, run.d_scale, run.v
         self.t_m = tau_m / run.w
         self.t_f = tau_f / run.w
-        grid = substep_grid(steps / run.w)
-        self.grid = np.append(grid[grid < self.t_f], self.t_f)
+        self.grid = contact_grid(steps / run.w, self.t_f)
         self.stats = {"method": run.method, "rtol": options.rtol, "atol": options.atol, "nfev": int(nfev)}
 
 
@@ -567,11 +572,6 @@ class TaylorNormal(_DimensionlessNormal):
         self.scene = scene
         w, v = scene.frequency, scene.v_normal
         d_scale, gamma = v / w, scene.g_normal / (w * v)
-        sep = scalar_separation_function(scene)
-
-        def separation(x, y):
-            return float(sep(x * d_scale, y * v))
-
         # ill-conditioned t_f: the series' error reaches it more than DOP853's does (see above)
         rtol, atol = conditioned_tolerances(scene, options, floor=ATOL_FLOOR, power=2)
         ramp_rate = law.ramp_rate
@@ -580,20 +580,25 @@ class TaylorNormal(_DimensionlessNormal):
 
         compiled = law.series_kernel is not None and law.kernel is not None and law.scalar is not None
         try:
-            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                if compiled and rule.compiled_now():  # the same steps and answer, compiled
-                    from .taylor_kernel import solved
+            if compiled and rule.compiled_now():  # the same steps and answer, compiled (no numpy arithmetic to warn)
+                from .taylor_kernel import solved
 
-                    sol = solved(rule.checked_series_kernel(scene), rule.checked_kernel(scene, (d_scale, v)),
-                                 law.series_kernel.parameters(scene), law.kernel.parameters(scene), gamma,
-                                 min(rtol, atol), horizon(scene) * w, lam, options.max_step * w, d_scale, v,
-                                 scene.separation.pulls)
-                else:
-                    numbers = {name: float(value) for name, value in scene.family.items()}
+                sol = solved(rule.checked_series_kernel(scene), rule.checked_kernel(scene, (d_scale, v)),
+                             law.series_kernel.parameters(scene), law.kernel.parameters(scene), gamma,
+                             min(rtol, atol), horizon(scene) * w, lam, options.max_step * w, d_scale, v,
+                             scene.separation.pulls)
+            else:
+                sep = scalar_separation_function(scene)
+
+                def separation(x, y):
+                    return float(sep(x * d_scale, y * v))
+
+                numbers = {name: float(value) for name, value in scene.family.items()}
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                     sol = series.solve(law.series, numbers, gamma, min(rtol, atol),
                                        horizon(scene) * w, separation, lam or None, options.max_step * w)
-                    if compiled:
-                        rule.spend_in_floats(sol["dense"].steps * sol["order"])
+                if compiled:
+                    rule.spend_in_floats(sol["dense"].steps * sol["order"])
         except series.StepBudgetError:
             raise ImpactError(f"no separation within {series.MAX_STEPS} Taylor steps ({describe_family(scene)}"
                               f"criterion '{scene.separation}'): the contact is too stiff or too slow to end") from None
@@ -608,8 +613,7 @@ class TaylorNormal(_DimensionlessNormal):
         check_rebound(scene, options, sol["state_f"][1] * v)
         self._sol, self._w, self._d_scale, self._v = sol["dense"], w, d_scale, v
         self.t_m, self.t_f = sol["tau_m"] / w, sol["tau_f"] / w
-        grid = substep_grid(sol["dense"].ts / w)
-        self.grid = np.append(grid[grid < self.t_f], self.t_f)
+        self.grid = contact_grid(sol["dense"].ts / w, self.t_f)
         # nfev: the force's Taylor coefficients computed, one per order and step (each the work of about one
         # right-hand-side call), so the work-precision chart compares like with like
         self.stats = {"method": "taylor", "rtol": options.rtol, "atol": options.atol,

@@ -81,11 +81,6 @@ def step_size(xs, ys, tol: float) -> float:
     return h
 
 
-def _listed(values) -> list:
-    """``values`` as a list (of lists, for a 2-D array)."""
-    return values.tolist() if isinstance(values, np.ndarray) else list(values)
-
-
 class TaylorDense:
     """The polynomial pieces of a Taylor solution: state (x, y) at any tau on [ts[0], ts[-1]].
 
@@ -101,13 +96,14 @@ class TaylorDense:
     """
 
     def __init__(self, starts, ends, xs, ys):
-        # lists (the Python loop's) or float arrays (the compiled loop's, kept without a copy): lists for single(),
-        # arrays for the vectorised evaluation and pieces()
-        self._starts, self._xs, self._ys, self._ends = (_listed(values) for values in (starts, xs, ys, ends))
+        # float arrays for the vectorised evaluation and pieces(); the steps' bounds as lists for single(), and a
+        # step's coefficients as lists when single() first reads it (an impact reads two or three steps of many)
         self._starts_array, self._ends_array = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
+        self._cx, self._cy = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)  # (steps, order + 1)
+        self._starts, self._ends = self._starts_array.tolist(), self._ends_array.tolist()
         self.ts = np.concatenate([self._starts_array[:1], self._ends_array])
         self._last = len(self._starts) - 1
-        self._cx, self._cy = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)  # (steps, order + 1)
+        self._rows: dict = {}
 
     @property
     def steps(self) -> int:
@@ -122,7 +118,10 @@ class TaylorDense:
         """[x, y] at one instant, in floats (an instant on a step boundary takes the earlier step)."""
         i = min(bisect.bisect_left(self._ends, tau), self._last)
         s = tau - self._starts[i]
-        return [horner(self._xs[i], s), horner(self._ys[i], s)]
+        rows = self._rows.get(i)
+        if rows is None:
+            rows = self._rows[i] = (self._cx[i].tolist(), self._cy[i].tolist())
+        return [horner(rows[0], s), horner(rows[1], s)]
 
     def __call__(self, tau):
         """The state at tau: shape (2,) for a scalar, (2, len(tau)) for an array."""
