@@ -122,7 +122,7 @@ def gains_energy(work_t, mass, speed, inertia, spin):
 
 def _degrees_atan2(y, x):
     """atan2(y, x) in degrees, for floats (math) or arrays (numpy)."""
-    if np.ndim(y) == 0 and np.ndim(x) == 0:
+    if (isinstance(y, float) and isinstance(x, float)) or (np.ndim(y) == 0 and np.ndim(x) == 0):  # floats first: cheap
         return math.degrees(math.atan2(y, x))
     return np.degrees(np.arctan2(y, x))
 

@@ -188,12 +188,16 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
                              f"{scene.tangential!r} is solved by body 'reduced' (exact: the normal motion does "
                              "not depend on friction)")
     start = time.perf_counter()
-    with _beyond_double(scene):
+    try:
         if body == Body.REDUCED:
             motion = ReducedMotion(shared_normal_motion(scene, options), options)
         else:
             motion = motion_of(scene, options)
         outcome = Outcome.from_motion(motion, time.perf_counter() - start)
+    except ImpactError:
+        raise
+    except (ArithmeticError, RuntimeError) as err:  # a safety net, without a context manager's cost on every call
+        raise _left_double(scene, err) from None
     if scene.has_partner:  # each body's end from the two-body motion itself, not from the reduction's impulses
         s = motion.scene
         work = {"work_t": motion.work_t, "energy_gained": bool(gains_energy(
@@ -202,17 +206,11 @@ def simulate(scene: Scene, options: SolverOptions | None = None, body: str = "re
     return _checked(outcome, strict)
 
 
-@contextmanager
-def _beyond_double(scene: Scene):
-    """Arithmetic that leaves double precision becomes an ImpactError naming the scene's family: a safety net."""
-    try:
-        yield
-    except ImpactError:
-        raise
-    except (ArithmeticError, RuntimeError) as err:
-        raise ImpactError(f"the computation left double precision ({type(err).__name__}: {err}; "
-                          f"{describe_family(scene)}criterion '{scene.separation}'): the scene lies outside what "
-                          "the model computes") from None
+def _left_double(scene: Scene, err: Exception) -> ImpactError:
+    """The ImpactError of arithmetic ``err`` that left double precision, naming ``scene``'s family."""
+    return ImpactError(f"the computation left double precision ({type(err).__name__}: {err}; "
+                       f"{describe_family(scene)}criterion '{scene.separation}'): the scene lies outside what the "
+                       "model computes")
 
 
 def _checked(outcome: Outcome, strict: bool) -> Outcome:

@@ -24,6 +24,7 @@ from ..ode import series
 from ..ode.dense import DOP853, SMALL, TAYLOR, StackedDOP853, fast_solution, is_instant
 from ..contact.motion import KernelState, NormalMotion
 from ..errors import ImpactError
+from . import compiled as rule  # the rule of when this process integrates compiled (numba is not imported by it)
 from .base import DEFAULT_INTEGRATOR, INTEGRATORS
 from .event_kinds import EventKind
 
@@ -225,14 +226,10 @@ class CompiledReads:
     def kernel_state(self):
         if not self._has_kernel_state():
             return None
-        from . import compiled as rule
-
         return self.kept("kernel state", self._kernel_state) if rule.compiled_now() else None
 
     def spend_in_floats(self, evaluations: int) -> None:
         if self._has_kernel_state():
-            from . import compiled as rule
-
             rule.spend_in_floats(evaluations)
 
     def _compiled_states(self, t):
@@ -247,6 +244,10 @@ class CompiledReads:
         return normal_states(kernel.arrays(), np.ascontiguousarray(t, dtype=float))
 
 
+#: The arrays of a KernelState that its kind does not use, empty (shared: nothing can be written into them).
+_NONE, _NO_COEFFICIENTS, _NO_ROWS, _NO_STATES = np.empty(0), np.empty((0, 0)), np.empty((0, 7, 2)), np.empty((0, 2))
+
+
 class _DimensionlessNormal(CompiledReads, NormalMotion):
     """A normal motion held as a dense solution of the dimensionless state (tau = omega t, x = delta / d_scale,
     y = delta_dot / v): subclasses set ``_sol``, ``_w`` (omega [1/s]), ``_d_scale`` [m] and ``_v`` [m/s]."""
@@ -259,19 +260,17 @@ class _DimensionlessNormal(CompiledReads, NormalMotion):
 
     def _kernel_state(self) -> KernelState:
         """Its dense output's arrays and its law's checked kernel."""
-        from .compiled import checked_kernel
-
-        sol, scene, none = self._sol, self.scene, np.empty(0)
+        sol, scene, none = self._sol, self.scene, _NONE
         if isinstance(sol, StackedDOP853):
             kind, knots, starts, sizes = DOP853, sol.ts, sol.t_old, sol.h
-            cx = cy = np.empty((0, 0))
+            cx = cy = _NO_COEFFICIENTS
             f, y_old = np.ascontiguousarray(sol.f[:, ::-1]), np.ascontiguousarray(sol.y_old)
         else:
             (starts, knots, cx, cy), kind, sizes = sol.pieces(), TAYLOR, none
-            f, y_old = np.empty((0, 7, 2)), np.empty((0, 2))
+            f, y_old = _NO_ROWS, _NO_STATES
         return KernelState(kind, np.ascontiguousarray(knots, dtype=float), np.ascontiguousarray(starts, dtype=float),
                            np.ascontiguousarray(sizes, dtype=float), cx, cy, f, y_old, float(self._w),
-                           float(self._d_scale), float(self._v), checked_kernel(scene, (self._d_scale, self._v)),
+                           float(self._d_scale), float(self._v), rule.checked_kernel(scene, (self._d_scale, self._v)),
                            np.array(scene.law.kernel.parameters(scene), dtype=float))
 
     def state(self, t):
@@ -576,8 +575,6 @@ class TaylorNormal(_DimensionlessNormal):
         rtol, atol = conditioned_tolerances(scene, options, floor=ATOL_FLOOR, power=2)
         ramp_rate = law.ramp_rate
         lam = None if ramp_rate is None else ramp_rate(scene) * d_scale
-        from . import compiled as rule  # when this process integrates compiled
-
         compiled = law.series_kernel is not None and law.kernel is not None and law.scalar is not None
         try:
             if compiled and rule.compiled_now():  # the same steps and answer, compiled (no numpy arithmetic to warn)
