@@ -62,6 +62,27 @@ def test_a_lane_does_not_depend_on_the_lanes_beside_it():
         assert all(alone[k][0] == whole[k][i] for k in OUTPUTS)
 
 
+@pytest.mark.parametrize("separation", list(Separation))
+@pytest.mark.parametrize("partial", [True, False])
+def test_one_lane_serves_many_levels_as_a_lane_per_level_does_to_the_bit(separation, partial):
+    """A lane given L levels (the grip tables' nodes) stops once it has them all; each level's instant is the one a
+    lane of that level alone gives, to the bit: levels 0, beyond j's largest value (the instant it is largest),
+    NaN (none) and levels across the impulse, at three damping ratios."""
+    rng = np.random.default_rng(11)
+    for zeta0 in (0.05, 0.3, 0.9):
+        zeta, lam = np.full(12, zeta0), 10 ** rng.uniform(-1.5, 3.5, 12)
+        j_p = series_lanes.integrate(zeta, lam, separation, 1e-8)["j_p"]
+        fractions = np.concatenate([[0.0, 1.0, 1.2, np.nan], rng.uniform(0.0, 1.0, 12)])
+        levels = j_p[:, None] * fractions[None, :]
+        many = series_lanes.integrate(zeta, lam, separation, 1e-8, levels=levels, partial=partial)["tau_g"]
+        width = fractions.size
+        alone = series_lanes.integrate(np.repeat(zeta, width), np.repeat(lam, width), separation, 1e-8,
+                                       levels=levels.ravel(), partial=partial)["tau_g"]
+        assert many.shape == levels.shape
+        np.testing.assert_array_equal(many.ravel(), alone)
+        assert np.isnan(many[:, 3]).all() and (many[:, 0] == 0).all() and (np.diff(many[:, 4:], axis=1) != 0).any()
+
+
 @pytest.mark.parametrize("order", [16, 18, 20, 24])
 def test_high_orders_land_on_the_band_edge_after_maximum_compression(monkeypatch, order):
     """lam 38-70 puts x_m just outside the ramp band: a step that started there still compressing crossed the

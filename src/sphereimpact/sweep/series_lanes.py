@@ -140,7 +140,10 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
         Relative accuracy target of every output.
     levels : ndarray, optional
         Per lane, a level of the friction-carrying impulse j = J+ / (m v_n) (NaN: none) whose first instant
-        ``tau_g`` is wanted; where j never reaches it, the instant j is largest (P_hat first falls to 0).
+        ``tau_g`` is wanted; where j never reaches it, the instant j is largest (P_hat first falls to 0).  Shape
+        (lanes,), or (lanes, L) for L levels of each lane: one lane then serves them all (each level's instant the
+        one a lane of its own gives, to the bit: the lanes' arithmetic is element by element, and a lane that goes
+        on past a level's instant took the steps a lane of that level alone took up to it).
     extremes : bool
         Also the extremes ``p_max`` and ``p_min`` of P_hat over the contact (its ends and its turning points;
         ``CONTINUED`` lanes: its ends and maxima).
@@ -154,7 +157,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     -------
     dict of ndarray
         :data:`~.outputs.NORMAL_OUTPUTS` as :func:`.batch.integrate` gives them, here without gravity: j_p =
-        1 - y_p (``CONTINUED``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g``;
+        1 - y_p (``CONTINUED``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g`` (shaped as ``levels``);
         with ``extremes``, ``p_max`` and ``p_min``.  ``partial``: ``tau_g`` and ``p_max`` alone.
 
     Raises
@@ -172,7 +175,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
               [*NORMAL_OUTPUTS, *(["tau_g"] if levels is not None else []), *(["p_max", "p_min"] if extremes else [])])
     if n == 0:
         return {k: np.empty(0) for k in wanted}
-    level = np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float).copy()
+    level = np.full((n, 1), np.nan) if levels is None else np.asarray(levels, dtype=float).reshape(n, -1).copy()
     tol = np.maximum(TOLERANCE_FACTOR * target / np.maximum(1.0, 2.0 * zeta) ** 2, TOLERANCE_MIN)
     order = order_for(TOLERANCE_FACTOR * target)  # the target's, not the batch's: a lane's result is its own
     lane = np.arange(n)
@@ -182,7 +185,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     x, y, tau = np.zeros(n), np.ones(n), np.zeros(n)
     past = np.zeros(n, bool)
     tension_seen = np.zeros(n, bool)
-    crossed = ~(level > 0)  # lanes with no level to find, or level 0 (reached at first touch)
+    crossed = ~(level > 0)  # (lanes, levels): no level to find, or level 0 (reached at first touch)
     turning = np.ones(n)  # sign of dP_hat/dtau = -y'' at the step's start (P_hat rises from first touch)
     records = {"max": [], "tension": [], "end": [], "grip": [], "turn": []}
     for _ in range(MAX_STEPS):
@@ -214,9 +217,9 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
         done = (x_end & at_zero) | (at_root & (pulls | x_end))
         first = pulls & ~tension_seen & ~done
         tension_seen |= first
-        cross = ~crossed & (1.0 - y1 >= level)  # the impulse j = 1 - y reaches the level within this step
+        cross = ~crossed & ((1.0 - y1)[:, None] >= level)  # the impulse j = 1 - y reaches a level within this step
         crossed |= cross
-        masks = [("max", hit_max), ("tension", first), ("end", done), ("grip", cross)]
+        masks = [("max", hit_max), ("tension", first), ("end", done), ("grip", cross.any(axis=1))]
         if extremes:  # records carry the sign at the step's start (turning before the update)
             turned = np.sign(-_second_derivative(ys, h))
             masks.append(("turn", (turned != turning) & (turned != 0)))
@@ -224,8 +227,8 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
             if mask.any():
                 i = np.flatnonzero(mask)
                 records[event].append({"lane": lane[i], "tau": tau[i], "h": h[i], "xs": xs[:, i], "ys": ys[:, i],
-                                       "x_end": x_end[i], "seen": tension_seen[i], "level": level[i],
-                                       "rising": turning[i] > 0})
+                                       "x_end": x_end[i], "seen": tension_seen[i], "level": level[i].T,
+                                       "cross": cross[i].T, "rising": turning[i] > 0})
         if extremes:
             turning = np.where(turned != 0, turned, turning)
         tau = tau + h
@@ -235,7 +238,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
             raise ImpactError(f"no separation within the horizon for {int(late.sum())} scene(s) "
                               f"(first: zeta = {two_zeta[late][0] / 2:.3g}, lam = {lam_a[late][0]:.3g})")
         if partial:  # done with its instant (or once P_hat first falls to 0: j is largest) and, for the
-            done = (crossed | pulls | x_end) & (past | (not extremes))  # force's maximum, past maximum compression
+            done = (crossed.all(axis=1) | pulls | x_end) & (past | (not extremes))  # force's maximum, past its top
         if done.any():  # ended lanes leave the batch
             keep = ~done
             lane, x, y, tau = lane[keep], x[keep], y[keep], tau[keep]
@@ -247,20 +250,37 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     if partial:
         out = {}
         if levels is not None:
-            out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, np.ones(n, bool), level_all(levels, n), None)
+            out["tau_g"] = _level_instants(records, 2.0 * zeta, lam, np.ones(n, bool), levels)
         if extremes:
             out["p_max"] = _turns(records, 2.0 * zeta, lam, np.full(n, np.inf), kind == End.CONTINUED)[0]
         return out
     out = _events(records, 2.0 * zeta, lam, kind != End.PENETRATION, continued_all=kind == End.CONTINUED,
                   extremes=extremes)
     if levels is not None:
-        out["tau_g"] = _grip_events(records, 2.0 * zeta, lam, kind != End.PENETRATION, level_all(levels, n), out)
+        out["tau_g"] = _level_instants(records, 2.0 * zeta, lam, kind != End.PENETRATION, levels)
     return out
 
 
-def level_all(levels, n: int) -> np.ndarray:
-    """The lanes' levels as an array (NaN: none)."""
-    return np.full(n, np.nan) if levels is None else np.asarray(levels, dtype=float)
+def _level_instants(records: dict, two_zeta, lam, at_root, levels) -> np.ndarray:
+    """tau_g of every (lane, level) pair, shaped as ``levels``: :func:`_grip_events` on the records made one per pair
+    (a lane's step repeated for each of its levels; a grip record kept for the levels it crossed)."""
+    levels = np.asarray(levels, dtype=float)
+    width = 1 if levels.ndim == 1 else levels.shape[1]
+    pairs = {kind: [_per_level(record, width, kind == "grip") for record in records[kind]]
+             for kind in ("grip", "tension", "end")}
+    return _grip_events(pairs, np.repeat(two_zeta, width), np.repeat(lam, width), np.repeat(at_root, width),
+                        levels.ravel()).reshape(levels.shape)
+
+
+def _per_level(record: dict, width: int, crossed: bool) -> dict:
+    """A step record of lanes (``level`` and ``cross``: (levels, lanes)) as one of (lane, level) pairs, ``lane``
+    the pair's index, lane x width + level; with ``crossed``, only the pairs whose level the step crossed."""
+    out = {key: np.repeat(record[key], width, axis=-1) for key in ("tau", "h", "xs", "ys", "x_end", "seen")}
+    out |= {"lane": (record["lane"][:, None] * width + np.arange(width)).ravel(), "level": record["level"].T.ravel()}
+    if crossed:
+        keep = record["cross"].T.ravel()
+        out = {key: value[..., keep] for key, value in out.items()}
+    return out
 
 
 def _join(store: list) -> dict | None:
@@ -287,7 +307,7 @@ def _first_zero(rec, two_zeta, lam):
     return s_end, q_end
 
 
-def _grip_events(records: dict, two_zeta, lam, at_root, level, out) -> np.ndarray:
+def _grip_events(records: dict, two_zeta, lam, at_root, level) -> np.ndarray:
     """tau_g of every lane with a level: the root of 1 - y(s) = level in the step where j first reached it,
     or, where no step end showed it, on [0, s_p] of the step where P_hat first falls to 0 (j's maximum there,
     the level clamped to it)."""

@@ -411,10 +411,14 @@ class LambdaInterpolant(_Pieces):
             out = dict(solved[key])
             if asked.extremes:  # eq. 4.2's force is 0 at both ends of the contact (delta = 0, the ramp off)
                 out["p_ends"] = np.zeros(lam.size)
-            if asked.grip:  # one lane per node and level, each stopping at its instant
+            if asked.grip:  # each node's levels: one Taylor lane per node serves them all, else a lane per level
                 levels = _profile(out, asked)
-                tau = lanes(np.repeat(lam, levels.shape[1]), criterion, node_target, levels=levels.ravel(),
-                            partial=True)["tau_g"].reshape(levels.shape)
+                if taylor:
+                    tau = series_lanes.integrate(np.full(lam.size, zeta), lam, criterion, node_target, levels=levels,
+                                                 partial=True)["tau_g"]
+                else:
+                    tau = lanes(np.repeat(lam, levels.shape[1]), criterion, node_target, levels=levels.ravel(),
+                                partial=True)["tau_g"].reshape(levels.shape)
                 out |= dict(zip(asked.keys(), tau.T))
             return out
 
