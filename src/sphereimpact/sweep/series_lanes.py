@@ -261,28 +261,6 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     return out
 
 
-def _level_instants(records: dict, two_zeta, lam, at_root, levels) -> np.ndarray:
-    """tau_g of every (lane, level) pair, shaped as ``levels``: :func:`_grip_events` on the records made one per pair
-    (a lane's step repeated for each of its levels; a grip record kept for the levels it crossed)."""
-    levels = np.asarray(levels, dtype=float)
-    width = 1 if levels.ndim == 1 else levels.shape[1]
-    pairs = {kind: [_per_level(record, width, kind == "grip") for record in records[kind]]
-             for kind in ("grip", "tension", "end")}
-    return _grip_events(pairs, np.repeat(two_zeta, width), np.repeat(lam, width), np.repeat(at_root, width),
-                        levels.ravel()).reshape(levels.shape)
-
-
-def _per_level(record: dict, width: int, crossed: bool) -> dict:
-    """A step record of lanes (``level`` and ``cross``: (levels, lanes)) as one of (lane, level) pairs, ``lane``
-    the pair's index, lane x width + level; with ``crossed``, only the pairs whose level the step crossed."""
-    out = {key: np.repeat(record[key], width, axis=-1) for key in ("tau", "h", "xs", "ys", "x_end", "seen")}
-    out |= {"lane": (record["lane"][:, None] * width + np.arange(width)).ravel(), "level": record["level"].T.ravel()}
-    if crossed:
-        keep = record["cross"].T.ravel()
-        out = {key: value[..., keep] for key, value in out.items()}
-    return out
-
-
 def _join(store: list) -> dict | None:
     if not store:
         return None
@@ -307,24 +285,29 @@ def _first_zero(rec, two_zeta, lam):
     return s_end, q_end
 
 
-def _grip_events(records: dict, two_zeta, lam, at_root, level) -> np.ndarray:
-    """tau_g of every lane with a level: the root of 1 - y(s) = level in the step where j first reached it,
-    or, where no step end showed it, on [0, s_p] of the step where P_hat first falls to 0 (j's maximum there,
-    the level clamped to it)."""
+def _level_instants(records: dict, two_zeta, lam, at_root, levels) -> np.ndarray:
+    """tau_g of every lane's levels, shaped as ``levels`` ((lanes,) or (lanes, L)): the root of 1 - y(s) = level in
+    the step where j first reached it or, where no step end showed it, on [0, s_p] of the step where P_hat first
+    falls to 0 (j's maximum there, the level clamped to it).  Each (lane, level) pair is its own root search, the
+    one a lane of that level alone makes; what belongs to the lane (its step's s_p and y there) is found once."""
+    levels = np.asarray(levels, dtype=float)
+    level = levels.reshape(two_zeta.size, -1)
     tau_g = np.where(level == 0, 0.0, np.nan)
     g = _join(records["grip"])
     if g is not None:
-        shifted = g["ys"].copy()
-        shifted[0] -= 1.0 - g["level"]  # y(s) - (1 - level): positive at the step's start, <= 0 at its end
-        tau_g[g["lane"]] = g["tau"] + _polynomial_root(shifted, g["h"], g["tau"])
+        step, column = np.nonzero(g["cross"].T)  # each crossing: its record and its level
+        lane = g["lane"][step]
+        shifted = g["ys"][:, step]
+        shifted[0] -= 1.0 - level[lane, column]  # y(s) - (1 - level): positive at the step's start, <= 0 at its end
+        tau_g[lane, column] = g["tau"][step] + _polynomial_root(shifted, g["h"][step], g["tau"][step])
     todo = np.isnan(tau_g) & (level > 0)
-    if not todo.any():
-        return tau_g
     for kind in ("tension", "end"):  # the step where P_hat first falls to 0 (a tension step comes first)
+        if not todo.any():
+            break
         rec = _join(records[kind])
         if rec is None:
             continue
-        pick = np.flatnonzero(todo[rec["lane"]])
+        pick = np.flatnonzero(todo[rec["lane"]].any(axis=1))
         if not pick.size:
             continue
         rec = {k: v[..., pick] for k, v in rec.items()}
@@ -336,17 +319,17 @@ def _grip_events(records: dict, two_zeta, lam, at_root, level) -> np.ndarray:
             i = np.flatnonzero(search)
             s_p[i] = _ratio_root(rec["xs"][:, i], rec["ys"][:, i], two_zeta[j[i]], lam[j[i]], s_end[i], q_end[i],
                                  rec["tau"][i])
-        if kind == "end":  # an end step holds the first zero only where no tension step came before
-            use = ~rec["seen"] | at_root[j]
-        else:
-            use = np.ones(j.size, bool)
+        # an end step holds the first zero only where no tension step came before
+        use = ~rec["seen"] | at_root[j] if kind == "end" else np.ones(j.size, bool)
         y_p = _horner(rec["ys"], s_p)
-        shifted = rec["ys"].copy()
-        shifted[0] -= np.maximum(1.0 - rec["level"], y_p)  # the level, at most j's largest value
-        s = _polynomial_root(shifted, s_p, rec["tau"])
-        tau_g[j[use]] = (rec["tau"] + np.where(y_p >= 1.0 - rec["level"], s_p, s))[use]
-        todo[j[use]] = False
-    return tau_g
+        step, column = np.nonzero(todo[j] & use[:, None])  # the pairs this kind's steps serve
+        lane, wanted = j[step], level[j[step], column]
+        shifted = rec["ys"][:, step]
+        shifted[0] -= np.maximum(1.0 - wanted, y_p[step])  # the level, at most j's largest value
+        s = _polynomial_root(shifted, s_p[step], rec["tau"][step])
+        tau_g[lane, column] = rec["tau"][step] + np.where(y_p[step] >= 1.0 - wanted, s_p[step], s)
+        todo[lane, column] = False
+    return tau_g.reshape(levels.shape)
 
 
 def _events(records: dict, two_zeta, lam, at_root, continued_all, extremes: bool) -> dict:
