@@ -13,7 +13,7 @@ import warnings
 from collections.abc import Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, fields
 from functools import cached_property
 
 import numpy as np
@@ -582,8 +582,12 @@ class Scene:
         uses = {*LAWS.law(changes.get("model", self.model)).parameter_names,
                 *TANGENTIALS.model(changes.get("tangential", self.tangential)).parameter_names}
         values = {name: value for name, value in values.items() if name in uses or name in named}
-        with bodies_judged():  # judged when this scene was built
-            return replace(self, **changes, parameters=values)
+        fields_now = {name: getattr(self, name) for name in FIELD_DEFAULTS}  # dataclasses.replace's, cheaper
+        token = _JUDGED.set(True)  # bodies_judged(): judged when this scene was built
+        try:
+            return Scene(values, **(fields_now | changes))
+        finally:
+            _JUDGED.reset(token)
 
 
 def chapter_law_parameters(law) -> tuple:

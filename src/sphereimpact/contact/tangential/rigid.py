@@ -305,6 +305,11 @@ class PositiveImpulse:
         return np.where(i < 0, 0.0, inside + after)
 
 
+def _grid_from(normal: NormalMotion, t0: float) -> np.ndarray:
+    """The normal motion's grid [s] from t0 on: t0, then its instants after it."""
+    return np.concatenate([[t0], normal.grid[normal.grid > t0]])
+
+
 class TangentialMotion:
     """Tangential motion and spin of the ball over the contact of ``normal``.
 
@@ -338,14 +343,13 @@ class TangentialMotion:
             phase = Phase(Regime.ROLLING, 0.0, normal.t_f, scene.v_tangent, scene.spin, 0.0)
         self.phases, self.t_roll = [], None if phase.mode == Regime.SLIDING else 0.0
         while True:
-            grid = np.concatenate([[phase.t0], normal.grid[normal.grid > phase.t0]])
             if phase.mode == Regime.SLIDING and self._slides_throughout(phase):
                 t_switch = None
             elif phase.mode == Regime.SLIDING:  # sigma s falls through zero when the contact point stops slipping
-                t_switch = self._grip(phase, grid)
+                t_switch = self._grip(phase, _grid_from(normal, phase.t0))
             elif self._hold > 0:
                 t_switch = first_root(lambda t: mu * np.maximum(normal.force(t), 0.0) - self._hold,
-                                      grid, direction=-1)
+                                      _grid_from(normal, phase.t0), direction=-1)
             else:
                 t_switch = None
             if t_switch is None or t_switch >= normal.t_f:
