@@ -150,7 +150,8 @@ class PositiveImpulse:
         self._n = normal
         # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
         inner = [] if normal.scene.separation.on_force else normal.force_roots()
-        if not inner and normal.t_f > 0.0 and normal.force(0.5 * normal.t_f) > 0:
+        # without a sign change on (0, t_f) the force there has the sign it has at maximum compression, inside
+        if not inner and normal.t_f > 0.0 and normal.force(normal.t_m) > 0:
             self._one_interval(normal.t_f)  # the force criterion's: _cut's arrays for one interval, in floats
         else:
             self._cut(inner)
