@@ -157,8 +157,8 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     -------
     dict of ndarray
         :data:`~.outputs.NORMAL_OUTPUTS` as :func:`.batch.integrate` gives them, here without gravity: j_p =
-        1 - y_p (``CONTINUED``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g`` (shaped as ``levels``);
-        with ``extremes``, ``p_max`` and ``p_min``.  ``partial``: ``tau_g`` and ``p_max`` alone.
+        1 - y_p (``CONTINUED``: tau_f and y_f at the root of Q, j_p = 1 - y_f); with ``levels``, ``tau_g`` (shaped
+        as ``levels``); with ``extremes``, ``p_max`` and ``p_min``.  ``partial``: ``tau_g`` and ``p_max`` alone.
 
     Raises
     ------
