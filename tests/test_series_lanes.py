@@ -83,6 +83,23 @@ def test_one_lane_serves_many_levels_as_a_lane_per_level_does_to_the_bit(separat
         assert np.isnan(many[:, 3]).all() and (many[:, 0] == 0).all() and (np.diff(many[:, 4:], axis=1) != 0).any()
 
 
+@pytest.mark.parametrize("separation", list(Separation))
+def test_kept_steps_give_the_instants_of_later_levels_as_partial_lanes_do(separation):
+    """Lanes integrated to their end with their steps kept answer levels asked afterwards (the grip tables' rounds)
+    with the instants lanes stopping at those levels give, to the bit: the replayed crossings and stops are theirs.
+    Levels 0, j's largest value and beyond it, NaN, and across the impulse, of j_p and of 1 - y_f, five damping
+    ratios up to critical."""
+    rng = np.random.default_rng(5)
+    for zeta0 in (0.01, 0.05, 0.3, 0.9, 1.0):
+        zeta, lam = np.full(20, zeta0), 10 ** rng.uniform(-2.0, 4.0, 20)
+        full = series_lanes.integrate(zeta, lam, separation, 1e-8, extremes=True, keep_steps=True)
+        for reference in (full["j_p"], 1.0 - full["y_f"]):
+            fractions = np.concatenate([[0.0, 1.0, 1.2, np.nan], rng.uniform(0.0, 1.0, 30)])
+            levels = reference[:, None] * fractions[None, :]
+            stopping = series_lanes.integrate(zeta, lam, separation, 1e-8, levels=levels, partial=True)["tau_g"]
+            np.testing.assert_array_equal(full["steps"].instants(levels), stopping)
+
+
 @pytest.mark.parametrize("order", [16, 18, 20, 24])
 def test_high_orders_land_on_the_band_edge_after_maximum_compression(monkeypatch, order):
     """lam 38-70 puts x_m just outside the ramp band: a step that started there still compressing crossed the

@@ -127,7 +127,7 @@ def _second_derivative(ys, s):
 
 
 def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool = False,
-              partial: bool = False) -> dict:
+              partial: bool = False, keep_steps: bool = False) -> dict:
     """Integrate every lane to separation by the Taylor method.
 
     Parameters
@@ -152,6 +152,9 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
         its level's instant and maximum compression (the force's largest value comes before it: there
         dP_hat/dtau = -2 zeta P_hat r < 0, and after it P_hat < x < x_m = P_hat(tau_m)); the rest of its motion
         is not integrated.
+    keep_steps : bool
+        Also ``steps``, a :class:`Marched` of the lanes' steps, which gives the instants of any levels afterwards
+        (:meth:`Marched.instants`) as a ``partial`` call with those levels would, without integrating again.
 
     Returns
     -------
@@ -187,7 +190,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
     tension_seen = np.zeros(n, bool)
     crossed = ~(level > 0)  # (lanes, levels): no level to find, or level 0 (reached at first touch)
     turning = np.ones(n)  # sign of dP_hat/dtau = -y'' at the step's start (P_hat rises from first touch)
-    records = {"max": [], "tension": [], "end": [], "grip": [], "turn": []}
+    records = {"max": [], "tension": [], "end": [], "grip": [], "turn": [], "step": []}
     for _ in range(MAX_STEPS):
         if not lane.size:
             break
@@ -229,6 +232,8 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
                 records[event].append({"lane": lane[i], "tau": tau[i], "h": h[i], "xs": xs[:, i], "ys": ys[:, i],
                                        "x_end": x_end[i], "seen": tension_seen[i], "level": level[i].T,
                                        "cross": cross[i].T, "rising": turning[i] > 0})
+        if keep_steps:  # every step, for Marched.instants to replay a partial call's crossings and stops on
+            records["step"].append({"lane": lane, "tau": tau, "h": h, "ys": ys, "y1": y1, "stop": pulls | x_end})
         if extremes:
             turning = np.where(turned != 0, turned, turning)
         tau = tau + h
@@ -258,7 +263,45 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
                   extremes=extremes)
     if levels is not None:
         out["tau_g"] = _level_instants(records, 2.0 * zeta, lam, kind != End.PENETRATION, levels)
+    if keep_steps:
+        out["steps"] = Marched(records, 2.0 * zeta, lam)
     return out
+
+
+class Marched:
+    """The steps of lanes integrated to their end (``integrate(..., keep_steps=True)``): the instants of any levels
+    of the impulse j, each the one a ``partial`` call with those levels gives, to the bit.  A partial lane takes the
+    same steps (a step depends on the lane's own state alone) and stops once it has crossed every level or the
+    force first falls to 0 (delta = 0 or tension): :meth:`instants` replays those crossings and stops on the kept
+    steps, then locates each instant as that call does (:func:`_level_instants`)."""
+
+    def __init__(self, records: dict, two_zeta, lam):
+        self._steps, self._tension, self._end = records["step"], records["tension"], records["end"]
+        self._two_zeta, self._lam = two_zeta, lam
+
+    def instants(self, levels) -> np.ndarray:
+        """tau_g at ``levels`` (lanes, L) of j = J+ / (m v_n) (NaN: none), shaped as ``levels``."""
+        levels = np.asarray(levels, dtype=float)
+        n = self._two_zeta.size
+        level = levels.reshape(n, -1)
+        crossed = ~(level > 0)
+        running = np.ones(n, bool)
+        grips = []
+        for step in self._steps:
+            mine = running[step["lane"]]
+            if not mine.any():
+                continue
+            i = np.flatnonzero(mine)
+            lane = step["lane"][i]
+            cross = ~crossed[lane] & ((1.0 - step["y1"][i])[:, None] >= level[lane])
+            crossed[lane] |= cross
+            hit = np.flatnonzero(cross.any(axis=1))
+            if hit.size:
+                grips.append({"lane": lane[hit], "tau": step["tau"][i[hit]], "h": step["h"][i[hit]],
+                              "ys": step["ys"][:, i[hit]], "cross": cross[hit].T})
+            running[lane[crossed[lane].all(axis=1) | step["stop"][i]]] = False
+        records = {"grip": grips, "tension": self._tension, "end": self._end}
+        return _level_instants(records, self._two_zeta, self._lam, np.ones(n, bool), levels)
 
 
 def _join(store: list) -> dict | None:

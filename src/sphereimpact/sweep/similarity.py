@@ -406,16 +406,17 @@ class LambdaInterpolant(_Pieces):
         def solve(u, criterion, node_target, asked: Asked):
             lam = np.exp(u)
             key = (u.tobytes(), criterion, node_target, asked.extremes)
-            if key not in solved:
-                solved[key] = lanes(lam, criterion, node_target, extremes=asked.extremes)
+            if key not in solved:  # with grip tables, the Taylor lanes keep their steps for the levels asked later
+                solved[key] = lanes(lam, criterion, node_target, extremes=asked.extremes,
+                                    **({"keep_steps": True} if taylor and grips else {}))
             out = dict(solved[key])
+            steps = out.pop("steps", None)
             if asked.extremes:  # eq. 4.2's force is 0 at both ends of the contact (delta = 0, the ramp off)
                 out["p_ends"] = np.zeros(lam.size)
-            if asked.grip:  # each node's levels: one Taylor lane per node serves them all, else a lane per level
+            if asked.grip:  # each node's levels: off its lane's kept steps, else a Runge-Kutta lane per level
                 levels = _profile(out, asked)
-                if taylor:
-                    tau = series_lanes.integrate(np.full(lam.size, zeta), lam, criterion, node_target, levels=levels,
-                                                 partial=True)["tau_g"]
+                if steps is not None:  # what Taylor lanes stopping at these levels give, to the bit (Marched)
+                    tau = steps.instants(levels)
                 else:
                     tau = lanes(np.repeat(lam, levels.shape[1]), criterion, node_target, levels=levels.ravel(),
                                 partial=True)["tau_g"].reshape(levels.shape)
