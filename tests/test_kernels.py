@@ -467,3 +467,28 @@ def test_the_refresh_deletes_the_kernels_caches_only_when_a_source_changed(tmp_p
     (tmp_path / "c.py").write_text("x = 2\n")
     assert refresh(tmp_path, record, kernels, sources) == 3
     assert refresh(tmp_path, record, kernels, sources) == 0
+
+
+def test_no_two_kernel_modules_compile_a_helper_into_the_same_cache_files():
+    """numba names a kernel's cache files after its Python function's module and qualified name: two modules compiling
+    the same helper (ode.dense.grown, in three) into one index raced when their groups compiled at once on a fresh
+    clone, and its compile failed.  Every cached, not inlined, dispatcher of the package's kernel modules has cache
+    files of its own (kernel_cache.owned), or is one and the same dispatcher imported."""
+    import importlib
+
+    from numba.core.caching import NullCache
+    from numba.core.registry import CPUDispatcher
+
+    from sphereimpact.kernel_cache import KERNELS
+
+    owners: dict = {}
+    for path in KERNELS:
+        module = importlib.import_module("sphereimpact." + path.removesuffix(".py").replace("/", "."))
+        for value in vars(module).values():
+            if not isinstance(value, CPUDispatcher) or isinstance(value._cache, NullCache):
+                continue  # not numba's: or not cached on disk
+            if value.targetoptions.get("inline", "never") != "never":
+                continue  # inlined into its callers: compiled and cached with them
+            key = (value.py_func.__module__, value.py_func.__qualname__)
+            assert owners.setdefault(key, value) is value, f"{key} is compiled by two modules into one cache"
+    assert ("sphereimpact.ode.dense", "grown_stick_kernel") in owners

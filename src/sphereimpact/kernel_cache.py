@@ -14,6 +14,7 @@ numba's own rule holds for it.
 from __future__ import annotations
 
 import hashlib
+import types
 from pathlib import Path
 
 #: The package's modules that keep compiled kernels on disk (numba's ``cache`` option), relative to the package.
@@ -81,3 +82,17 @@ def refresh(root: Path = ROOT, record: Path = RECORD, kernels=KERNELS, sources=S
             return deleted
     except OSError:
         return 0
+
+
+def owned(function, owner: str):
+    """A copy of the plain function ``function`` for the kernel module ``owner`` to compile, with its own numba cache
+    files.  numba names a kernel's cache files after the function's module and qualified name, so modules compiling the
+    same helper (``ode.dense.grown`` in three) shared one index and its numbered entries: compiled at once in parallel
+    processes (a fresh clone's :func:`~sphereimpact.integrators.compiled.compile_all` groups), one process's machine
+    code could land in the entry another had indexed for another signature, and a clean clone's compile then failed
+    typing ``grown``.  The copy runs the same code (its code object, globals and defaults), only named for its owner."""
+    copy = types.FunctionType(function.__code__, function.__globals__, function.__name__, function.__defaults__,
+                              function.__closure__)
+    copy.__qualname__ = f"{function.__qualname__}_{owner}"
+    copy.__doc__ = function.__doc__
+    return copy

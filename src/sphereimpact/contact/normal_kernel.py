@@ -23,7 +23,7 @@ from ..ode.roots import bracketed_root
 from ..ode.series import horner
 from .laws.kernels import SIGNATURE
 from .laws.spring_damper import KERNEL_KIND as SPRING_DAMPER, spring_damper_state
-from ..kernel_cache import refresh
+from ..kernel_cache import owned, refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
@@ -33,8 +33,8 @@ ARRAY, MATRIX, CUBE = types.float64[::1], types.float64[:, ::1], types.float64[:
 #: The numba type of a normal motion's arrays (:meth:`~.motion.KernelState.arrays`).
 NORMAL = types.Tuple((_I, ARRAY, ARRAY, ARRAY, MATRIX, MATRIX, CUBE, MATRIX, _F, _F, _F))
 
-_horner = numba.njit(**_COMPILE)(horner)
-_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
+_horner = numba.njit(**_COMPILE)(owned(horner, "normal_kernel"))
+_interpolant_pair = numba.njit(**_COMPILE)(owned(interpolant_pair, "normal_kernel"))
 _spring_damper_state = numba.njit(**_COMPILE)(spring_damper_state)
 _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)

@@ -38,7 +38,7 @@ from ..ode.dop853 import (BUDGET, EPS, OVERFLOW, ROOT_ITERATIONS, STEP_TOO_SMALL
 from ..ode.dense import grown, interpolant_pair
 from ..ode.roots import bracketed_root
 from .event_kinds import EventKind
-from ..kernel_cache import refresh
+from ..kernel_cache import owned, refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
@@ -83,15 +83,15 @@ def _event(kind, force, params, scales, lam, band, x, y):
     return max(lam * x - band, y)
 
 
-_crossed = numba.njit(**_COMPILE)(dop853._crossed)
+_crossed = numba.njit(**_COMPILE)(owned(dop853._crossed, "dop853_kernel"))
 _advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
 _dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
 _first_step = numba.njit(inline="always", **_COMPILE)(dop853.first_step)
 _root = numba.njit(inline="always", **_COMPILE)(bracketed_root)  # inlined: _event_at is called, not passed
 
 
-_interpolant_pair = numba.njit(**_COMPILE)(interpolant_pair)
-_grown = numba.njit(**_COMPILE)(grown)
+_interpolant_pair = numba.njit(**_COMPILE)(owned(interpolant_pair, "dop853_kernel"))
+_grown = numba.njit(**_COMPILE)(owned(grown, "dop853_kernel"))
 
 
 @numba.njit(**_COMPILE)

@@ -23,7 +23,7 @@ from ..errors import ImpactError, SeriesOverflowError, StepBudgetError
 from ..ode import series
 from ..ode.dense import grown
 from ..ode.roots import BRENT_ITERATIONS, NO_BRACKET, bracketed_root
-from ..kernel_cache import refresh
+from ..kernel_cache import owned, refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
@@ -43,7 +43,7 @@ _SIGNATURE = _RESULT(types.FunctionType(SERIES_SIGNATURE), types.FunctionType(SI
 _ROOT_TOL = 4 * series.EPS  # series._root's relative tolerance
 
 
-_horner = numba.njit(**_COMPILE)(series.horner)
+_horner = numba.njit(**_COMPILE)(owned(series.horner, "taylor_kernel"))
 
 
 @numba.njit(**_COMPILE)
@@ -80,7 +80,7 @@ def _event_root(kind, xs, ys, edge, force, params, d_scale, v, pulls, h):
 _step_size = numba.njit(**_COMPILE)(series.step_size)  # that very function compiled
 
 
-_grown = numba.njit(**_COMPILE)(grown)
+_grown = numba.njit(**_COMPILE)(owned(grown, "taylor_kernel"))
 
 
 @numba.njit(_SIGNATURE, **_COMPILE)

@@ -27,7 +27,7 @@ from ...ode.dop853 import EPS, ROOT_ITERATIONS, STEPPED, tableau
 from ...ode.roots import NO_BRACKET, bracketed_root
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, CUBE, MATRIX, NORMAL, normal_state
-from ...kernel_cache import refresh
+from ...kernel_cache import owned, refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
@@ -46,8 +46,8 @@ _SIGNATURE = types.Tuple((ARRAY, MATRIX, CUBE, MATRIX, _I, _I, ARRAY, types.int6
 _A, _C, _B, _E3, _E5, _A_EXTRA, _C_EXTRA, _D, _STAGES = tableau()
 _N = 3  # the state: F_s / fs, J_t / js, K_t w / js
 
-_crossed = numba.njit(**_COMPILE)(dop853._crossed)
-_grown = numba.njit(**_COMPILE)(grown)
+_crossed = numba.njit(**_COMPILE)(owned(dop853._crossed, "stick_kernel"))
+_grown = numba.njit(**_COMPILE)(owned(grown, "stick_kernel"))
 _advance = numba.njit(inline="always", **_COMPILE)(dop853.advance)  # inlined: the right-hand side is passed
 _dense_rows = numba.njit(inline="always", **_COMPILE)(dop853.dense_rows)
 _first_step = numba.njit(inline="always", **_COMPILE)(dop853.first_step)
