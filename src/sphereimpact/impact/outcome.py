@@ -252,11 +252,15 @@ class Outcome:
         v_t = self.scene.v_tangent
         return self.vc_t / v_t if v_t > 0 else math.nan
 
+    def output_keys(self) -> tuple:
+        """The names of its outputs: :data:`OUTPUT_KEYS` and, with a partner sphere,
+        :data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS` (:meth:`to_dict`'s keys)."""
+        return (*OUTPUT_KEYS, *(PARTNER_OUTPUTS if self.partner_vc_n is not None else ()))
+
     def to_dict(self) -> dict:
-        """The outputs as plain Python values, keyed by :data:`OUTPUT_KEYS` (and, with a partner sphere,
-        :data:`~sphereimpact.impact.pair.PARTNER_OUTPUTS`)."""
+        """The outputs as plain Python values, keyed by :meth:`output_keys`."""
         out = {}
-        for key in (*OUTPUT_KEYS, *(PARTNER_OUTPUTS if self.partner_vc_n is not None else ())):
+        for key in self.output_keys():
             value = getattr(self, key)
             out[key] = float(value) if isinstance(value, (float, np.floating)) else value
         return out

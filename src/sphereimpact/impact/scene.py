@@ -583,11 +583,8 @@ class Scene:
                 *TANGENTIALS.model(changes.get("tangential", self.tangential)).parameter_names}
         values = {name: value for name, value in values.items() if name in uses or name in named}
         fields_now = {name: getattr(self, name) for name in FIELD_DEFAULTS}  # dataclasses.replace's, cheaper
-        token = _JUDGED.set(True)  # bodies_judged(): judged when this scene was built
-        try:
+        with bodies_judged():  # judged when this scene was built
             return Scene(values, **(fields_now | changes))
-        finally:
-            _JUDGED.reset(token)
 
 
 def chapter_law_parameters(law) -> tuple:

@@ -25,7 +25,7 @@ from ..errors import BeyondRadiusWarning, EnergyGainWarning, ImpactError
 from ..integrators import normal_motion, resolve_method  # noqa: F401  (resolve_method: re-exported)
 from ..contact.motion import NormalMotion
 from ..integrators.normal import describe_family
-from .outcome import OUTPUT_KEYS, PARTNER_OUTPUTS, Outcome, gains_energy
+from .outcome import Outcome, gains_energy
 from .pair import pair_velocities
 from .scene import Scene, SolverOptions
 from ..contact.tangential import TANGENTIALS, Regime
@@ -217,9 +217,8 @@ def _checked(outcome: Outcome, strict: bool) -> Outcome:
     """``outcome``, refused when an output is not finite, and flagged (warned, or refused when ``strict``)
     when the maximum compression exceeds the radius."""
     scene = outcome.scene
-    keys = (*OUTPUT_KEYS, *(PARTNER_OUTPUTS if outcome.partner_vc_n is not None else ()))  # to_dict's
-    bad = [key for key in keys if isinstance(value := getattr(outcome, key), (float, np.floating))
-           and not math.isfinite(value)]
+    bad = [key for key in outcome.output_keys() if isinstance(value := getattr(outcome, key), (float, np.floating))
+           and not math.isfinite(value)]  # to_dict's floats, without building its dict
     if bad:  # never a NaN in a result
         raise ImpactError(f"no finite {', '.join(bad)} ({describe_family(scene)}criterion '{scene.separation}'): "
                           "the scene lies outside what the solver resolves")
