@@ -49,7 +49,7 @@ class Series:
         coef = np.ascontiguousarray(self.coef[:, [self.keys.index(k) for k in keys]].T)  # (outputs, N)
         t = np.atleast_1d(self._local(u))
         out = np.empty((len(keys), t.size))
-        block, basis, product = _Blocks.of(t.size, coef.shape[1], len(keys))
+        (block, basis), product = _block_work(t.size, coef.shape[1]), np.empty((len(keys), EVAL_BLOCK))
         for start in range(0, t.size, EVAL_BLOCK):
             stop = min(start + EVAL_BLOCK, t.size)
             block[:stop - start] = t[start:stop]
@@ -67,17 +67,13 @@ class Series:
         return self.values[:, self.keys.index(key)]
 
 
-class _Blocks:
-    """The work arrays of an evaluation in blocks of EVAL_BLOCK points, made once per call and reused by every
-    block: a block's Chebyshev matrix is megabytes, and allocating it afresh for each block cost a page fault per
-    page of it whenever the allocator handed back new memory (a sweep's evaluation ran 2-3x slower than alone)."""
-
-    @staticmethod
-    def of(points: int, terms: int, rows: int) -> tuple:
-        """(a block of points, its Chebyshev matrix (terms, EVAL_BLOCK), a product (rows, EVAL_BLOCK)), or empty
-        arrays for no points."""
-        width = EVAL_BLOCK if points else 0
-        return np.zeros(width), np.empty((terms, width)), np.empty((rows, width))
+def _block_work(points: int, terms: int) -> tuple:
+    """(a block of EVAL_BLOCK points, its Chebyshev matrix (terms, EVAL_BLOCK)): an evaluation's work arrays, made once
+    per call and reused by every block (empty for no points).  A block's matrix is megabytes: allocated afresh for each
+    block, it page-faulted whenever the allocator handed back new memory (a sweep's evaluation ran 2-3x its time
+    alone)."""
+    width = EVAL_BLOCK if points else 0
+    return np.zeros(width), np.empty((terms, width))
 
 
 def chebyshev_matrix(t, n: int, out: np.ndarray | None = None) -> np.ndarray:
@@ -136,8 +132,8 @@ class Tensor:
         outputs, n_a, n_b = self.coef.shape
         flat = self.coef.reshape(outputs * n_a, n_b)
         out = np.empty((outputs, a.size))
-        tb, basis_b, product = _Blocks.of(a.size, n_b, outputs * n_a)
-        ta, basis_a, _ = _Blocks.of(a.size, n_a, 0)
+        (tb, basis_b), (ta, basis_a) = _block_work(a.size, n_b), _block_work(a.size, n_a)
+        product = np.empty((outputs * n_a, EVAL_BLOCK))
         for start in range(0, a.size, EVAL_BLOCK):
             stop = min(start + EVAL_BLOCK, a.size)
             ta[:stop - start] = (2.0 * a[start:stop] - (self.lo + self.hi)) / (self.hi - self.lo)

@@ -220,8 +220,7 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
         done = (x_end & at_zero) | (at_root & (pulls | x_end))
         first = pulls & ~tension_seen & ~done
         tension_seen |= first
-        cross = ~crossed & ((1.0 - y1)[:, None] >= level)  # the impulse j = 1 - y reaches a level within this step
-        crossed |= cross
+        cross = _crossings(crossed, y1, level)
         masks = [("max", hit_max), ("tension", first), ("end", done), ("grip", cross.any(axis=1))]
         if extremes:  # records carry the sign at the step's start (turning before the update)
             turned = np.sign(-_second_derivative(ys, h))
@@ -230,8 +229,8 @@ def integrate(zeta, lam, end, target: float = 1e-8, levels=None, extremes: bool 
             if mask.any():
                 i = np.flatnonzero(mask)
                 records[event].append({"lane": lane[i], "tau": tau[i], "h": h[i], "xs": xs[:, i], "ys": ys[:, i],
-                                       "x_end": x_end[i], "seen": tension_seen[i], "level": level[i].T,
-                                       "cross": cross[i].T, "rising": turning[i] > 0})
+                                       "x_end": x_end[i], "seen": tension_seen[i], "cross": cross[i].T,
+                                       "rising": turning[i] > 0})
         if keep_steps:  # every step, for Marched.instants to replay a partial call's crossings and stops on
             records["step"].append({"lane": lane, "tau": tau, "h": h, "ys": ys, "y1": y1, "stop": pulls | x_end})
         if extremes:
@@ -293,15 +292,24 @@ class Marched:
                 continue
             i = np.flatnonzero(mine)
             lane = step["lane"][i]
-            cross = ~crossed[lane] & ((1.0 - step["y1"][i])[:, None] >= level[lane])
-            crossed[lane] |= cross
+            reached = crossed[lane]  # a copy: marked by _crossings, then written back
+            cross = _crossings(reached, step["y1"][i], level[lane])
+            crossed[lane] = reached
             hit = np.flatnonzero(cross.any(axis=1))
             if hit.size:
                 grips.append({"lane": lane[hit], "tau": step["tau"][i[hit]], "h": step["h"][i[hit]],
                               "ys": step["ys"][:, i[hit]], "cross": cross[hit].T})
-            running[lane[crossed[lane].all(axis=1) | step["stop"][i]]] = False
+            running[lane[reached.all(axis=1) | step["stop"][i]]] = False
         records = {"grip": grips, "tension": self._tension, "end": self._end}
         return _level_instants(records, self._two_zeta, self._lam, np.ones(n, bool), levels)
+
+
+def _crossings(crossed, y1, level):
+    """The levels (lanes, L) that the impulse j = 1 - y reaches within a step ending at y1, not reached before:
+    marked in ``crossed`` too (the march's rule, and :meth:`Marched.instants`' replay of it)."""
+    cross = ~crossed & ((1.0 - y1)[:, None] >= level)
+    crossed |= cross
+    return cross
 
 
 def _join(store: list) -> dict | None:
