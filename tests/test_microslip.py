@@ -18,6 +18,7 @@ from sphereimpact import Scene, SolverOptions, simulate
 from sphereimpact.impact.solve import simulate_many
 from sphereimpact.sweep.engine import sweep
 from sphereimpact.contact.tangential import microslip_march
+from sphereimpact.integrators.compiled import load_compiled
 from sphereimpact.contact.tangential.microslip import ELEMENTS, TIME_STEPS, quasi_static
 
 #: Kharaz et al.'s alumina sphere (see test_compliance.ALUMINA), exact tangential contact.
@@ -207,25 +208,60 @@ def test_sweep_solves_microslip_scenes_as_simulate_does():
         assert row["regime"] == one.regime
 
 
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "python"])
 @pytest.mark.parametrize("separation", ["force", "penetration"])
-def test_the_march_samples_read_once_are_the_motions_own_values_to_the_bit(separation):
+def test_the_march_samples_read_once_are_the_motions_own_values_to_the_bit(separation, compiled, monkeypatch):
     """The march's inputs evaluate the normal motion once and read the force and J+ off that state: the values of
-    normal.force(t) and PositiveImpulse(normal)(t) to the bit, under both criteria (the penetration criterion's
-    force pulls before delta returns to 0: J+ stops growing there)."""
+    normal.force(t) and PositiveImpulse(normal)(t) on numpy's linspace to the bit, under both criteria (the
+    penetration criterion's force pulls before delta returns to 0: J+ stops growing there), by the compiled sampler
+    and by Python floats (a motion without a kernel state)."""
     from sphereimpact.contact.tangential.microslip import _samples
     from sphereimpact.contact.tangential.rigid import PositiveImpulse
     from sphereimpact.integrators import normal_motion
 
+    load_compiled()
     scene = Scene(model="hunt-crossley", modulus=1e8, chi=2.0, angle=30.0, tangential="microslip", kappa=0.8,
                   separation=separation)
     normal = normal_motion(scene, SolverOptions())
+    assert normal.kernel_state() is not None
+    if not compiled:
+        monkeypatch.setattr(type(normal), "kernel_state", lambda self: None)
     t, xi_a, load, step_impulse, delta_m = _samples(normal, 384)
     force = np.maximum(normal.force(t), 0.0)
     force[0] = force[-1] = 0.0
     positive = PositiveImpulse(normal)
+    assert np.array_equal(t, np.linspace(0.0, normal.t_f, 385))
     assert np.array_equal(load, force) and np.array_equal(step_impulse, np.diff(positive(t)))
+    delta = np.maximum(normal.state(t)[0], 0.0)
+    assert delta_m == max(normal.delta_m, delta.max()) and np.array_equal(xi_a, np.sqrt(delta / delta_m))
     if separation == "penetration":
         assert len(positive.intervals) == 1 and positive.intervals[0][1] < normal.t_f  # a gap: J+ held
+
+
+def test_the_compiled_sampler_is_the_python_one_to_the_bit_on_random_scenes(monkeypatch):
+    """``microslip_march.samples`` against the Python sampler (a motion without a kernel state) on the consistency
+    test's random microslip scenes, Hertz and Hunt-Crossley, at several step counts (odd ones too): every array and
+    delta_m to the bit."""
+    from sphereimpact.contact.tangential.microslip import _samples
+    from sphereimpact.integrators import normal_motion
+    from sphereimpact.integrators.normal import _DimensionlessNormal
+    from sphereimpact.numerics.consistency import random_scenes
+    from sphereimpact.sweep.scenes import scene_of, scene_table
+
+    load_compiled()
+    rows = [row for row in scene_table(random_scenes(4000, seed=11)).to_dict("records") if row["tangential"] == "microslip"]
+    scenes = [scene_of(row) for model in ("hertz", "hunt-crossley") for row in rows if row["model"] == model][:12]
+    scenes += [scene_of(row) for row in rows if row["model"] == "hunt-crossley"][:12]
+    assert sum(scene.model == "hunt-crossley" for scene in scenes) >= 8
+    for i, scene in enumerate(scenes):
+        normal, steps = normal_motion(scene, SolverOptions()), (17, 384, 1001)[i % 3]
+        assert normal.kernel_state() is not None
+        compiled = _samples(normal, steps)
+        with monkeypatch.context() as patch:
+            patch.setattr(_DimensionlessNormal, "kernel_state", lambda self: None)
+            python = _samples(normal, steps)
+        for mine, theirs in zip(compiled, python):
+            assert np.array_equal(mine, theirs), scene
 
 
 @pytest.mark.parametrize("scene", [Scene(angle=_maw_angle(3.0), **ELASTIC),

@@ -119,16 +119,20 @@ class NormalMotion:
         return extremes(self.force, self.grid, self._forces_on(np.asarray(self.grid, dtype=float)))
 
     def _forces_on(self, grid: np.ndarray) -> np.ndarray:
-        """The normal force [N] at each instant of the array ``grid`` [s] as the compiled kernels sample it: the law's
-        ``scalar`` formula instant by instant (the C library's exp, expm1 and pow, as compiled code calls them) where
-        the law has one, else :meth:`force`.  numpy's vectorised exp, expm1 and power are its own on processors with
-        AVX-512 and differ from the C library's in the last bit for a few percent of arguments, so a vectorised sample
-        would not be the compiled one to the bit there (a force extreme at the end of contact, where P is about 0)."""
-        scalar = self.scene.law.scalar
+        """The normal force [N] at each instant of the array ``grid`` [s] as the compiled kernels sample it
+        (:meth:`forces_at` its states)."""
+        return self.forces_at(*self.state(grid))
+
+    def forces_at(self, delta, delta_dot) -> np.ndarray:
+        """The normal force [N] at the states of the arrays ``delta`` [m] and ``delta_dot`` [m/s] as the compiled kernels
+        compute it: the law's ``scalar`` formula state by state (the C library's exp, expm1 and pow, as compiled code
+        calls them) where the law has one, else the vectorised ``stage_force``.  numpy's vectorised exp, expm1 and power
+        are its own on processors with AVX-512 and differ from the C library's in the last bit for a few percent of
+        arguments, so a vectorised sample would not be the compiled one to the bit there (a force extreme at the end of
+        contact, where P is about 0)."""
+        scalar, scene = self.scene.law.scalar, self.scene
         if scalar is None:
-            return self.force(grid)
-        delta, delta_dot = self.state(grid)
-        scene = self.scene
+            return scene.stage_force(delta, delta_dot)
         return np.array([scalar(d, v, scene) for d, v in zip(np.asarray(delta, dtype=float).tolist(),
                                                              np.asarray(delta_dot, dtype=float).tolist())])
 

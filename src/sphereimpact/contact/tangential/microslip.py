@@ -132,16 +132,25 @@ def resolution(scene, normal, options) -> tuple[int, int]:
 def _samples(normal, time_steps: int):
     """What the march reads of the normal motion alone, on ``time_steps`` equal steps: the step ends t [s], the
     contact radius over a_max [-], P+ [N] (zero at the ends: no area, no load), the impulse of P+ over each
-    step [N s], and a_max^2 / R = delta_m [m]."""
-    s = normal.scene
+    step [N s], and a_max^2 / R = delta_m [m].  Compiled (:func:`.microslip_march.samples`, the same numbers to the
+    bit) where the motion has a kernel state and its force pushes over one interval, as the force criterion's does."""
+    positive = PositiveImpulse(normal)
+    terms = positive.kernel_terms()
+    if terms is not None:
+        from .microslip_march import samples
+
+        arrays, force, params, pushing = terms
+        t, xi_a, load, step_impulse, delta_m = samples(arrays, force, params, pushing, float(normal.t_f),
+                                                        float(normal.delta_m), int(time_steps))
+        return t, xi_a, load, step_impulse, float(delta_m)
     t = np.linspace(0.0, normal.t_f, time_steps + 1)
     compression, rate = normal.state(t)  # once: the force and the impulse are read off it
     delta = np.maximum(compression, 0.0)
     delta_m = max(normal.delta_m, float(delta.max()))
-    load = np.maximum(s.stage_force(compression, rate), 0.0)  # normal.force(t)
+    load = np.maximum(normal.forces_at(compression, rate), 0.0)  # normal.force(t), as compiled code computes it
     load[0] = load[-1] = 0.0
     impulse = normal.impulse_from(t, rate)  # normal.impulse(t)
-    return t, np.sqrt(delta / delta_m), load, np.diff(PositiveImpulse(normal).from_impulse(t, impulse)), delta_m
+    return t, np.sqrt(delta / delta_m), load, np.diff(positive.from_impulse(t, impulse)), delta_m
 
 
 def march_inputs(normal, time_steps: int):

@@ -16,6 +16,11 @@ import math
 
 import numba
 import numpy as np
+from numba import types
+
+from ..laws.kernels import SIGNATURE
+from ..normal_kernel import ARRAY, NORMAL, normal_state
+from .rigid_kernel import _positive_impulse
 from ...kernel_cache import refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
@@ -225,6 +230,58 @@ def motion(t, force, j_t, cap, v_t, g_t, mass, spin, spin_arm, stick_below):
         if stuck[k + 1] != stuck[k]:
             switches += 1
     return fraction, stuck, v, omega, x, switches, first_stuck
+
+
+@numba.njit(types.Tuple((ARRAY, ARRAY, ARRAY, ARRAY, types.float64))(
+    NORMAL, types.FunctionType(SIGNATURE), ARRAY, ARRAY, types.float64, types.float64, types.int64), **_COMPILE)
+def samples(normal, force, params, pushing, t_f, delta_m, steps):
+    """What the march reads of the normal motion, on ``steps`` equal steps of [0, t_f]: ``microslip._samples``
+    compiled, each number that function's to the bit (tests/test_microslip.py), for a force pushing over one interval.
+
+    Parameters
+    ----------
+    normal, force, params : tuple, kernel, array
+        The motion's :meth:`~..motion.KernelState.arrays`, its law's compiled force [N] and the force's parameters.
+    pushing : array
+        The one pushing interval's numbers (``rigid_kernel.PUSHING``).
+    t_f, delta_m : float
+        Separation [s] and the motion's maximum compression [m].
+    steps : int
+        Time steps M.
+
+    Returns
+    -------
+    t, xi_a, load, step_impulse, delta_m
+        The step ends (numpy's ``linspace(0, t_f, M + 1)``) [s], the contact radius over a_max there [-], P+ [N]
+        (0 at the ends), the impulse of P+ over each step [N s] (M,), and a_max^2 / R [m], the larger of
+        ``delta_m`` and the largest sampled compression.
+    """
+    points = steps + 1
+    t, xi_a, load, step_impulse = np.empty(points), np.empty(points), np.empty(points), np.empty(steps)
+    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
+    step = t_f / steps  # numpy's linspace: k step + 0, the last one t_f itself
+    largest, before = -np.inf, 0.0
+    for k in range(points):
+        instant = t_f if k == steps else (k * step if step != 0.0 else k / steps * t_f) + 0.0
+        compression, rate = normal_state(normal, instant)
+        delta = compression if compression >= 0.0 or compression != compression else 0.0  # np.maximum's rule
+        if largest == largest and not delta <= largest:  # np.max's: a NaN, once met, is the largest
+            largest = delta
+        p = force(compression, rate, params)
+        load[k] = 0.0 if k == 0 or k == steps else (p if p >= 0.0 or p != p else 0.0)
+        if instant < a:  # J+ (PositiveImpulse.from_impulse): J read off this state inside the interval
+            positive = 0.0
+        elif instant <= b:
+            positive = 0.0 + mass * (v_n - rate + g_n * instant) - ja
+        else:
+            positive = _positive_impulse(normal, pushing, instant)
+        if k:
+            step_impulse[k - 1] = positive - before
+        t[k], xi_a[k], before = instant, delta, positive
+    delta_m = largest if largest > delta_m else delta_m  # Python's max(delta_m, largest)
+    for k in range(points):
+        xi_a[k] = math.sqrt(xi_a[k] / delta_m)
+    return t, xi_a, load, step_impulse, delta_m
 
 
 @numba.njit(**_COMPILE)
