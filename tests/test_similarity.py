@@ -139,3 +139,31 @@ def test_random_balls_of_a_kernel_less_law_meet_the_contract(model, monkeypatch)
         scene = engine.scene_of({c: row[c] for c in engine.SCENE_COLUMNS})
         ref = simulate(scene, SolverOptions(rtol=1e-12, atol=1e-12)).to_dict()
         assert max(relative_errors(row, ref, scene, keys).values()) <= 1e-8, row
+
+
+def test_the_grip_resolution_solves_the_fits_first_nodes_once_and_profiles_its_three(monkeypatch):
+    """With batched lanes the grip tables' resolution solves the first nodes of the fit that follows, which the fit then
+    finds solved (no lane is integrated twice), and profiles only its end and middle nodes (the others' levels NaN):
+    their grip instants are those of every node profiled, to the bit."""
+    from sphereimpact.sweep import series_lanes
+
+    calls = []
+    integrate = series_lanes.integrate
+    monkeypatch.setattr(series_lanes, "integrate", lambda lam_zeta, lam, *a, **k: calls.append(
+        (np.asarray(lam).tobytes(), bool(k.get("partial")))) or integrate(lam_zeta, lam, *a, **k))
+    interp = similarity.LambdaInterpolant(ZETA, LAM_MIN, LAM_MAX, Separation.FORCE, 1e-8, extremes=True, grips=True)
+    whole = [np.frombuffer(lam) for lam, partial in calls if not partial]
+    nodes = set(np.exp(np.concatenate([piece.series.nodes for piece in interp.pieces])).tolist())
+    assert len(whole) >= 2 and all(set(lam.tolist()) <= nodes for lam in whole)  # the fits' nodes alone
+    assert len({lam.tobytes() for lam in whole}) == len(whole)  # each solve once (a piece's, at its criterion)
+    stretch, n = interp.pieces[0].tables[0][0], 17
+    u = similarity.lobatto(np.log(LAM_MIN), np.log(LAM_MAX), 33)
+    lam = np.exp(u)
+    steps = integrate(np.full(u.size, ZETA), lam, Separation.PENETRATION, 1e-10, extremes=True, keep_steps=True)
+    levels = (1.0 - steps["y_f"])[:, None] * stretch.nodes(n)[None, :]
+    every = steps["steps"].instants(levels)
+    some = levels.copy()
+    some[1:-1] = np.nan
+    some[16] = levels[16]
+    three = steps["steps"].instants(some)
+    assert np.array_equal(three[[0, 16, 32]], every[[0, 16, 32]]) and np.isnan(three[1]).all()

@@ -121,6 +121,8 @@ class Asked:
     extremes: bool = False
     grip: tuple = ()
     reference: str = "j_p"
+    #: The indices of the nodes whose grip profiles are asked (None: every node's; the others' are NaN).
+    profiled: tuple | None = None
 
     def fractions(self) -> np.ndarray:
         """Every asked fraction, the stretches' in turn."""
@@ -167,10 +169,7 @@ def _fit(solve, a: float, b: float, separation: Separation, target: float, keys,
         If MAX_NODES nodes do not meet the check.
     """
     node_target = _node_target(target)
-    wanted = per_digit * (b - a) * np.log10(10.0 / target)
-    n, values = FIRST_NODES, None
-    while n < wanted and 2 * n - 1 <= MAX_NODES:
-        n = 2 * n - 1
+    n, values = _first_level(a, b, target, per_digit), None
     while 2 * n - 1 <= MAX_NODES:
         u = lobatto(a, b, 2 * n - 1)
         new = np.arange(u.size) if values is None else np.arange(1, u.size, 2)  # the coarse level is known
@@ -190,18 +189,39 @@ def _fit(solve, a: float, b: float, separation: Separation, target: float, keys,
                              f"u = log of the family number in [{a:g}, {b:g}])")
 
 
+def _first_level(a: float, b: float, target: float, per_digit: float) -> int:
+    """n of :func:`_fit`'s first check on [a, b]: its first solve is the 2n - 1 Lobatto nodes."""
+    wanted = per_digit * (b - a) * np.log10(10.0 / target)
+    n = FIRST_NODES
+    while n < wanted and 2 * n - 1 <= MAX_NODES:
+        n = 2 * n - 1
+    return n
+
+
 def _grip_resolution(solve, a: float, b: float, separation: Separation, target: float, reference: str, power: float,
-                     what: str) -> tuple:
+                     what: str, first_level: tuple | None = None) -> tuple:
     """The grip table's stretches (:func:`stretches`) with their nodes on [a, b] in u: for each, the fewest
     Lobatto levels (from FIRST_GRIP_NODES, 2n - 1 at a time) whose interpolant meets 0.1 target at the
     midpoints (above S_NOISE), at u = a, (a + b) / 2 and b; the stretches still refining share each solve.
+
+    ``first_level``: (per_digit, extremes) of the :func:`_fit` that follows, for a ``solve`` that batches its nodes
+    and keeps them: every solve is then of that fit's first nodes, profiled at its end and middle nodes alone
+    (``Asked.profiled``), which the checks read, and the fit finds those nodes solved (one batched call fewer, whose
+    per-step cost was a 3-node call's whole cost); None: the three nodes alone (a solve that costs one impact a
+    node).
 
     Raises
     ------
     InterpolationError
         If MAX_GRIP_NODES nodes do not meet the check.
     """
-    u = np.array([b, 0.5 * (a + b), a])
+    if first_level is None:
+        u, extremes = np.array([b, 0.5 * (a + b), a]), False
+        picked = np.arange(3)
+    else:
+        per_digit, extremes = first_level
+        u = lobatto(a, b, 2 * _first_level(a, b, target, per_digit) - 1)
+        picked = np.array([0, u.size // 2, u.size - 1])
     nodes = {stretch: FIRST_GRIP_NODES for stretch in stretches(power)}
     done: dict = {}
     while len(done) < len(nodes):
@@ -209,15 +229,16 @@ def _grip_resolution(solve, a: float, b: float, separation: Separation, target: 
         if any(2 * nodes[stretch] - 1 > MAX_GRIP_NODES for stretch in refining):
             raise InterpolationError(f"the grip instants did not reach {target:g} with {MAX_GRIP_NODES} nodes "
                                      f"({what}, {refining[0].name} stretch)")
-        asked = Asked(grip=tuple((stretch, 2 * nodes[stretch] - 1) for stretch in refining), reference=reference)
-        solved = solve(u, separation, _node_target(target), asked)
+        asked = Asked(extremes, tuple((stretch, 2 * nodes[stretch] - 1) for stretch in refining), reference,
+                      None if first_level is None else tuple(picked.tolist()))
+        solved = {k: value[picked] for k, value in solve(u, separation, _node_target(target), asked).items()}
         for stretch, fine in asked.grip:
             profile = np.stack([solved[k] for k in stretch.keys(fine)])  # (fine, 3), x from hi down to lo
             x = lobatto(stretch.lo, stretch.hi, fine)
-            coarse = Series(stretch.lo, stretch.hi, {str(i): profile[0::2, i] for i in range(u.size)})(x[1::2])
+            coarse = Series(stretch.lo, stretch.hi, {str(i): profile[0::2, i] for i in range(picked.size)})(x[1::2])
             checked = stretch.fraction(x[1::2]) >= S_NOISE
             error = max(np.max(np.abs(coarse[str(i)] - profile[1::2, i])[checked]) / solved["tau_f"][i]
-                        for i in range(u.size))
+                        for i in range(picked.size))
             if error <= 0.1 * target:
                 done[stretch] = nodes[stretch]
             else:
@@ -303,6 +324,11 @@ class _Pieces:
     (see :func:`_onset`); ``per_digit``: see :func:`_fit`.
     """
 
+    #: Whether ``solve`` solves its nodes in one batched call and keeps them, and honours ``Asked.profiled``: the grip
+    #: tables' resolution then solves the first nodes of the fit that follows instead of three of its own
+    #: (:func:`_grip_resolution`).
+    batched = False
+
     def __init__(self, solve, exit_ratio, q_min: float, q_max: float, separation: Separation, target: float, what: str,
                  per_digit: float = NODES_PER_DIGIT, extremes: bool = False, grips: bool = False, power: float = 2.0):
         self.lo, self.hi = float(q_min), float(q_max)
@@ -314,7 +340,8 @@ class _Pieces:
 
         def fit(a, b, criterion, calm):
             reference = "y_f" if calm else "j_p"
-            grip = _grip_resolution(solve, a, b, criterion, target, reference, power, what) if grips else ()
+            first = (per_digit, extremes) if self.batched else None
+            grip = _grip_resolution(solve, a, b, criterion, target, reference, power, what, first) if grips else ()
             asked = Asked(extremes, grip, reference)
             keys = (*(SMOOTH if calm else NORMAL_OUTPUTS), *((("p_max", "p_ends") if calm else EXTREMES) * extremes),
                     *asked.keys())
@@ -360,7 +387,8 @@ def _profile(out: dict, asked: Asked) -> np.ndarray:
 
 
 class LambdaInterpolant(_Pieces):
-    """Normal outputs of the modified law for one zeta, as functions of lam on [lam_min, lam_max].
+    """Normal outputs of the modified law for one zeta, as functions of lam on [lam_min, lam_max] (its nodes: batched
+    lanes, kept).
 
     Parameters
     ----------
@@ -415,6 +443,10 @@ class LambdaInterpolant(_Pieces):
                 out["p_ends"] = np.zeros(lam.size)
             if asked.grip:  # each node's levels: off its lane's kept steps, else a Runge-Kutta lane per level
                 levels = _profile(out, asked)
+                if asked.profiled is not None:  # NaN levels: reached at once, so those lanes stop at once
+                    unasked = np.ones(lam.size, bool)
+                    unasked[list(asked.profiled)] = False
+                    levels[unasked] = np.nan
                 if steps is not None:  # what Taylor lanes stopping at these levels give, to the bit (Marched)
                     tau = steps.instants(levels)
                 else:
@@ -426,7 +458,7 @@ class LambdaInterpolant(_Pieces):
         def exit_ratio(u, y_f):  # P / (k delta) as delta -> 0+, the law's: 1 + 2 zeta lam y
             return modified_per_compression(0.0, y_f, {"zeta": zeta, "lam": np.exp(u)})
 
-        self.zeta = zeta
+        self.zeta, self.batched = zeta, True
         self._lanes = lanes
         super().__init__(solve, exit_ratio, lam_min, lam_max, separation, target, f"zeta = {zeta:g}",
                          extremes=extremes, grips=grips)
