@@ -492,3 +492,28 @@ def test_no_two_kernel_modules_compile_a_helper_into_the_same_cache_files():
             key = (value.py_func.__module__, value.py_func.__qualname__)
             assert owners.setdefault(key, value) is value, f"{key} is compiled by two modules into one cache"
     assert ("sphereimpact.ode.dense", "grown_stick_kernel") in owners
+
+
+def test_each_compile_group_imports_kernel_modules_of_its_own():
+    """The groups tests/conftest.py compiles in parallel processes on a fresh clone share no kernel module but the laws'
+    (whose kernels each group loads its own of): a module imported by two groups compiles its kernels declared with
+    a signature in both at once, into one cache (the microslip sampler's imports of normal_kernel did, from every
+    group, until the march's compile moved into the contact group)."""
+    import subprocess
+    import sys
+
+    from sphereimpact.integrators.compiled import GROUPS
+    from sphereimpact.kernel_cache import KERNELS
+
+    names = ["sphereimpact." + path.removesuffix(".py").replace("/", ".") for path in KERNELS]
+    script = ("import sys; from sphereimpact.integrators.compiled import compile_all; compile_all({group!r}); "
+              "print(' '.join(name for name in {names!r} if name in sys.modules))")
+    imported = {group: set(subprocess.run([sys.executable, "-c", script.format(group=group, names=names)],
+                                          capture_output=True, text=True, check=True).stdout.split())
+                for group in GROUPS}
+    shared = {"sphereimpact.contact.laws.kernels"}
+    for i, first in enumerate(GROUPS):
+        assert "sphereimpact.contact.laws.kernels" in imported[first]
+        for second in GROUPS[i + 1:]:
+            assert imported[first] & imported[second] == shared, (first, second)
+    assert set().union(*imported.values()) == set(names)

@@ -46,7 +46,6 @@ def compile_all(group: str | None = None) -> None:
     import importlib
 
     from ..contact.laws import LAWS
-    from ..contact.tangential import microslip_march
 
     if group not in (None, *GROUPS):
         raise ValueError(f"group must be one of {', '.join(GROUPS)}, or None for every kernel; got {group!r}")
@@ -60,11 +59,11 @@ def compile_all(group: str | None = None) -> None:
         for law in LAWS.values():
             if law.series_kernel is not None:
                 law.series_kernel.load(series=True)
-        microslip_march.compile_all()
-    if group in (None, "contact"):
-        importlib.import_module("sphereimpact.contact.normal_kernel")
+    if group in (None, "contact"):  # the microslip march's too: it reads the normal motion by normal_kernel's code,
+        importlib.import_module("sphereimpact.contact.normal_kernel")  # so one process compiles both
         importlib.import_module("sphereimpact.contact.tangential.stick_kernel")
         importlib.import_module("sphereimpact.contact.tangential.rigid_kernel")
+        importlib.import_module("sphereimpact.contact.tangential.microslip_march").compile_all()
 
 
 def compiled_now() -> bool:

@@ -20,7 +20,7 @@ from numba import types
 
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, NORMAL, normal_state
-from .rigid_kernel import _positive_impulse
+from .rigid_kernel import positive_impulse
 from ...kernel_cache import refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
@@ -274,7 +274,7 @@ def samples(normal, force, params, pushing, t_f, delta_m, steps):
         elif instant <= b:
             positive = 0.0 + mass * (v_n - rate + g_n * instant) - ja
         else:
-            positive = _positive_impulse(normal, pushing, instant)
+            positive = positive_impulse(normal, pushing, instant)
         if k:
             step_impulse[k - 1] = positive - before
         t[k], xi_a[k], before = instant, delta, positive

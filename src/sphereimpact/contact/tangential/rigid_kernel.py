@@ -42,7 +42,7 @@ PUSHING = ("a", "b", "ja", "mass", "v_normal", "g_normal")
 
 
 @numba.njit(**_COMPILE)
-def _positive_impulse(normal, pushing, t):
+def positive_impulse(normal, pushing, t):
     """J+(t) [N s] (``PositiveImpulse.__call__``) for one pushing interval: 0 before it, J(c) - J(a) with c = t clipped
     to it, J from the momentum balance (``NormalMotion.impulse``)."""
     a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
@@ -59,7 +59,7 @@ def _signed_slip(t, args):
     sigma, mu, mass, radius, alpha, v0, omega0, t0, g_t, j0 = (
         phase[0], phase[1], phase[2], phase[3], phase[4], phase[5], phase[6], phase[7], phase[8], phase[9])
     dt = t - t0
-    impulse = -sigma * mu * (_positive_impulse(normal, pushing, t) - j0)
+    impulse = -sigma * mu * (positive_impulse(normal, pushing, t) - j0)
     v = v0 + g_t * dt + impulse / mass
     omega = omega0 - impulse / (alpha * mass * radius)
     return sigma * (v - omega * radius)
@@ -93,7 +93,7 @@ def positive_impulses(normal, pushing, times):
     of :data:`PUSHING`)."""
     out = np.empty(times.size)
     for k in range(times.size):
-        out[k] = _positive_impulse(normal, pushing, times[k])
+        out[k] = positive_impulse(normal, pushing, times[k])
     return out
 
 
@@ -105,7 +105,7 @@ def impulse_gaps(normal, force, params, pushing, levels, s):
     [N s]: each lane's."""
     f, df = np.empty(s.size), np.empty(s.size)
     for k in range(s.size):
-        f[k] = levels[k] - _positive_impulse(normal, pushing, s[k])
+        f[k] = levels[k] - positive_impulse(normal, pushing, s[k])
         delta, delta_dot = normal_state(normal, s[k])
         p = force(delta, delta_dot, params)
         df[k] = -(p if p >= 0.0 or p != p else 0.0)  # -np.maximum(P, 0): NaN stays NaN
