@@ -20,7 +20,7 @@ from numba import types
 
 from ..laws.kernels import SIGNATURE
 from ..normal_kernel import ARRAY, NORMAL, normal_state
-from .rigid_kernel import positive_impulse
+from .rigid_kernel import positive_impulse, positive_impulse_inside
 from ...kernel_cache import refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
@@ -258,7 +258,7 @@ def samples(normal, force, params, pushing, t_f, delta_m, steps):
     """
     points = steps + 1
     t, xi_a, load, step_impulse = np.empty(points), np.empty(points), np.empty(points), np.empty(steps)
-    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
+    a, b = pushing[0], pushing[1]
     step = t_f / steps  # numpy's linspace: k step + 0, the last one t_f itself
     largest, before = -np.inf, 0.0
     for k in range(points):
@@ -269,10 +269,8 @@ def samples(normal, force, params, pushing, t_f, delta_m, steps):
             largest = delta
         p = force(compression, rate, params)
         load[k] = 0.0 if k == 0 or k == steps else (p if p >= 0.0 or p != p else 0.0)
-        if instant < a:  # J+ (PositiveImpulse.from_impulse): J read off this state inside the interval
-            positive = 0.0
-        elif instant <= b:
-            positive = 0.0 + mass * (v_n - rate + g_n * instant) - ja
+        if a <= instant <= b:  # J+ (PositiveImpulse.from_impulse): inside the interval, read off this state
+            positive = positive_impulse_inside(pushing, instant, rate)
         else:
             positive = positive_impulse(normal, pushing, instant)
         if k:

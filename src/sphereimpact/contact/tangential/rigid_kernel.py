@@ -41,15 +41,22 @@ PHASE = ("sigma", "mu", "mass", "radius", "inertia_factor", "v0", "omega0", "t0"
 PUSHING = ("a", "b", "ja", "mass", "v_normal", "g_normal")
 
 
+@numba.njit(inline="always", **_COMPILE)
+def positive_impulse_inside(pushing, c, rate):
+    """J+(c) [N s] at an instant c inside the one pushing interval, the normal rate there ``rate`` [m/s]: J(c) - J(a),
+    J from the momentum balance (``NormalMotion.impulse``), in ``PositiveImpulse``'s order."""
+    return 0.0 + pushing[3] * (pushing[4] - rate + pushing[5] * c) - pushing[2]
+
+
 @numba.njit(**_COMPILE)
 def positive_impulse(normal, pushing, t):
     """J+(t) [N s] (``PositiveImpulse.__call__``) for one pushing interval: 0 before it, J(c) - J(a) with c = t clipped
-    to it, J from the momentum balance (``NormalMotion.impulse``)."""
-    a, b, ja, mass, v_n, g_n = pushing[0], pushing[1], pushing[2], pushing[3], pushing[4], pushing[5]
+    to it (:func:`positive_impulse_inside`)."""
+    a, b = pushing[0], pushing[1]
     if t < a:
         return 0.0
     c = min(max(t, a), b)
-    return 0.0 + mass * (v_n - normal_state(normal, c)[1] + g_n * c) - ja
+    return positive_impulse_inside(pushing, c, normal_state(normal, c)[1])
 
 
 @numba.njit(**_COMPILE)
