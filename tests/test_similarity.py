@@ -167,3 +167,25 @@ def test_the_grip_resolution_solves_the_fits_first_nodes_once_and_profiles_its_t
     some[16] = levels[16]
     three = steps["steps"].instants(some)
     assert np.array_equal(three[[0, 16, 32]], every[[0, 16, 32]]) and np.isnan(three[1]).all()
+
+
+def test_the_runge_kutta_lanes_profile_only_the_resolutions_three_nodes(monkeypatch):
+    """Where the Taylor lanes do not reach (zeta 2 up to lam 150), the grip profiles are Runge-Kutta lanes stopping at
+    each level: the resolution's rounds solve its three profiled nodes' lanes alone, none for a node left out (a NaN
+    level), and the tables are built all the same."""
+    from sphereimpact.sweep import series_lanes
+
+    assert not series_lanes.covers(2.0, 150.0)
+    calls = []
+    integrate = batch.integrate
+
+    def spy(zeta, lam, *args, **kwargs):
+        if kwargs.get("levels") is not None:  # a grip profile's lanes, each stopping at its level
+            calls.append((np.unique(lam).size, np.asarray(kwargs["levels"], dtype=float)))
+        return integrate(zeta, lam, *args, **kwargs)
+
+    monkeypatch.setattr(batch, "integrate", spy)
+    interp = similarity.LambdaInterpolant(2.0, 0.05, 150.0, Separation.FORCE, 1e-8, extremes=True, grips=True)
+    assert all(piece.tables for piece in interp.pieces)
+    assert calls and all(np.isfinite(levels).all() for _, levels in calls)
+    assert any(nodes == 3 for nodes, _ in calls)

@@ -417,6 +417,8 @@ class LambdaInterpolant(_Pieces):
         If MAX_NODES nodes do not meet the target on a piece.
     """
 
+    batched = True  # its nodes: batched lanes, kept
+
     def __init__(self, zeta: float, lam_min: float, lam_max: float, separation: Separation, target: float,
                  extremes: bool = False, grips: bool = False):
         taylor = series_lanes.covers(zeta, lam_max)
@@ -443,22 +445,22 @@ class LambdaInterpolant(_Pieces):
                 out["p_ends"] = np.zeros(lam.size)
             if asked.grip:  # each node's levels: off its lane's kept steps, else a Runge-Kutta lane per level
                 levels = _profile(out, asked)
-                if asked.profiled is not None:  # NaN levels: reached at once, so those lanes stop at once
-                    unasked = np.ones(lam.size, bool)
-                    unasked[list(asked.profiled)] = False
-                    levels[unasked] = np.nan
+                rows = np.arange(lam.size) if asked.profiled is None else np.array(asked.profiled)
                 if steps is not None:  # what Taylor lanes stopping at these levels give, to the bit (Marched)
-                    tau = steps.instants(levels)
-                else:
-                    tau = lanes(np.repeat(lam, levels.shape[1]), criterion, node_target, levels=levels.ravel(),
-                                partial=True)["tau_g"].reshape(levels.shape)
+                    profiled = np.full(levels.shape, np.nan)  # NaN: reached at once, so those lanes stop at once
+                    profiled[rows] = levels[rows]
+                    tau = steps.instants(profiled)
+                else:  # the profiled nodes' lanes alone
+                    tau = np.full(levels.shape, np.nan)
+                    tau[rows] = lanes(np.repeat(lam[rows], levels.shape[1]), criterion, node_target,
+                                      levels=levels[rows].ravel(), partial=True)["tau_g"].reshape(rows.size, -1)
                 out |= dict(zip(asked.keys(), tau.T))
             return out
 
         def exit_ratio(u, y_f):  # P / (k delta) as delta -> 0+, the law's: 1 + 2 zeta lam y
             return modified_per_compression(0.0, y_f, {"zeta": zeta, "lam": np.exp(u)})
 
-        self.zeta, self.batched = zeta, True
+        self.zeta = zeta
         self._lanes = lanes
         super().__init__(solve, exit_ratio, lam_min, lam_max, separation, target, f"zeta = {zeta:g}",
                          extremes=extremes, grips=grips)
