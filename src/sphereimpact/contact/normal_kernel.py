@@ -23,7 +23,7 @@ from ..ode.roots import bracketed_root
 from ..ode.series import horner
 from .laws.kernels import SIGNATURE
 from .laws.spring_damper import KERNEL_KIND as SPRING_DAMPER, spring_damper_state
-from ..kernel_cache import owned, refresh
+from ..kernel_cache import refresh
 
 refresh()  # before any kernel is defined: numba's cache of them true to every source they compile
 
@@ -35,8 +35,8 @@ NORMAL = types.Tuple((_I, ARRAY, ARRAY, ARRAY, MATRIX, MATRIX, CUBE, MATRIX, _F,
 
 #: The dense outputs' evaluators, inlined into :func:`normal_state`, itself inlined where it is called: a state read by a
 #: call cost about 2.5 times the inlined read (the call passed the motion's eleven arrays each time).
-_horner = numba.njit(inline="always", **_COMPILE)(owned(horner, "normal_kernel"))
-_interpolant_pair = numba.njit(inline="always", **_COMPILE)(owned(interpolant_pair, "normal_kernel"))
+_horner = numba.njit(inline="always", **_COMPILE)(horner)
+_interpolant_pair = numba.njit(inline="always", **_COMPILE)(interpolant_pair)
 _spring_damper_state = numba.njit(inline="always", **_COMPILE)(spring_damper_state)
 _minimise = numba.njit(inline="always", **_COMPILE)(minimise)  # inlined: the function it searches is passed
 _refined_minimum = numba.njit(inline="always", **_COMPILE)(refined_minimum)
