@@ -134,14 +134,16 @@ display(Markdown(f"In this run `simulate` took **{ratio.min():.2f}× to {ratio.m
 # ### Where the time goes
 #
 # Each scene's `simulate` call split into its stages, timed with the same protocol
-# (`results/bench_stages.csv`): building and checking the Scene (build), the normal motion (the closed form, or the
+# (`results/bench_stages.csv`): building and checking the Scene from its fields (build; each `simulate` row builds its
+# Scene so), or copying it with a new approach as a map or a fit does (copy, `Scene.with_`: the approach's checks
+# again), the normal motion (the closed form, or the
 # integration with its dense output and events), the tangential motion and spin on it, and the outcome's assembly
 # (force extremes, the state at t_m and t_f). Then a profile of one call on the chapter's oblique impact
 # (`results/bench_profile.csv`): the functions with the most own time per impact.
 
 # %%
 share = stages.pivot(index="scene", columns="stage", values="time").mul(1e3)
-share = share[["build", "normal", "tangential", "outcome", "simulate", "handwritten"]].round(3)
+share = share[["build", "copy", "normal", "tangential", "outcome", "simulate", "handwritten"]].round(3)
 display(share.rename(columns=lambda c: f"{c} [ms]"))
 integrated = stages[(stages.stage == "normal")].set_index("scene").share
 display(Markdown(

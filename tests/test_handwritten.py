@@ -48,8 +48,8 @@ def test_time_split_and_profile_tables():
     scenes = {"oblique/modified": Scene(angle=60.0), "oblique/kelvin-voigt": Scene(angle=60.0, model="kelvin-voigt")}
     table = stages(scenes, repeats=1)
     assert sorted(table.groupby("scene").stage.apply(tuple).apply(sorted).iloc[0]) == sorted(
-        ("build", "normal", "tangential", "outcome", "simulate", "handwritten"))
-    assert len(table) == 12 and (table.time > 0).all() and (table.batch >= 10).all()
+        ("build", "copy", "normal", "tangential", "outcome", "simulate", "handwritten"))
+    assert len(table) == 14 and (table.time > 0).all() and (table.batch >= 10).all()
     assert table[table.stage == "simulate"].share.tolist() == [1.0, 1.0]
     profile = profile_call(Scene(angle=60.0), calls=5, top=8)
     assert len(profile) == 8 and profile.own_us.is_monotonic_decreasing

@@ -250,13 +250,17 @@ class Scene:
                 resolved[name] = ChapterValue(value) if name in chapter else value
         self._hold(resolved)
         self._check_scales()
+        self._check_weight()
+        self._hold(resolved | self._resolve_kappa(raw) | own)
+
+    def _check_weight(self) -> None:
+        """Refuse a ball whose weight alone presses the contact beyond its radius."""
         weight = self.mass * self.g_normal  # pressing the ball into the flat [N]
         if weight > 0 and float(self.force(self.radius, 0.0)) < weight:  # the spring alone cannot hold it at R
             raise ValueError(f"gravity: the ball's weight alone compresses the contact beyond its radius "
                              f"R = {self.radius:.3g} m (m g cos(beta) = {weight:.3g} N, more than the "
                              f"'{self.model}' spring's {float(self.force(self.radius, 0.0)):.3g} N at delta = R): "
                              "outside the model (lower gravity or mass, or raise k)")
-        self._hold(resolved | self._resolve_kappa(raw) | own)
 
     def _hold(self, values: dict) -> None:
         """Hold the resolved ``values`` as the scene's ``parameters``, each also read as ``scene.name`` (an instance
@@ -567,6 +571,7 @@ class Scene:
         drops the path.
         """
         named = {name: changes.pop(name) for name in list(changes) if name not in FIELDS}
+        kept = "parameters" not in changes and not named  # the parameters carried over as they are
         values = dict(changes.pop("parameters", self.parameters)) | named
         if "k" in named and "modulus" not in named:
             values.pop("modulus", None)
@@ -582,9 +587,40 @@ class Scene:
         uses = {*LAWS.law(changes.get("model", self.model)).parameter_names,
                 *TANGENTIALS.model(changes.get("tangential", self.tangential)).parameter_names}
         values = {name: value for name, value in values.items() if name in uses or name in named}
+        if kept and APPROACH.issuperset(changes) and self.partner_mass is None and values.keys() == {
+                *self.parameters} - self._recomputed(values):
+            return self._approached(changes)
         fields_now = {name: getattr(self, name) for name in FIELD_DEFAULTS}  # dataclasses.replace's, cheaper
         with bodies_judged():  # judged when this scene was built
             return Scene(values, **(fields_now | changes))
+
+    def _recomputed(self, values: dict) -> set:
+        """The parameters :meth:`with_` left out of ``values`` that building the copy computes again from the others,
+        to the value held: ``kappa`` from ``poisson`` or ``shear_modulus``, which the copy keeps, with k and R."""
+        return {"kappa"} if "kappa" not in values and ("poisson" in values or "shear_modulus" in values) else set()
+
+    def _approached(self, changes: dict) -> "Scene":
+        """:meth:`with_`'s copy when ``changes`` are of the approach alone (:data:`APPROACH`) and the scene has no
+        partner: every attribute the full build would give it, to the bit (tests/test_scene.py builds both).  The
+        law's parameters, the tangential stiffness and the models' checks do not depend on the approach, so they are
+        taken as resolved; the changed fields are checked, and then every check the approach enters, in
+        ``__post_init__``'s order: the magnitudes, the path, the law's time scale and the weight."""
+        copy = object.__new__(Scene)
+        held = copy.__dict__
+        held.update(self.__dict__)
+        for name in _CACHED:  # derived from the fields: read again on the copy's values
+            held.pop(name, None)
+        held.update(changes)
+        for name, (allowed, ok) in RULES.items():
+            if name in changes and type(value := changes[name]) is not ChapterValue:
+                held[name] = _check(name, value, allowed, ok)
+        problem = magnitude_problem(copy.mass, copy.speed, copy.diameter, copy.spin)
+        if problem:
+            raise ValueError(problem)
+        copy._check_path()
+        copy._check_scales()
+        copy._check_weight()
+        return copy
 
 
 def chapter_law_parameters(law) -> tuple:
@@ -606,6 +642,11 @@ def _chapter_parameters(law, given: dict) -> set:
 
 #: The Scene's fields: any other name given to it or to :meth:`Scene.with_` is a parameter of its models.
 FIELDS = frozenset(f.name for f in fields(Scene))
+#: The fields of the approach (and friction): what a copy may change without its parameters being resolved again
+#: (:meth:`Scene.with_`, :meth:`Scene._approached`).
+APPROACH = frozenset({"angle", "speed", "spin", "mu", "gravity", "incidence", "angle_to_surface"})
+#: The quantities a Scene derives from its fields and keeps once read (its cached properties).
+_CACHED = tuple(name for name, value in vars(Scene).items() if isinstance(value, cached_property))
 #: What a Scene derives from its parameters and keeps once read (:meth:`Scene._hold` drops them with the values).
 _FROM_PARAMETERS = ("frequency", "_family")
 #: Each field's default (``parameters`` aside).

@@ -5,8 +5,9 @@ planar one (a benchmark: timings are written to files, never asserted).
 :func:`sphereimpact.numerics.handwritten.handwritten` run at the loosest tolerance of :data:`TOLERANCES`
 whose error (against :func:`sphereimpact.numerics.reference.reference`) is no larger than
 ``simulate``'s.  Both are timed with one protocol, :func:`per_call_seconds`; each timed ``simulate`` call builds and
-checks its Scene too (:meth:`~sphereimpact.Scene.with_`, a copy from its fields: what a user's call pays), the script
-reading the scene's numbers.
+checks its Scene too, from its fields (``Scene(**scene.as_dict())``: what a user's call on a new Scene pays; a copy
+by :meth:`~sphereimpact.Scene.with_` with a new approach, a map's or fit's way, costs less: ``results/bench_stages.csv``),
+the script reading the scene's numbers.
 """
 
 from __future__ import annotations
@@ -76,7 +77,8 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
             hand_error = worst_error(hand, ref, scene)
             if hand_error <= sim_error:
                 break
-        timed, sizes = per_call_seconds({"simulate": lambda: simulate(scene.with_(), default),  # the Scene built too
+        fields = scene.as_dict()
+        timed, sizes = per_call_seconds({"simulate": lambda: simulate(Scene(**fields), default),  # the Scene built too
                                          "handwritten": lambda: handwritten(scene, rtol)}, repeats)
         sim_time, hand_time = timed["simulate"], timed["handwritten"]
         base = {"scene": name, "model": scene.model, "angle": scene.angle, "speed": scene.speed, "repeats": repeats}
@@ -109,8 +111,9 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     row = out.motion.tangential
     _, inputs = march_inputs(out.motion.normal, row.time_steps)
     rigid_scene = scene.with_(tangential="rigid")
-    timed, sizes = per_call_seconds({"microslip": lambda: simulate(scene.with_(), default),  # each its Scene built too
-                                     "rigid": lambda: simulate(rigid_scene.with_(), default),
+    fields, rigid_fields = scene.as_dict(), rigid_scene.as_dict()
+    timed, sizes = per_call_seconds({"microslip": lambda: simulate(Scene(**fields), default),  # each its Scene built too
+                                     "rigid": lambda: simulate(Scene(**rigid_fields), default),
                                      "march": lambda: march(*inputs, row.elements)}, repeats)
     march_name = f"its march alone ({row.elements} cells x {row.time_steps} steps)"
 
@@ -213,7 +216,8 @@ def startup_bench(repeats: int = 3) -> pd.DataFrame:
 def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
     """Where one impact's time goes, stage by stage, for each scene (same protocol as the bench).
 
-    Rows per scene: ``build`` (building and checking the Scene from its fields), ``normal`` (the normal motion:
+    Rows per scene: ``build`` (building and checking the Scene from its fields), ``copy`` (:meth:`Scene.with_`'s copy with
+    a new approach, as a map or a fit makes its scenes: the approach checked again), ``normal`` (the normal motion:
     closed form or integration), ``tangential`` (the tangential motion and spin on it), ``outcome`` (outputs: force
     extremes, kinematics at t_m and t_f), ``simulate`` (the whole call on a Scene built in it: the stages plus
     checks) and ``handwritten`` (the script, at simulate's tolerance).  Columns: ``scene``, ``stage``, ``time`` [s per
@@ -232,11 +236,12 @@ def stages(scenes: dict[str, Scene], repeats: int = 3) -> pd.DataFrame:
         normal = normal_motion(scene, options)
         motion = ReducedMotion(normal, options)
         # each timed call does all its work: nothing kept with the normal motion by the call before
-        times, sizes = per_call_seconds({"build": scene.with_,
+        fields = scene.as_dict()
+        times, sizes = per_call_seconds({"build": lambda: Scene(**fields), "copy": scene.with_,
                                          "normal": lambda: normal_motion(scene, options),
                                          "tangential": lambda: (normal.forget(), ReducedMotion(normal, options)),
                                          "outcome": lambda: (normal.forget(), Outcome.from_motion(motion, 0.0)),
-                                         "simulate": lambda: simulate(scene.with_(), default),
+                                         "simulate": lambda: simulate(Scene(**fields), default),
                                          "handwritten": lambda: handwritten(scene, default.rtol)}, repeats)
         rows += [{"scene": name, "stage": stage, "time": seconds, "share": seconds / times["simulate"],
                   "batch": sizes[stage]} for stage, seconds in times.items()]

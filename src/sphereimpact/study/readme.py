@@ -154,7 +154,7 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         text_table(("map", "command", "scenes", "time", "impacts/s", "target"), command_rows)] if command_rows else [])
     return "\n\n".join([
         "One impact (`results/bench.csv`): `simulate` at its default options, each call building and checking its "
-        "Scene too (method `auto`: the law's closed "
+        "Scene from its fields too (method `auto`: the law's closed "
         "form where it has one, else the Taylor method where it has a series, else DOP853-scalar, scipy's DOP853 "
         "per scene in plain floats; both compiled (numba) once a process has integrated enough to repay loading "
         "them, as here) against the hand-written script (one `solve_ivp` call, scalar right-hand side, the two events, no "
