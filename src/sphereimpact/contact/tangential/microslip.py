@@ -45,7 +45,7 @@ import numpy as np
 from ..laws.base import Spring, hertz_modulus
 from ..parameters import Setting
 from .base import KAPPA, POISSON, SHEAR_MODULUS, TANGENTIALS, Regime, TangentialModel, slip_per_impulse
-from .rigid import PositiveImpulse
+from .rigid import PositiveImpulse, push_terms, pushing_throughout
 
 #: Default resolution: cells of the element row and time steps per contact (the convergence study's choice).
 ELEMENTS = 128
@@ -133,9 +133,14 @@ def _samples(normal, time_steps: int):
     """What the march reads of the normal motion alone, on ``time_steps`` equal steps: the step ends t [s], the
     contact radius over a_max [-], P+ [N] (zero at the ends: no area, no load), the impulse of P+ over each
     step [N s], and a_max^2 / R = delta_m [m].  Compiled (:func:`.microslip_march.samples`, the same numbers to the
-    bit) where the motion has a kernel state and its force pushes over one interval, as the force criterion's does."""
-    positive = PositiveImpulse(normal)
-    terms = positive.kernel_terms()
+    bit) where the motion has a kernel state and its force pushes over one interval, as the force criterion's does
+    (read without building J+ where it pushes throughout, :func:`~.rigid.pushing_throughout`)."""
+    positive = None
+    pushing = pushing_throughout(normal)
+    if pushing is None:
+        positive = PositiveImpulse(normal)
+        pushing = positive.one_interval()
+    terms = push_terms(normal, pushing)
     if terms is not None:
         from .microslip_march import samples
 
@@ -150,6 +155,7 @@ def _samples(normal, time_steps: int):
     load = np.maximum(normal.forces_at(compression, rate), 0.0)  # normal.force(t), as compiled code computes it
     load[0] = load[-1] = 0.0
     impulse = normal.impulse_from(t, rate)  # normal.impulse(t)
+    positive = PositiveImpulse(normal) if positive is None else positive
     return t, np.sqrt(delta / delta_m), load, np.diff(positive.from_impulse(t, impulse)), delta_m
 
 

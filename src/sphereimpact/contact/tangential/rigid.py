@@ -136,6 +136,27 @@ def _at(f, t) -> np.ndarray:
     return np.asarray(f(t), dtype=float)
 
 
+def pushing_throughout(normal: NormalMotion) -> tuple[float, float, float] | None:
+    """(0, t_f, J(0)) [s, s, N s] where the force criterion's force pushes over all of [0, t_f] (P(t_m) > 0, t_f > 0):
+    :meth:`PositiveImpulse.one_interval` read off the motion without building the PositiveImpulse (what a compiled
+    reader of J+ needs of it); None where that takes the PositiveImpulse's cuts (the penetration criterion's force may
+    pull), not a different answer."""
+    if normal.scene.separation.on_force and normal.t_f > 0.0 and normal.force(normal.t_m) > 0:
+        return 0.0, normal.t_f, float(normal.impulse(0.0))
+    return None
+
+
+def push_terms(normal: NormalMotion, pushing: tuple | None) -> tuple | None:
+    """:meth:`PositiveImpulse.kernel_terms` of the one pushing interval ``pushing`` (a, b, J(a)) of ``normal``: None where
+    the motion has no kernel state or ``pushing`` is None."""
+    state = None if pushing is None else normal.kernel_state()
+    if state is None:
+        return None
+    scene = normal.scene
+    numbers = np.array([*pushing, scene.mass, scene.v_normal, scene.g_normal], dtype=float)
+    return state.arrays(), state.force, state.params, numbers
+
+
 class PositiveImpulse:
     """J+(t) and K+(t): the impulse of max(P, 0) and its time integral.
 
@@ -264,12 +285,7 @@ class PositiveImpulse:
         interval, :data:`.rigid_kernel.PUSHING`) as :mod:`.rigid_kernel` takes them, or None where the motion has no
         :meth:`~sphereimpact.contact.motion.NormalMotion.kernel_state` or the force pushes over more than one
         interval (the Python searches then serve, to the same bits)."""
-        state, pushing = self._n.kernel_state(), self.one_interval()
-        if state is None or pushing is None:
-            return None
-        scene = self._n.scene
-        numbers = np.array([*pushing, scene.mass, scene.v_normal, scene.g_normal], dtype=float)
-        return state.arrays(), state.force, state.params, numbers
+        return push_terms(self._n, self.one_interval())
 
     def _first_guess(self, times, on_grid, impulses, upper) -> np.ndarray:
         """Where J+ reaches each impulse, to start Newton from: the secant of its grid interval, but in the
