@@ -221,13 +221,7 @@ class Scene:
         self.__post_init__()
 
     def __post_init__(self):
-        for name, (allowed, ok) in RULES.items():
-            value = getattr(self, name)
-            checked = _check(name, value, allowed, ok)  # the chapter's value stays marked as such
-            object.__setattr__(self, name, value if type(value) is ChapterValue else checked)
-        problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
-        if problem:
-            raise ValueError(problem)
+        self._check_numbers(RULES)
         slip = None if _JUDGED.get() else density_problem(self.mass, self.diameter)
         if slip:  # stack: __post_init__, __init__, the caller
             warnings.warn(slip, UnitWarning, stacklevel=3)
@@ -252,6 +246,18 @@ class Scene:
         self._check_scales()
         self._check_weight()
         self._hold(resolved | self._resolve_kappa(raw) | own)
+
+    def _check_numbers(self, names) -> None:
+        """Check the numeric fields among ``names`` (:data:`RULES`, in its order), each held as a float, then their
+        magnitudes together."""
+        for name, (allowed, ok) in RULES.items():
+            if name in names:
+                value = getattr(self, name)
+                checked = _check(name, value, allowed, ok)  # the chapter's value stays marked as such
+                object.__setattr__(self, name, value if type(value) is ChapterValue else checked)
+        problem = magnitude_problem(self.mass, self.speed, self.diameter, self.spin)
+        if problem:
+            raise ValueError(problem)
 
     def _check_weight(self) -> None:
         """Refuse a ball whose weight alone presses the contact beyond its radius."""
@@ -601,7 +607,7 @@ class Scene:
 
     def _approached(self, changes: dict) -> "Scene":
         """:meth:`with_`'s copy when ``changes`` are of the approach alone (:data:`APPROACH`) and the scene has no
-        partner: every attribute the full build would give it, to the bit (tests/test_scene.py builds both).  The
+        partner: every attribute the full build would give it, to the bit (tests/test_scene_copy.py builds both).  The
         law's parameters, the tangential stiffness and the models' checks do not depend on the approach, so they are
         taken as resolved; the changed fields are checked, and then every check the approach enters, in
         ``__post_init__``'s order: the magnitudes, the path, the law's time scale and the weight."""
@@ -611,12 +617,7 @@ class Scene:
         for name in _CACHED:  # derived from the fields: read again on the copy's values
             held.pop(name, None)
         held.update(changes)
-        for name, (allowed, ok) in RULES.items():
-            if name in changes and type(value := changes[name]) is not ChapterValue:
-                held[name] = _check(name, value, allowed, ok)
-        problem = magnitude_problem(copy.mass, copy.speed, copy.diameter, copy.spin)
-        if problem:
-            raise ValueError(problem)
+        copy._check_numbers(changes)
         copy._check_path()
         copy._check_scales()
         copy._check_weight()

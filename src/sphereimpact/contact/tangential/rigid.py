@@ -141,9 +141,15 @@ def pushing_throughout(normal: NormalMotion) -> tuple[float, float, float] | Non
     :meth:`PositiveImpulse.one_interval` read off the motion without building the PositiveImpulse (what a compiled
     reader of J+ needs of it); None where that takes the PositiveImpulse's cuts (the penetration criterion's force may
     pull), not a different answer."""
-    if normal.scene.separation.on_force and normal.t_f > 0.0 and normal.force(normal.t_m) > 0:
+    if normal.scene.separation.on_force and _pushes_at_maximum(normal):
         return 0.0, normal.t_f, float(normal.impulse(0.0))
     return None
+
+
+def _pushes_at_maximum(normal: NormalMotion) -> bool:
+    """Whether the contact lasts and the force pushes at maximum compression: where it has no sign change on (0, t_f),
+    it pushes throughout."""
+    return normal.t_f > 0.0 and normal.force(normal.t_m) > 0
 
 
 def push_terms(normal: NormalMotion, pushing: tuple | None) -> tuple | None:
@@ -172,7 +178,7 @@ class PositiveImpulse:
         # Under the force criterion contact ends at the first P = 0: P >= 0 all along, nothing to cut
         inner = [] if normal.scene.separation.on_force else normal.force_roots()
         # without a sign change on (0, t_f) the force there has the sign it has at maximum compression, inside
-        if not inner and normal.t_f > 0.0 and normal.force(normal.t_m) > 0:
+        if not inner and _pushes_at_maximum(normal):
             self._one_interval(normal.t_f)  # the force criterion's: _cut's arrays for one interval, in floats
         else:
             self._cut(inner)
