@@ -93,27 +93,35 @@ def simulate_vs_handwritten(scenes: dict[str, Scene], repeats: int = 3) -> pd.Da
 
 def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) -> pd.DataFrame:
     """What the exact microslip contact costs: one impact at its default resolution beside the rigid contact on
-    the same scene and beside its element row's march alone (the compiled kernel, on the impact's own inputs).
+    the same scene, beside the compiled port a user writes by hand (:mod:`.compiled_port`, at the impact's own
+    cells and steps) and beside its element row's march alone (the compiled kernel, on the impact's own inputs).
 
     Rows have the bench's columns.  ``error``: one impact's, the larger of e_t's absolute and spin's relative
     error against the ``reference`` resolution (cells, time steps); NaN for the march (not an answer).  ``time``
     is per impact; ``time_ratio`` is over the row's comparison contender (the rigid contact for the impact, the
-    impact for the march).
+    impact for the port and the march).
     """
     from ..contact.tangential.microslip import march, march_inputs
+    from .compiled_port import compiled_port, port_numbers
 
     steady_state()
     rows = []
     default = SolverOptions()
     out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
     ref = simulate(scene, SolverOptions(settings={"elements": reference[0], "time_steps": reference[1]}))
-    error = max(abs(out.vc_t - ref.vc_t) / scene.v_tangent, abs(out.omega_f / ref.omega_f - 1.0))
+
+    def error_of(vc_t: float, omega_f: float) -> float:
+        return max(abs(vc_t - ref.vc_t) / scene.v_tangent, abs(omega_f / ref.omega_f - 1.0))
+
     row = out.motion.tangential
     _, inputs = march_inputs(out.motion.normal, row.time_steps)
+    numbers = port_numbers(scene, row.elements, row.time_steps)
+    port_vc_t, port_omega_f, port_nfev = compiled_port(*numbers)  # compiled here, outside the timing
     rigid_scene = scene.with_(tangential="rigid")
     fields, rigid_fields = scene.as_dict(), rigid_scene.as_dict()
     timed, sizes = per_call_seconds({"microslip": lambda: simulate(Scene(**fields), default),  # each its Scene built too
                                      "rigid": lambda: simulate(Scene(**rigid_fields), default),
+                                     "port": lambda: compiled_port(*numbers),
                                      "march": lambda: march(*inputs, row.elements)}, repeats)
     march_name = f"its march alone ({row.elements} cells x {row.time_steps} steps)"
 
@@ -123,10 +131,12 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
                 "method": out.method, "rtol": out.rtol, "reached": True, "contender": contender, "time": timed[key],
                 **values}
 
-    rows.append(one("simulate", "microslip", error=error, nfev=out.nfev,
+    rows.append(one("simulate", "microslip", error=error_of(out.vc_t, out.omega_f), nfev=out.nfev,
                     time_ratio=timed["microslip"] / timed["rigid"]))
     rows.append(one("simulate, rigid contact", "rigid", method=rigid.method, rtol=rigid.rtol, error=0.0,
                     nfev=rigid.nfev, time_ratio=1.0))
+    rows.append(one("compiled port (numba: RK4 normal motion, the same march)", "port", method="RK4", rtol=math.nan,
+                    error=error_of(port_vc_t, port_omega_f), nfev=port_nfev, time_ratio=timed["port"] / timed["microslip"]))
     rows.append(one(march_name, "march", error=math.nan, nfev=0, time_ratio=timed["march"] / timed["microslip"]))
     return pd.DataFrame(rows)
 

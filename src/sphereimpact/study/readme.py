@@ -167,13 +167,16 @@ def speed_block(bench_csv: str, bench_sweep_csv: str) -> str:
         "contender's run paid for its first calls' cold caches.",
         one,
         "The exact microslip contact (`results/bench.csv`): one impact at the default resolution beside the "
-        "rigid contact on the same scene (error: e_t's and spin's against the fine reference resolution) and "
-        "beside its element row's march alone, the compiled kernel (numba) on the impact's own inputs: the rest "
-        "of the impact is its normal motion. Once per process, not per impact: compiling the package's kernels (the "
+        "rigid contact on the same scene (error: e_t's and spin's against the fine reference resolution), beside "
+        "the compiled port a numba user writes by hand (one compiled call on the scene's numbers: the normal motion "
+        "by fixed-step RK4 on the march's own steps, then the package's march at the same cells and steps; the "
+        "target is the impact at most 2× its time), and beside its element row's march alone, the compiled kernel "
+        "(numba) on the impact's own inputs. Once per process, not per impact: compiling the package's kernels (the "
         "march's, the normal motion's DOP853 and Taylor loops, the laws' forces and series, the force's extremes and "
         "sign changes, the compliant springs' stick phase and the rigid contact's grip) on a fresh machine "
         "(numba imported, an empty disk cache) and loading them from the cache that filled, each in a fresh Python "
-        "process on one core, beside one other job of the pipeline. Time ratio: over the rigid contact, the impact and the load.",
+        "process on one core, beside one other job of the pipeline. Time ratio: over the rigid contact, the impact "
+        "(for the port and the march) and the load.",
         tangential,
         *start,
         "Sweeps (`results/bench_sweep.csv`): the engine on the whole sweep against the same script on a random "
