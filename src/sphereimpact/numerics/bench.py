@@ -107,7 +107,8 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     steady_state()
     rows = []
     default = SolverOptions()
-    out, rigid = simulate(scene, default), simulate(scene.with_(tangential="rigid"), default)
+    rigid_scene = scene.with_(tangential="rigid")
+    out, rigid = simulate(scene, default), simulate(rigid_scene, default)
     ref = simulate(scene, SolverOptions(settings={"elements": reference[0], "time_steps": reference[1]}))
 
     def error_of(vc_t: float, omega_f: float) -> float:
@@ -117,7 +118,6 @@ def microslip_bench(scene: Scene, reference: tuple[int, int], repeats: int = 3) 
     _, inputs = march_inputs(out.motion.normal, row.time_steps)
     numbers = port_numbers(scene, row.elements, row.time_steps)
     port_vc_t, port_omega_f, port_nfev = compiled_port(*numbers)  # compiled here, outside the timing
-    rigid_scene = scene.with_(tangential="rigid")
     fields, rigid_fields = scene.as_dict(), rigid_scene.as_dict()
     timed, sizes = per_call_seconds({"microslip": lambda: simulate(Scene(**fields), default),  # each its Scene built too
                                      "rigid": lambda: simulate(Scene(**rigid_fields), default),

@@ -59,6 +59,19 @@ def _compiled():
             return value, slope
 
         @numba.njit(nogil=True, error_model="numpy")
+        def root(which, h, d0, v0, d1, v1):
+            """Where in [0, 1] of a step its Hermite's value (``which`` 0) or rate (1) falls through zero: 60
+            bisections, from positive at 0 to non-positive at 1."""
+            low, high = 0.0, 1.0
+            for _ in range(60):
+                mid = 0.5 * (low + high)
+                if hermite(mid, h, d0, v0, d1, v1)[which] > 0.0:
+                    low = mid
+                else:
+                    high = mid
+            return 0.5 * (low + high)
+
+        @numba.njit(nogil=True, error_model="numpy")
         def port(k, exponent, chi, mass, radius, v_normal, v_tangent, spin, mu, shear_modulus, inertia_factor,
                  elements, steps, guess):
             # first pass: the separation, on steps of guess / steps
@@ -71,14 +84,7 @@ def _compiled():
                 delta, delta_dot, t = d1, v1, t + h
             else:
                 return math.nan, math.nan, 0
-            low, high = 0.0, 1.0  # the root of the step's Hermite cubic, by bisection
-            for _ in range(60):
-                mid = 0.5 * (low + high)
-                if hermite(mid, h, delta, delta_dot, d1, v1)[0] > 0.0:
-                    low = mid
-                else:
-                    high = mid
-            t_f = t + 0.5 * (low + high) * h
+            t_f = t + root(0, h, delta, delta_dot, d1, v1) * h
             # second pass: the march's M equal steps of [0, t_f]
             h = t_f / steps
             points = steps + 1
@@ -88,14 +94,8 @@ def _compiled():
             for n in range(steps):
                 depth[n + 1], speed[n + 1] = rk4(depth[n], speed[n], h, k, exponent, chi, mass)
                 if speed[n] > 0.0 >= speed[n + 1]:  # maximum compression in this step: its Hermite's peak
-                    low, high = 0.0, 1.0
-                    for _ in range(60):
-                        mid = 0.5 * (low + high)
-                        if hermite(mid, h, depth[n], speed[n], depth[n + 1], speed[n + 1])[1] > 0.0:
-                            low = mid
-                        else:
-                            high = mid
-                    delta_m = hermite(0.5 * (low + high), h, depth[n], speed[n], depth[n + 1], speed[n + 1])[0]
+                    ends = (h, depth[n], speed[n], depth[n + 1], speed[n + 1])
+                    delta_m = hermite(root(1, *ends), *ends)[0]
             xi_a, cap, impulse = np.empty(points), np.zeros(points), np.empty(steps)
             for n in range(points):
                 xi_a[n] = math.sqrt(max(depth[n], 0.0) / delta_m)
